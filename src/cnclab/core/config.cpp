@@ -1,0 +1,470 @@
+#include "cnclab/core/config.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "cnclab/core/error.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+// Include nesting and tree size limits: a config is hand-written and small;
+// these only stop include cycles and YAML alias bombs.
+constexpr int kMaxIncludeDepth = 16;
+constexpr std::size_t kMaxNodes = 200000;
+
+std::string join(const std::string& prefix, const std::string& key) {
+  return prefix.empty() ? key : prefix + "." + key;
+}
+
+SourceLocation mark_location(const std::string& file, const YAML::Mark& mark) {
+  if (mark.is_null()) return {file, 0, 0};
+  return {file, mark.line + 1, mark.column + 1};
+}
+
+void erase_below(std::map<std::string, SourceLocation>& locations, const std::string& key) {
+  const std::string prefix = key + ".";
+  for (auto it = locations.lower_bound(prefix);
+       it != locations.end() && it->first.compare(0, prefix.size(), prefix) == 0;) {
+    it = locations.erase(it);
+  }
+}
+
+// Records the location of every map key below `node` and rejects what a
+// config may not contain: non-scalar or duplicate keys, oversized trees.
+void index_tree(const YAML::Node& node, const std::string& prefix, const std::string& file,
+                std::map<std::string, SourceLocation>& out, std::size_t& count) {
+  if (++count > kMaxNodes) {
+    throw ConfigError(file + ": config has more than " + std::to_string(kMaxNodes) +
+                      " nodes (alias expansion?)");
+  }
+  if (node.IsSequence()) {
+    for (const auto& item : node) index_tree(item, prefix, file, out, count);
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::set<std::string> seen;
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    const YAML::Node& key = it->first;
+    if (!key.IsScalar()) {
+      throw ConfigError(mark_location(file, key.Mark()).str() + ": " +
+                        (prefix.empty() ? std::string("top level") : prefix) +
+                        ": map keys must be plain names");
+    }
+    const std::string dotted = join(prefix, key.Scalar());
+    if (!seen.insert(key.Scalar()).second) {
+      throw ConfigError(mark_location(file, key.Mark()).str() + ": " + dotted +
+                        ": duplicate key");
+    }
+    const YAML::Node& value = it->second;
+    out[dotted] = mark_location(file, value.IsScalar() ? value.Mark() : key.Mark());
+    index_tree(value, dotted, file, out, count);
+  }
+}
+
+// yaml-cpp's const operator[] returns an invalid node for a missing key, on
+// which IsMap() throws.
+bool is_map(const YAML::Node& n) { return n.IsDefined() && n.IsMap(); }
+
+// dst <- src, key by key for maps; anything else replaces.
+void merge_into(YAML::Node& dst, const YAML::Node& src) {
+  for (auto it = src.begin(); it != src.end(); ++it) {
+    const std::string key = it->first.Scalar();
+    YAML::Node existing = dst[key];
+    if (existing.IsMap() && it->second.IsMap()) {
+      merge_into(existing, it->second);
+    } else {
+      dst[key] = YAML::Clone(it->second);
+    }
+  }
+}
+
+void merge_locations(std::map<std::string, SourceLocation>& dst, const YAML::Node& dst_tree,
+                     const std::map<std::string, SourceLocation>& src, const YAML::Node& src_tree,
+                     const std::string& prefix) {
+  for (auto it = src_tree.begin(); it != src_tree.end(); ++it) {
+    const std::string key = it->first.Scalar();
+    const std::string dotted = join(prefix, key);
+    const YAML::Node existing = dst_tree[key];
+    if (!(is_map(existing) && it->second.IsMap())) erase_below(dst, dotted);
+    if (auto loc = src.find(dotted); loc != src.end()) dst[dotted] = loc->second;
+    if (it->second.IsMap()) {
+      // Children: copy all located keys below `dotted` from src.
+      const std::string below = dotted + ".";
+      for (auto s = src.lower_bound(below);
+           s != src.end() && s->first.compare(0, below.size(), below) == 0; ++s) {
+        dst[s->first] = s->second;
+      }
+    }
+  }
+}
+
+YAML::Node parse_yaml(const std::string& text, const std::string& origin) {
+  try {
+    YAML::Node node = YAML::Load(text);
+    if (!node.IsDefined() || node.IsNull()) return YAML::Node(YAML::NodeType::Map);
+    if (!node.IsMap()) {
+      throw ConfigError(mark_location(origin, node.Mark()).str() +
+                        ": the top level of a config must be a map of keys");
+    }
+    return node;
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(mark_location(origin, e.mark).str() + ": malformed YAML: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(origin + ": malformed YAML: " + e.msg);
+  }
+}
+
+std::string read_text(const fs::path& file) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) {
+    throw ConfigError(file.string() + ": " +
+                      (fs::exists(file, ec) ? "not a regular file" : "no such file"));
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ConfigError(file.string() + ": cannot open for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+fs::path resolve_include(const fs::path& including_file, const std::string& name) {
+  const fs::path relative = including_file.parent_path() / name;
+  std::error_code ec;
+  if (fs::exists(relative, ec)) return relative;
+  // "configs/..." against the nearest ancestor that has a configs/ folder.
+  for (fs::path dir = fs::absolute(including_file, ec).parent_path(); !dir.empty();
+       dir = dir.parent_path()) {
+    if (fs::is_directory(dir / "configs", ec) && fs::exists(dir / name, ec)) return dir / name;
+    if (dir == dir.parent_path()) break;
+  }
+  return relative;  // reported as missing by read_text
+}
+
+struct Loaded {
+  YAML::Node tree;
+  std::map<std::string, SourceLocation> locations;
+};
+
+Loaded load_recursive(const fs::path& file, std::vector<fs::path>& stack) {
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(file, ec);
+  if (std::find(stack.begin(), stack.end(), canonical) != stack.end()) {
+    throw ConfigError(file.string() + ": include cycle");
+  }
+  if (static_cast<int>(stack.size()) >= kMaxIncludeDepth) {
+    throw ConfigError(file.string() + ": includes nested deeper than " +
+                      std::to_string(kMaxIncludeDepth));
+  }
+  const std::string origin = file.string();
+  YAML::Node own = parse_yaml(read_text(file), origin);
+  std::map<std::string, SourceLocation> own_locations;
+  std::size_t count = 0;
+  index_tree(own, "", origin, own_locations, count);
+
+  std::vector<std::string> includes;
+  if (own["include"]) {
+    const YAML::Node inc = own["include"];
+    const std::string where = own_locations["include"].str();
+    if (inc.IsScalar()) {
+      includes.push_back(inc.Scalar());
+    } else if (inc.IsSequence()) {
+      for (const auto& item : inc) {
+        if (!item.IsScalar()) throw ConfigError(where + ": include: expected a list of paths");
+        includes.push_back(item.Scalar());
+      }
+    } else {
+      throw ConfigError(where + ": include: expected a path or a list of paths");
+    }
+    own.remove("include");
+    erase_below(own_locations, "include");
+    own_locations.erase("include");
+  }
+
+  Loaded result{YAML::Node(YAML::NodeType::Map), {}};
+  stack.push_back(canonical);
+  for (const auto& name : includes) {
+    const fs::path path = resolve_include(file, name);
+    // Never assign to a YAML::Node that already refers to a node: yaml-cpp's
+    // operator= rewrites the referenced node instead of rebinding.
+    Loaded inc = [&] {
+      try {
+        return load_recursive(path, stack);
+      } catch (const ConfigError& e) {
+        throw ConfigError(std::string(e.what()) + " (included from " + origin + ")");
+      }
+    }();
+    merge_locations(result.locations, result.tree, inc.locations, inc.tree, "");
+    merge_into(result.tree, inc.tree);
+  }
+  stack.pop_back();
+  merge_locations(result.locations, result.tree, own_locations, own, "");
+  merge_into(result.tree, own);
+  return result;
+}
+
+bool parse_int_text(const std::string& s, std::int64_t& out) {
+  const char* begin = s.data();
+  const char* end = s.data() + s.size();
+  if (begin != end && *begin == '+') ++begin;
+  auto [ptr, ec] = std::from_chars(begin, end, out);
+  return ec == std::errc() && ptr == end && begin != end;
+}
+
+bool is_plain_scalar(const YAML::Node& n) { return n.IsScalar() && n.Tag() != "!"; }
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+std::string node_text(const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) return "null";
+  if (node.IsScalar()) return node.Scalar();
+  YAML::Emitter out;
+  out << YAML::Flow << node;
+  return out.c_str();
+}
+
+// ---------------------------------------------------------------- document
+
+ConfigDocument ConfigDocument::load(const fs::path& file) {
+  std::vector<fs::path> stack;
+  Loaded loaded = load_recursive(file, stack);
+  ConfigDocument doc;
+  doc.tree_ = loaded.tree;
+  doc.origin_ = file.string();
+  doc.state_->locations = std::move(loaded.locations);
+  return doc;
+}
+
+ConfigDocument ConfigDocument::parse(const std::string& yaml_text, const std::string& origin) {
+  ConfigDocument doc;
+  doc.tree_ = parse_yaml(yaml_text, origin);
+  doc.origin_ = origin;
+  std::size_t count = 0;
+  index_tree(doc.tree_, "", origin, doc.state_->locations, count);
+  return doc;
+}
+
+void ConfigDocument::apply(const Override& override) {
+  const SourceLocation where{"override " + override.text, 0, 0};
+  // Recursive so that each level binds a fresh YAML::Node (see load_recursive).
+  std::function<void(YAML::Node, std::size_t, const std::string&)> set =
+      [&](YAML::Node node, std::size_t i, const std::string& prefix) {
+        const std::string& part = override.path[i];
+        const std::string dotted = join(prefix, part);
+        if (i + 1 == override.path.size()) {
+          node[part] = YAML::Clone(override.value);
+          return;
+        }
+        const YAML::Node existing = static_cast<const YAML::Node&>(node)[part];
+        if (!existing.IsDefined() || existing.IsNull()) {
+          node[part] = YAML::Node(YAML::NodeType::Map);
+          state_->locations[dotted] = where;
+        } else if (!existing.IsMap()) {
+          throw ConfigError(where.str() + ": " + dotted + " is " + node_text(existing) +
+                            ", not a section, so it has no key '" + override.path[i + 1] + "'");
+        }
+        set(node[part], i + 1, dotted);
+      };
+  set(tree_, 0, "");
+  const std::string key = override.dotted_key();
+  erase_below(state_->locations, key);
+  state_->locations[key] = where;
+  std::size_t count = 0;
+  std::map<std::string, SourceLocation> below;
+  index_tree(override.value, key, where.file, below, count);
+  for (auto& [k, loc] : below) state_->locations[k] = where;
+}
+
+ConfigReader ConfigDocument::root() const { return ConfigReader(*this, tree_, ""); }
+
+std::string ConfigDocument::to_yaml() const {
+  YAML::Emitter out;
+  out << tree_;
+  return std::string(out.c_str()) + "\n";
+}
+
+SourceLocation ConfigDocument::location(const std::string& dotted_key) const {
+  std::string key = dotted_key;
+  while (!key.empty()) {
+    if (auto it = state_->locations.find(key); it != state_->locations.end()) return it->second;
+    const auto dot = key.rfind('.');
+    key = dot == std::string::npos ? std::string() : key.substr(0, dot);
+  }
+  return {origin_, 0, 0};
+}
+
+void ConfigDocument::check_all_consumed() const {
+  const auto& known = state_->consumed;
+  std::function<void(const YAML::Node&, const std::string&)> walk =
+      [&](const YAML::Node& node, const std::string& prefix) {
+        if (!node.IsMap()) return;
+        for (auto it = node.begin(); it != node.end(); ++it) {
+          const std::string dotted = join(prefix, it->first.Scalar());
+          if (known.count(dotted + "/*")) continue;  // consumed whole (raw)
+          if (!known.count(dotted)) {
+            // Suggest the closest key the readers asked for at this level.
+            std::string best;
+            std::size_t best_distance = 3;  // suggest only near misses
+            std::string allowed;
+            const std::string parent = prefix.empty() ? "" : prefix + ".";
+            for (const auto& k : known) {
+              if (k.compare(0, parent.size(), parent) != 0) continue;
+              const std::string rest = k.substr(parent.size());
+              if (rest.empty() || rest.find('.') != std::string::npos ||
+                  rest.find('/') != std::string::npos) {
+                continue;
+              }
+              allowed += (allowed.empty() ? "" : ", ") + rest;
+              const std::size_t d = edit_distance(rest, it->first.Scalar());
+              if (d < best_distance) best_distance = d, best = rest;
+            }
+            std::string msg = location(dotted).str() + ": " + dotted + ": unknown key";
+            if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+            if (!allowed.empty()) msg += "; allowed here: " + allowed;
+            throw ConfigError(msg);
+          }
+          walk(it->second, dotted);
+        }
+      };
+  walk(tree_, "");
+}
+
+// ---------------------------------------------------------------- reader
+
+ConfigReader::ConfigReader(const ConfigDocument& doc, YAML::Node node, std::string path)
+    : doc_(&doc), node_(std::move(node)), path_(std::move(path)) {}
+
+YAML::Node ConfigReader::child(const std::string& key) const {
+  if (!node_.IsMap()) return YAML::Node();
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    if (it->first.Scalar() == key) return it->second;
+  }
+  return YAML::Node();
+}
+
+void ConfigReader::mark(const std::string& key) const { doc_->state_->consumed.insert(dotted(key)); }
+
+bool ConfigReader::has(const std::string& key) const {
+  mark(key);
+  const YAML::Node n = child(key);
+  return n.IsDefined() && !n.IsNull();
+}
+
+ConfigReader ConfigReader::section(const std::string& key) const {
+  mark(key);
+  YAML::Node n = child(key);
+  if (!n.IsDefined() || n.IsNull()) return ConfigReader(*doc_, YAML::Node(YAML::NodeType::Map), dotted(key));
+  if (!n.IsMap()) fail(key, "expected a section (a map of keys)");
+  return ConfigReader(*doc_, n, dotted(key));
+}
+
+YAML::Node ConfigReader::raw(const std::string& key) const {
+  mark(key);
+  doc_->state_->consumed.insert(dotted(key) + "/*");
+  return child(key);
+}
+
+std::vector<std::string> ConfigReader::keys() const {
+  std::vector<std::string> out;
+  if (!node_.IsMap()) return out;
+  for (auto it = node_.begin(); it != node_.end(); ++it) out.push_back(it->first.Scalar());
+  return out;
+}
+
+std::string ConfigReader::dotted(const std::string& key) const { return join(path_, key); }
+
+SourceLocation ConfigReader::location(const std::string& key) const {
+  return doc_->location(dotted(key));
+}
+
+void ConfigReader::fail(const std::string& key, const std::string& rule) const {
+  const YAML::Node n = child(key);
+  std::string msg = location(key).str() + ": " + dotted(key);
+  if (n.IsDefined() && !n.IsNull()) msg += " = " + node_text(n);
+  throw ConfigError(msg + ": " + rule);
+}
+
+void ConfigReader::rethrow_option_error(const OptionError& e) const {
+  const std::string key = dotted(e.field());
+  throw ConfigError(doc_->location(key).str() + ": " + key + " = " + e.value() + ": " + e.rule());
+}
+
+// ---------------------------------------------------------------- decoding
+
+namespace config_detail {
+
+double decode_double(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
+  if (!is_plain_scalar(n)) r.fail(key, "expected a number");
+  const std::string& s = n.Scalar();
+  double value = 0;
+  const char* begin = s.data();
+  const char* end = s.data() + s.size();
+  if (begin != end && *begin == '+') ++begin;
+  auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec == std::errc::result_out_of_range) r.fail(key, "number out of the range of a double");
+  if (ec != std::errc() || ptr != end || begin == end) r.fail(key, "expected a number");
+  if (!std::isfinite(value)) r.fail(key, "must be a finite number");
+  return value;
+}
+
+bool decode_bool(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
+  if (is_plain_scalar(n)) {
+    const std::string& s = n.Scalar();
+    if (s == "true" || s == "True" || s == "TRUE") return true;
+    if (s == "false" || s == "False" || s == "FALSE") return false;
+  }
+  r.fail(key, "expected true or false");
+}
+
+std::string decode_string(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
+  if (!n.IsScalar()) r.fail(key, "expected a string");
+  return n.Scalar();
+}
+
+std::int64_t decode_int(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
+  std::int64_t value = 0;
+  if (!is_plain_scalar(n) || !parse_int_text(n.Scalar(), value)) {
+    r.fail(key, "expected an integer");
+  }
+  return value;
+}
+
+std::uint64_t decode_uint(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
+  if (!is_plain_scalar(n)) r.fail(key, "expected a non-negative integer");
+  const std::string& s = n.Scalar();
+  std::uint64_t value = 0;
+  const char* begin = s.data();
+  const char* end = s.data() + s.size();
+  if (begin != end && *begin == '+') ++begin;
+  auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec == std::errc::result_out_of_range) r.fail(key, "integer too large");
+  if (ec != std::errc() || ptr != end || begin == end) r.fail(key, "expected a non-negative integer");
+  return value;
+}
+
+void require_sequence(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
+  if (!n.IsSequence()) r.fail(key, "expected a list, e.g. [28, 20]");
+}
+
+}  // namespace config_detail
+}  // namespace cnclab

@@ -1,0 +1,199 @@
+#include "cnclab/core/config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cnclab/core/error.hpp"
+
+namespace cnclab {
+namespace {
+namespace fs = std::filesystem;
+
+// Runs f and returns the ConfigError message (fails the test if none).
+template <class F>
+std::string config_error(F&& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected a ConfigError";
+  return "";
+}
+
+class TempDir {
+ public:
+  TempDir() {
+    path_ = fs::temp_directory_path() /
+            ("cnclab_config_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+             "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  fs::path write(const std::string& name, const std::string& text) const {
+    const fs::path p = path_ / name;
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << text;
+    return p;
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+TEST(Config, TypedReadsAndDefaults) {
+  auto doc = ConfigDocument::parse(
+      "a: 1.5\nb: true\nc: hello\nd: 42\ne: [28, 20]\nf: 1e-4\nsec:\n  x: -3\n", "t.yaml");
+  auto r = doc.root();
+  EXPECT_DOUBLE_EQ(r.get<double>("a", 0), 1.5);
+  EXPECT_TRUE(r.get<bool>("b", false));
+  EXPECT_EQ(r.get<std::string>("c", ""), "hello");
+  EXPECT_EQ(r.get<std::uint64_t>("d", 0), 42u);
+  EXPECT_EQ(r.get<std::vector<std::size_t>>("e", {}), (std::vector<std::size_t>{28, 20}));
+  EXPECT_DOUBLE_EQ(r.get<double>("f", 0), 1e-4);
+  EXPECT_EQ(r.section("sec").get<std::int64_t>("x", 0), -3);
+  EXPECT_DOUBLE_EQ(r.get<double>("absent", 7.0), 7.0);
+  EXPECT_NO_THROW(doc.check_all_consumed());
+}
+
+TEST(Config, WrongTypeNamesFileLineColumnKeyAndValue) {
+  auto doc = ConfigDocument::parse("trainer:\n  momentum: fast\n", "x.yaml");
+  const auto msg = config_error([&] { doc.root().section("trainer").get<double>("momentum", 0); });
+  EXPECT_EQ(msg, "x.yaml:2:13: trainer.momentum = fast: expected a number");
+}
+
+TEST(Config, QuotedNumberIsAStringNotANumber) {
+  auto doc = ConfigDocument::parse("a: '0.5'\n", "x.yaml");
+  EXPECT_NE(config_error([&] { doc.root().get<double>("a", 0); }).find("expected a number"),
+            std::string::npos);
+}
+
+TEST(Config, NonFiniteAndNegativeAndFractionalIntegersRejected) {
+  auto doc = ConfigDocument::parse("a: .nan\nb: -1\nc: 2.5\nd: inf\n", "x.yaml");
+  auto r = doc.root();
+  EXPECT_NE(config_error([&] { r.get<double>("a", 0); }).find("x.yaml:1:4: a = .nan"),
+            std::string::npos);
+  EXPECT_NE(config_error([&] { r.get<std::uint64_t>("b", 0); }).find("non-negative integer"),
+            std::string::npos);
+  EXPECT_NE(config_error([&] { r.get<std::int64_t>("c", 0); }).find("expected an integer"),
+            std::string::npos);
+  EXPECT_NE(config_error([&] { r.get<double>("d", 0); }).find("finite"), std::string::npos);
+}
+
+TEST(Config, UnknownKeyIsAnErrorWithSuggestion) {
+  auto doc = ConfigDocument::parse("trainer:\n  momentm: 0.5\n  learning_rate: 1\n", "x.yaml");
+  auto t = doc.root().section("trainer");
+  t.get<double>("momentum", 0.8);
+  t.get<double>("learning_rate", 0.1);
+  const auto msg = config_error([&] { doc.check_all_consumed(); });
+  EXPECT_NE(msg.find("x.yaml:2:12: trainer.momentm: unknown key (did you mean 'momentum'?)"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(Config, UnreadSectionIsUnknown) {
+  auto doc = ConfigDocument::parse("trainr:\n  momentum: 0.5\n", "x.yaml");
+  doc.root().section("trainer");
+  EXPECT_NE(config_error([&] { doc.check_all_consumed(); }).find("trainr: unknown key"),
+            std::string::npos);
+}
+
+TEST(Config, MalformedYamlNamesPosition) {
+  const auto msg = config_error([] { ConfigDocument::parse("a: [1, 2\nb: 3\n", "bad.yaml"); });
+  EXPECT_EQ(msg.rfind("bad.yaml:", 0), 0u) << msg;
+  EXPECT_NE(msg.find("malformed YAML"), std::string::npos);
+}
+
+TEST(Config, DuplicateKeyRejected) {
+  EXPECT_NE(config_error([] { ConfigDocument::parse("a: 1\na: 2\n", "d.yaml"); })
+                .find("d.yaml:2:1: a: duplicate key"),
+            std::string::npos);
+}
+
+TEST(Config, TopLevelMustBeAMap) {
+  EXPECT_NE(config_error([] { ConfigDocument::parse("- 1\n- 2\n", "l.yaml"); }).find("map"),
+            std::string::npos);
+}
+
+TEST(Config, MissingFileIsConfigError) {
+  EXPECT_NE(config_error([] { ConfigDocument::load("/nonexistent/x.yaml"); }).find("no such file"),
+            std::string::npos);
+}
+
+TEST(Config, IncludesMergeLaterOverridesEarlierAndKeepLocations) {
+  TempDir dir;
+  dir.write("configs/base.yaml", "trainer:\n  momentum: 0.5\n  epochs: 10\nname: base\n");
+  const auto exp = dir.write("experiments/e.yaml",
+                             "include: ../configs/base.yaml\ntrainer:\n  epochs: 20\n");
+  auto doc = ConfigDocument::load(exp);
+  auto t = doc.root().section("trainer");
+  EXPECT_DOUBLE_EQ(t.get<double>("momentum", 0), 0.5);  // from the include
+  EXPECT_EQ(t.get<std::uint64_t>("epochs", 0), 20u);    // overridden by the file
+  EXPECT_EQ(doc.location("trainer.momentum").file, (dir.path() / "experiments/../configs/base.yaml").string());
+  EXPECT_EQ(doc.location("trainer.epochs").line, 3);
+  EXPECT_EQ(doc.location("trainer.epochs").file, exp.string());
+}
+
+TEST(Config, IncludeResolvesAgainstProjectConfigsFolder) {
+  TempDir dir;
+  dir.write("configs/trainers/sgdm.yaml", "trainer:\n  momentum: 0.25\n");
+  const auto exp = dir.write("experiments/deep/e.yaml", "include: [configs/trainers/sgdm.yaml]\n");
+  auto doc = ConfigDocument::load(exp);
+  EXPECT_DOUBLE_EQ(doc.root().section("trainer").get<double>("momentum", 0), 0.25);
+}
+
+TEST(Config, IncludeCycleDetected) {
+  TempDir dir;
+  dir.write("a.yaml", "include: b.yaml\n");
+  dir.write("b.yaml", "include: a.yaml\n");
+  EXPECT_NE(config_error([&] { ConfigDocument::load(dir.path() / "a.yaml"); }).find("cycle"),
+            std::string::npos);
+}
+
+TEST(Config, OverrideReplacesValueAndIsNamedInErrors) {
+  auto doc = ConfigDocument::parse("trainer:\n  momentum: 0.5\n", "x.yaml");
+  doc.apply(parse_override("trainer.momentum=1.5"));
+  auto t = doc.root().section("trainer");
+  EXPECT_DOUBLE_EQ(t.get<double>("momentum", 0), 1.5);
+  EXPECT_EQ(config_error([&] { t.fail("momentum", "must be in [0, 1)"); }),
+            "override trainer.momentum=1.5: trainer.momentum = 1.5: must be in [0, 1)");
+}
+
+TEST(Config, OverrideCreatesNestedKeysAndListValues) {
+  auto doc = ConfigDocument::parse("a: 1\n", "x.yaml");
+  doc.apply(parse_override("model.hidden=[28, 20]"));
+  EXPECT_EQ(doc.root().section("model").get<std::vector<std::size_t>>("hidden", {}),
+            (std::vector<std::size_t>{28, 20}));
+}
+
+TEST(Config, OverrideIntoScalarIsAnError) {
+  auto doc = ConfigDocument::parse("seed: 1\n", "x.yaml");
+  EXPECT_NE(config_error([&] { doc.apply(parse_override("seed.x=2")); }).find("not a section"),
+            std::string::npos);
+}
+
+TEST(Config, OptionErrorGetsLocation) {
+  auto doc = ConfigDocument::parse("trainer:\n  momentum: 1.5\n", "x.yaml");
+  auto t = doc.root().section("trainer");
+  const auto msg = config_error(
+      [&] { t.validate([] { throw OptionError("momentum", "1.5", "must be in [0, 1)"); }); });
+  EXPECT_EQ(msg, "x.yaml:2:13: trainer.momentum = 1.5: must be in [0, 1)");
+}
+
+TEST(Config, AliasBombIsRejectedNotExpanded) {
+  std::string yaml = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i < 9; ++i) {
+    yaml += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+    for (int j = 0; j < 10; ++j) yaml += std::string(j ? ", " : "") + "*a" + std::to_string(i - 1);
+    yaml += "]\n";
+  }
+  EXPECT_NE(config_error([&] { ConfigDocument::parse(yaml, "bomb.yaml"); }).find("nodes"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace cnclab
