@@ -1,0 +1,92 @@
+// cnclab command line: CLI11 wiring only; the work is in the library.
+// Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/experiment/commands.hpp"
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailed = 1;
+constexpr int kExitUsage = 2;
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "cnclab: experiments, datasets and paper tables for neural-network studies of CNC "
+      "machining error.\n"
+      "Example: cnclab run experiments/friedman/friedman1_mlp.yaml trainer.epochs=50"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "Show help for every subcommand");
+  app.footer("Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.");
+
+  cnclab::CommandOptions common;
+  std::string experiment;
+  std::vector<std::string> overrides;
+  std::optional<std::uint64_t> seed;
+
+  auto* run = app.add_subcommand("run", "Run one experiment and write its HDF5 result");
+  run->add_option("experiment", experiment, "Experiment YAML file")->required()->check(CLI::ExistingFile);
+  run->add_option("overrides", overrides,
+                  "Config overrides key=value, values typed as YAML (1e-4, true, [28, 20])");
+  run->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
+  run->add_option("--out", common.results_dir, "Results folder")->capture_default_str();
+  run->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")->capture_default_str();
+  run->add_flag("--quiet,-q", common.quiet, "No progress output");
+  run->footer(
+      "Example:\n  cnclab run experiments/friedman/friedman1_mlp.yaml trainer.learning_rate=1e-3 "
+      "model.hidden=[32,16] --seed 7\nWrites results/<name>/<name>-seed<N>-<hash>.h5 atomically.");
+
+  auto* validate = app.add_subcommand("validate", "Check an experiment config and print it resolved; writes nothing");
+  validate->add_option("experiment", experiment, "Experiment YAML file")->required()->check(CLI::ExistingFile);
+  validate->add_option("overrides", overrides, "Config overrides key=value");
+  validate->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
+  validate->footer("Example:\n  cnclab validate experiments/friedman/friedman1_mlp.yaml trainer.momentum=0.9");
+
+  std::vector<std::string> paths;
+  auto* show = app.add_subcommand("show", "Print a result file: config, provenance, metrics, training");
+  show->add_option("result", paths, "Result HDF5 file(s)")->required();
+  show->footer("Example:\n  cnclab show results/friedman1_mlp/friedman1_mlp-seed42-*.h5");
+
+  auto* reproduce = app.add_subcommand("reproduce", "Run experiments (default: all under experiments/) and print their metrics");
+  reproduce->add_option("paths", paths, "Experiment files or folders (default: experiments)");
+  reproduce->add_option("--out", common.results_dir, "Results folder")->capture_default_str();
+  reproduce->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")->capture_default_str();
+  reproduce->add_flag("--quiet,-q", common.quiet, "No progress output");
+  reproduce->footer("Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce experiments/friedman");
+
+  auto* version = app.add_subcommand("version", "Print version, git commit and library versions");
+  version->footer("Example:\n  cnclab version");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  }
+
+  try {
+    if (*run) return cnclab::run_command(experiment, overrides, seed, common, std::cout, std::cerr);
+    if (*validate) return cnclab::validate_command(experiment, overrides, seed, std::cout);
+    if (*show) return cnclab::show_command(paths, std::cout);
+    if (*reproduce) return cnclab::reproduce_command(paths, common, std::cout, std::cerr);
+    if (*version) return cnclab::version_command(std::cout);
+  } catch (const cnclab::ConfigError& e) {
+    std::cerr << "cnclab: error: " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const cnclab::Error& e) {
+    std::cerr << "cnclab: error: " << e.what() << "\n";
+    return kExitFailed;
+  } catch (const std::exception& e) {
+    std::cerr << "cnclab: internal error: " << e.what() << "\n";
+    return kExitFailed;
+  }
+  return kExitUsage;
+}

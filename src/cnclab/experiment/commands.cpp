@@ -1,0 +1,134 @@
+#include "cnclab/experiment/commands.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <iomanip>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/runner.hpp"
+#include "cnclab/io/provenance.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+std::string format_metric(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string metrics_line(const std::map<std::string, double>& metrics) {
+  std::string s;
+  for (const auto& [k, v] : metrics) s += (s.empty() ? "" : "  ") + k + " " + format_metric(v);
+  return s;
+}
+
+RunOptions run_options(const CommandOptions& options, std::ostream& log) {
+  RunOptions r;
+  r.results_dir = options.results_dir;
+  r.datasets_dir = options.datasets_dir;
+  r.progress = options.quiet ? ProgressMode::quiet : ProgressMode::automatic;
+  r.log = options.quiet ? nullptr : &log;
+  return r;
+}
+
+}  // namespace
+
+int run_command(const fs::path& experiment, const std::vector<std::string>& overrides,
+                std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
+                std::ostream& log) {
+  const LoadedExperiment loaded = load_experiment(experiment, overrides, seed);
+  const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
+  if (!outcome.ok) {
+    out << "FAILED " << loaded.spec.name << ": " << outcome.message << "\n"
+        << "result (status failed): " << outcome.result_file.string() << "\n";
+    return 1;
+  }
+  if (!options.quiet) out << loaded.spec.name << ": " << metrics_line(outcome.metrics) << "\n";
+  out << outcome.result_file.string() << "\n";
+  return 0;
+}
+
+int validate_command(const fs::path& experiment, const std::vector<std::string>& overrides,
+                     std::optional<std::uint64_t> seed, std::ostream& out) {
+  const LoadedExperiment loaded = load_experiment(experiment, overrides, seed);
+  out << "# " << experiment.string() << ": valid; resolved configuration:\n" << loaded.resolved_yaml;
+  return 0;
+}
+
+int show_command(const std::vector<std::string>& result_files, std::ostream& out) {
+  for (std::size_t i = 0; i < result_files.size(); ++i) {
+    if (i) out << "\n";
+    print_result(read_result(result_files[i]), out);
+  }
+  return 0;
+}
+
+std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
+  std::vector<fs::path> files;
+  const std::vector<std::string> roots = paths.empty() ? std::vector<std::string>{"experiments"} : paths;
+  for (const auto& root : roots) {
+    std::error_code ec;
+    if (fs::is_regular_file(root, ec)) {
+      files.emplace_back(root);
+    } else if (fs::is_directory(root, ec)) {
+      for (const auto& entry : fs::recursive_directory_iterator(root)) {
+        const auto ext = entry.path().extension();
+        if (entry.is_regular_file() && (ext == ".yaml" || ext == ".yml")) files.push_back(entry.path());
+      }
+    } else {
+      throw ConfigError(root + ": no such experiment file or folder");
+    }
+  }
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  return files;
+}
+
+int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
+                      std::ostream& out, std::ostream& log) {
+  const auto files = find_experiments(paths);
+  if (files.empty()) throw ConfigError("reproduce: no experiment files found");
+  struct Row {
+    std::string name, status, detail, file;
+  };
+  std::vector<Row> rows;
+  int exit_code = 0;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (!options.quiet) {
+      log << "[" << i + 1 << "/" << files.size() << "] " << files[i].string() << "\n";
+    }
+    try {
+      const LoadedExperiment loaded = load_experiment(files[i]);
+      const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
+      rows.push_back({loaded.spec.name, outcome.ok ? "ok" : "FAILED",
+                      outcome.ok ? metrics_line(outcome.metrics) : outcome.message,
+                      outcome.result_file.string()});
+      if (!outcome.ok) exit_code = std::max(exit_code, 1);
+    } catch (const ConfigError& e) {
+      rows.push_back({files[i].string(), "CONFIG ERROR", e.what(), ""});
+      exit_code = 2;
+    } catch (const Error& e) {
+      rows.push_back({files[i].string(), "ERROR", e.what(), ""});
+      exit_code = std::max(exit_code, 1);
+    }
+  }
+  out << "\n== cnclab reproduce: " << rows.size() << " experiment(s) ==\n";
+  for (const auto& row : rows) {
+    out << std::left << std::setw(28) << row.name << " " << std::setw(8) << row.status << " "
+        << row.detail << "\n";
+    if (!row.file.empty()) out << std::string(38, ' ') << row.file << "\n";
+  }
+  return exit_code;
+}
+
+int version_command(std::ostream& out) {
+  const Provenance p = make_provenance(0);
+  out << "cnclab " << p.cnclab_version << " (git " << p.git_commit << ")\n";
+  for (const auto& [name, version] : p.libraries) out << "  " << name << " " << version << "\n";
+  return 0;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,31 @@
+#pragma once
+// Generated datasets cached as HDF5 files under a cache folder, keyed by the
+// generator, its resolved options and its seed: a later run asking for the
+// same dataset reads it instead of generating it again.
+#include <cstdint>
+#include <filesystem>
+#include <ostream>
+#include <string>
+
+#include "cnclab/data/dataset.hpp"
+#include "cnclab/experiment/spec.hpp"
+
+namespace cnclab {
+
+struct CachedDataset {
+  Dataset dataset;
+  std::filesystem::path path;
+  std::string content_hash;
+  bool reused = false;
+};
+
+// Generates the dataset `spec` describes with generator seed `seed`.
+Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed);
+
+// <dir>/<generator>-<16 hex digits>.h5, the hash covering generator name,
+// options and seed. A cached file that fails to read (corrupt, partial,
+// tampered) or was made by another generator config is regenerated.
+CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed,
+                             const std::filesystem::path& dir, std::ostream* log);
+
+}  // namespace cnclab

@@ -1,0 +1,155 @@
+#include "cnclab/experiment/runner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/hash.hpp"
+#include "cnclab/core/rng.hpp"
+#include "cnclab/experiment/dataset_cache.hpp"
+#include "cnclab/experiment/metrics.hpp"
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/io/provenance.hpp"
+#include "cnclab/nn/zscore.hpp"
+#include "cnclab/train/objective.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+// Named random streams of a run; the names are part of the reproducibility
+// contract (stored in the result's provenance).
+constexpr const char* kStreams[] = {"generator", "split", "init", "dropout", "shuffle"};
+
+Eigen::MatrixXd columns(const Eigen::MatrixXd& m, const std::vector<std::size_t>& idx) {
+  Eigen::MatrixXd out(m.rows(), static_cast<Eigen::Index>(idx.size()));
+  for (std::size_t j = 0; j < idx.size(); ++j) out.col(static_cast<Eigen::Index>(j)) = m.col(static_cast<Eigen::Index>(idx[j]));
+  return out;
+}
+
+}  // namespace
+
+fs::path result_path(const LoadedExperiment& experiment, const fs::path& results_dir) {
+  const auto& spec = experiment.spec;
+  const std::string hash = hash_hex(experiment.resolved_yaml).substr(0, 8);
+  return results_dir / spec.name /
+         (spec.name + "-seed" + std::to_string(spec.seed) + "-" + hash + ".h5");
+}
+
+RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& options) {
+  const ExperimentSpec& spec = experiment.spec;
+  const auto wall_start = std::chrono::steady_clock::now();
+  RunRecord rec;
+  rec.experiment = spec.name;
+  rec.resolved_yaml = experiment.resolved_yaml;
+  rec.config_hash = hash_hex(experiment.resolved_yaml);
+  rec.provenance = make_provenance(spec.seed);
+  for (const char* stream : kStreams) rec.provenance.derived_seeds[stream] = derive_seed(spec.seed, stream);
+  if (spec.dataset.seed) rec.provenance.derived_seeds["generator"] = *spec.dataset.seed;
+
+  // Dataset (generated or reused from the cache).
+  const CachedDataset cached = obtain_dataset(spec.dataset, rec.provenance.derived_seeds["generator"],
+                                              options.datasets_dir, options.log);
+  const Dataset& data = cached.dataset;
+  rec.dataset_file = cached.path.string();
+  rec.dataset_hash = cached.content_hash;
+  rec.input_names = data.input_names;
+  rec.input_units = data.input_units;
+  rec.target_names = data.target_names;
+  rec.target_units = data.target_units;
+
+  // Split.
+  Rng split_rng(spec.seed, "split");
+  rec.split = make_random_split(data.num_samples(), spec.split, split_rng);
+  if (rec.split.train.size() < 2) {
+    throw ConfigError(spec.source_file.string() + ": split.train leaves " +
+                      std::to_string(rec.split.train.size()) +
+                      " training samples; at least 2 are needed");
+  }
+  Eigen::MatrixXd x_train = columns(data.inputs, rec.split.train);
+  Eigen::MatrixXd y_train = columns(data.targets, rec.split.train);
+  Eigen::MatrixXd x_val = columns(data.inputs, rec.split.validation);
+  Eigen::MatrixXd y_val = columns(data.targets, rec.split.validation);
+  Eigen::MatrixXd x_test = columns(data.inputs, rec.split.test);
+  Eigen::MatrixXd y_test = columns(data.targets, rec.split.test);
+
+  // Normalisation, fitted on the training split only (seed 000 Eq. 7).
+  std::optional<ZScoreNormaliser> x_scale, y_scale;
+  if (spec.normalisation.inputs == Scaling::zscore) {
+    x_scale.emplace();
+    x_scale->fit(x_train);
+    rec.input_scaling = {x_scale->mean(), x_scale->std()};
+  }
+  if (spec.normalisation.targets == Scaling::zscore) {
+    y_scale.emplace();
+    y_scale->fit(y_train);
+    rec.target_scaling = {y_scale->mean(), y_scale->std()};
+  }
+  auto scale_x = [&](const Eigen::MatrixXd& m) { return x_scale ? x_scale->transform(m) : m; };
+  auto scale_y = [&](const Eigen::MatrixXd& m) { return y_scale ? y_scale->transform(m) : m; };
+  const Eigen::MatrixXd xn_train = scale_x(x_train), yn_train = scale_y(y_train);
+  const Eigen::MatrixXd xn_val = scale_x(x_val), yn_val = scale_y(y_val);
+  const Eigen::MatrixXd xn_test = scale_x(x_test), yn_test = scale_y(y_test);
+
+  // Model.
+  rec.model = spec.model;
+  rec.model.inputs = static_cast<std::size_t>(data.inputs.rows());
+  rec.model.outputs = static_cast<std::size_t>(data.targets.rows());
+  rec.model.validate();
+  const Mlp mlp(rec.model);
+  Rng init_rng(spec.seed, "init");
+  Eigen::VectorXd params;
+  mlp.initialise(params, init_rng);
+
+  // Training, with the test loss recorded after every epoch.
+  Rng dropout_rng(spec.seed, "dropout");
+  Rng shuffle_rng(spec.seed, "shuffle");
+  MlpRegressionObjective objective(mlp, xn_train, yn_train, dropout_rng);
+  const auto mse = [&](const Eigen::VectorXd& p, const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
+    if (x.cols() == 0) return std::nan("");
+    return (mlp.predict(p, x) - y).array().square().mean();
+  };
+  Progress progress("train " + spec.name, spec.trainer.epochs,
+                    options.log ? *options.log : std::cerr,
+                    {options.log ? options.progress : ProgressMode::quiet, 5.0, 0.1});
+  SgdmHooks hooks;
+  if (!rec.split.validation.empty()) {
+    hooks.validation_loss = [&](const Eigen::VectorXd& p) { return mse(p, xn_val, yn_val); };
+  }
+  hooks.on_epoch = [&](const EpochRecord& e, const Eigen::VectorXd& p) {
+    rec.test_loss.push_back(mse(p, xn_test, yn_test));
+    std::ostringstream status;
+    status << "train loss " << e.train_loss << "  test loss " << rec.test_loss.back();
+    progress.update(e.epoch, status.str());
+    return true;
+  };
+  rec.training = train_sgdm(objective, params, spec.trainer, shuffle_rng, hooks);
+  progress.finish();
+  rec.parameters = params;
+  const bool ok = rec.training.termination != Termination::diverged;
+
+  // Evaluation in physical units.
+  if (ok) {
+    Eigen::MatrixXd pred = mlp.predict(params, xn_test);
+    rec.test_predictions = y_scale ? y_scale->inverse_transform(pred) : pred;
+    rec.test_targets = y_test;
+    rec.metrics = regression_metrics(rec.test_predictions, rec.test_targets, spec.metrics);
+  }
+
+  rec.provenance.end_utc = utc_now_iso8601();
+  rec.provenance.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  rec.provenance.status = ok ? "complete" : "failed";
+  rec.provenance.failure_reason = ok ? "" : rec.training.message;
+
+  RunOutcome outcome;
+  outcome.result_file = result_path(experiment, options.results_dir);
+  write_result(outcome.result_file, rec);
+  outcome.ok = ok;
+  outcome.message = rec.training.message;
+  outcome.metrics = rec.metrics;
+  return outcome;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,36 @@
+#pragma once
+// The experiment pipeline: dataset -> split -> normalise -> model -> train ->
+// evaluate -> metrics -> result file (written atomically).
+#include <filesystem>
+#include <map>
+#include <ostream>
+#include <string>
+
+#include "cnclab/core/progress.hpp"
+#include "cnclab/experiment/spec.hpp"
+
+namespace cnclab {
+
+struct RunOptions {
+  std::filesystem::path results_dir = "results";
+  std::filesystem::path datasets_dir = "datasets";
+  ProgressMode progress = ProgressMode::automatic;
+  std::ostream* log = nullptr;  // progress and notes; nullptr = silent
+};
+
+struct RunOutcome {
+  std::filesystem::path result_file;
+  bool ok = false;          // false: training diverged (result written with status "failed")
+  std::string message;      // termination message
+  std::map<std::string, double> metrics;
+};
+
+// Runs one experiment. Bad configuration or I/O problems throw; a run whose
+// training diverges is a failed result (written, ok = false), not an error.
+RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& options);
+
+// results/<name>/<name>-seed<seed>-<hash of the resolved config, 8 digits>.h5
+std::filesystem::path result_path(const LoadedExperiment& experiment,
+                                  const std::filesystem::path& results_dir);
+
+}  // namespace cnclab

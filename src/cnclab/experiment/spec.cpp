@@ -1,0 +1,276 @@
+#include "cnclab/experiment/spec.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cstdio>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/core/error.hpp"
+#include "cnclab/experiment/metrics.hpp"
+
+namespace cnclab {
+namespace {
+
+std::string one_of(const std::vector<std::string>& names) {
+  std::string s = "must be one of: ";
+  for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];
+  return s;
+}
+
+std::string choice(const ConfigReader& r, const std::string& key, const std::string& fallback,
+                   const std::vector<std::string>& allowed) {
+  const auto value = r.get<std::string>(key, fallback);
+  if (std::find(allowed.begin(), allowed.end(), value) == allowed.end()) {
+    r.fail(key, one_of(allowed));
+  }
+  return value;
+}
+
+Scaling read_scaling(const ConfigReader& r, const std::string& key) {
+  return choice(r, key, "zscore", {"zscore", "none"}) == "zscore" ? Scaling::zscore : Scaling::none;
+}
+
+Activation read_activation(const ConfigReader& r, const std::string& key, Activation fallback) {
+  const auto text = r.get<std::string>(key, to_string(fallback));
+  try {
+    return parse_activation(text);
+  } catch (const Error&) {
+    r.fail(key, one_of({"relu", "tanh", "sigmoid", "linear"}));
+  }
+}
+
+Initializer read_initializer(const ConfigReader& r, const Initializer& fallback) {
+  Initializer init = fallback;
+  const auto kind = choice(r, "type", to_string(fallback.kind), {"normal", "uniform", "xavier", "he"});
+  init.kind = kind == "normal"    ? Initializer::Kind::normal
+              : kind == "uniform" ? Initializer::Kind::uniform
+              : kind == "xavier"  ? Initializer::Kind::xavier
+                                  : Initializer::Kind::he;
+  if (init.kind == Initializer::Kind::normal) {
+    init.mean = r.get<double>("mean", init.mean);
+    init.std = r.get<double>("std", init.std);
+  } else if (init.kind == Initializer::Kind::uniform) {
+    init.low = r.get<double>("low", init.low);
+    init.high = r.get<double>("high", init.high);
+  }
+  r.validate([&] { init.validate(); });
+  return init;
+}
+
+DatasetSpec read_dataset(const ConfigReader& r) {
+  DatasetSpec spec;
+  spec.generator = choice(r, "generator", spec.generator, {"friedman1"});
+  spec.seed = r.optional<std::uint64_t>("seed");
+  const ConfigReader o = r.section("options");
+  Friedman1Options f;
+  f.samples = o.get<std::size_t>("samples", f.samples);
+  f.inputs = o.get<std::size_t>("inputs", f.inputs);
+  f.noise_std = o.get<double>("noise_std", f.noise_std);
+  o.validate([&] { f.validate(); });
+  spec.options = f;
+  return spec;
+}
+
+SplitOptions read_split(const ConfigReader& r) {
+  SplitOptions s;
+  s.train_fraction = r.get<double>("train", s.train_fraction);
+  s.validation_fraction = r.get<double>("validation", s.validation_fraction);
+  r.validate([&] {
+    try {
+      s.validate();
+    } catch (const OptionError& e) {
+      // SplitOptions names its fields *_fraction; the YAML keys are shorter.
+      const std::string key = e.field() == "train_fraction"        ? "train"
+                              : e.field() == "validation_fraction" ? "validation"
+                                                                   : e.field();
+      throw OptionError(key, e.value(), e.rule());
+    }
+  });
+  return s;
+}
+
+MlpOptions read_model(const ConfigReader& r) {
+  MlpOptions m;
+  choice(r, "type", "mlp", {"mlp"});
+  m.hidden = r.get<std::vector<std::size_t>>("hidden", m.hidden);
+  m.hidden_activation = read_activation(r, "hidden_activation", m.hidden_activation);
+  m.output_activation = read_activation(r, "output_activation", m.output_activation);
+  const ConfigReader d = r.section("dropout");
+  m.dropout_keep_probability = d.get<double>("keep_probability", m.dropout_keep_probability);
+  const auto placement = choice(d, "placement", to_string(m.dropout_placement),
+                                {"between_hidden", "after_every_hidden"});
+  m.dropout_placement = placement == "between_hidden" ? DropoutPlacement::between_hidden
+                                                      : DropoutPlacement::after_every_hidden;
+  const ConfigReader init = r.section("init");
+  m.weights = read_initializer(init.section("weights"), m.weights);
+  m.biases = read_initializer(init.section("biases"), m.biases);
+  // inputs/outputs are set from the dataset; validate the rest with
+  // placeholders so a bad value is reported now, not after generation.
+  MlpOptions check = m;
+  check.inputs = 1;
+  check.outputs = 1;
+  r.validate([&] {
+    try {
+      check.validate();
+    } catch (const OptionError& e) {
+      const std::string key = e.field() == "dropout_keep_probability" ? "dropout.keep_probability"
+                              : e.field() == "dropout_placement"      ? "dropout.placement"
+                                                                      : e.field();
+      throw OptionError(key, e.value(), e.rule());
+    }
+  });
+  return m;
+}
+
+SgdmOptions read_trainer(const ConfigReader& r) {
+  SgdmOptions t;
+  choice(r, "type", "sgdm", {"sgdm"});
+  t.learning_rate = r.get<double>("learning_rate", t.learning_rate);
+  t.momentum = r.get<double>("momentum", t.momentum);
+  t.batch_size = r.get<std::size_t>("batch_size", t.batch_size);
+  t.epochs = r.get<std::size_t>("epochs", t.epochs);
+  t.shuffle = r.get<bool>("shuffle", t.shuffle);
+  t.early_stop_patience = r.get<std::size_t>("early_stop_patience", t.early_stop_patience);
+  r.validate([&] { t.validate(); });
+  return t;
+}
+
+LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::string>& overrides,
+                                 std::optional<std::uint64_t> seed_override) {
+  for (const auto& text : overrides) doc.apply(parse_override(text));
+  if (seed_override) doc.apply(parse_override("seed=" + std::to_string(*seed_override)));
+
+  const ConfigReader root = doc.root();
+  ExperimentSpec spec;
+  spec.name = root.require<std::string>("name");
+  for (char c : spec.name) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    if (!ok || spec.name.front() == '.') {
+      root.fail("name", "must be a file-name-safe identifier (letters, digits, '_', '-', '.')");
+    }
+  }
+  spec.description = root.get<std::string>("description", "");
+  spec.seed = root.require<std::uint64_t>("seed");
+  spec.dataset = read_dataset(root.section("dataset"));
+  spec.split = read_split(root.section("split"));
+  const ConfigReader norm = root.section("normalisation");
+  spec.normalisation.inputs = read_scaling(norm, "inputs");
+  spec.normalisation.targets = read_scaling(norm, "targets");
+  spec.model = read_model(root.section("model"));
+  spec.trainer = read_trainer(root.section("trainer"));
+  spec.metrics = root.get<std::vector<std::string>>("metrics", spec.metrics);
+  for (const auto& m : spec.metrics) {
+    const auto& known = known_metrics();
+    if (std::find(known.begin(), known.end(), m) == known.end()) {
+      root.fail("metrics", "unknown metric '" + m + "'; " + one_of(known));
+    }
+  }
+  doc.check_all_consumed();
+  return {spec, to_yaml(spec)};
+}
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  // Shortest text that reads back to the same double.
+  for (int precision = 1; precision < 17; ++precision) {
+    char shorter[32];
+    std::snprintf(shorter, sizeof shorter, "%.*g", precision, x);
+    if (std::strtod(shorter, nullptr) == x) return shorter;
+  }
+  return buf;
+}
+
+void emit_initializer(YAML::Emitter& out, const Initializer& init) {
+  out << YAML::BeginMap << YAML::Key << "type" << YAML::Value << to_string(init.kind);
+  if (init.kind == Initializer::Kind::normal) {
+    out << YAML::Key << "mean" << YAML::Value << number(init.mean);
+    out << YAML::Key << "std" << YAML::Value << number(init.std);
+  } else if (init.kind == Initializer::Kind::uniform) {
+    out << YAML::Key << "low" << YAML::Value << number(init.low);
+    out << YAML::Key << "high" << YAML::Value << number(init.high);
+  }
+  out << YAML::EndMap;
+}
+
+}  // namespace
+
+LoadedExperiment load_experiment(const std::filesystem::path& file,
+                                 const std::vector<std::string>& overrides,
+                                 std::optional<std::uint64_t> seed_override) {
+  ConfigDocument doc = ConfigDocument::load(file);
+  LoadedExperiment loaded = read_experiment(doc, overrides, seed_override);
+  loaded.spec.source_file = file;
+  return loaded;
+}
+
+LoadedExperiment parse_experiment(const std::string& yaml_text, const std::string& origin,
+                                  const std::vector<std::string>& overrides) {
+  ConfigDocument doc = ConfigDocument::parse(yaml_text, origin);
+  return read_experiment(doc, overrides, std::nullopt);
+}
+
+std::string to_yaml(const ExperimentSpec& spec) {
+  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
+  YAML::Emitter out;
+  out << BeginMap;
+  out << Key << "name" << Value << spec.name;
+  out << Key << "description" << Value << spec.description;
+  out << Key << "seed" << Value << spec.seed;
+
+  out << Key << "dataset" << Value << BeginMap;
+  out << Key << "generator" << Value << spec.dataset.generator;
+  if (spec.dataset.seed) out << Key << "seed" << Value << *spec.dataset.seed;
+  const auto& f = std::get<Friedman1Options>(spec.dataset.options);
+  out << Key << "options" << Value << BeginMap;
+  out << Key << "samples" << Value << f.samples;
+  out << Key << "inputs" << Value << f.inputs;
+  out << Key << "noise_std" << Value << number(f.noise_std);
+  out << EndMap << EndMap;
+
+  out << Key << "split" << Value << BeginMap;
+  out << Key << "train" << Value << number(spec.split.train_fraction);
+  out << Key << "validation" << Value << number(spec.split.validation_fraction);
+  out << EndMap;
+
+  const auto scaling = [](Scaling s) { return s == Scaling::zscore ? "zscore" : "none"; };
+  out << Key << "normalisation" << Value << BeginMap;
+  out << Key << "inputs" << Value << scaling(spec.normalisation.inputs);
+  out << Key << "targets" << Value << scaling(spec.normalisation.targets);
+  out << EndMap;
+
+  const MlpOptions& m = spec.model;
+  out << Key << "model" << Value << BeginMap;
+  out << Key << "type" << Value << "mlp";
+  out << Key << "hidden" << Value << YAML::Flow << m.hidden;
+  out << Key << "hidden_activation" << Value << to_string(m.hidden_activation);
+  out << Key << "output_activation" << Value << to_string(m.output_activation);
+  out << Key << "dropout" << Value << BeginMap;
+  out << Key << "keep_probability" << Value << number(m.dropout_keep_probability);
+  out << Key << "placement" << Value << to_string(m.dropout_placement);
+  out << EndMap;
+  out << Key << "init" << Value << BeginMap;
+  out << Key << "weights" << Value;
+  emit_initializer(out, m.weights);
+  out << Key << "biases" << Value;
+  emit_initializer(out, m.biases);
+  out << EndMap << EndMap;
+
+  const SgdmOptions& t = spec.trainer;
+  out << Key << "trainer" << Value << BeginMap;
+  out << Key << "type" << Value << "sgdm";
+  out << Key << "learning_rate" << Value << number(t.learning_rate);
+  out << Key << "momentum" << Value << number(t.momentum);
+  out << Key << "batch_size" << Value << t.batch_size;
+  out << Key << "epochs" << Value << t.epochs;
+  out << Key << "shuffle" << Value << t.shuffle;
+  out << Key << "early_stop_patience" << Value << t.early_stop_patience;
+  out << EndMap;
+
+  out << Key << "metrics" << Value << YAML::Flow << spec.metrics;
+  out << EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace cnclab

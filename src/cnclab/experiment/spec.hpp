@@ -1,0 +1,72 @@
+#pragma once
+// An experiment: what `cnclab run` reads from YAML. Every section maps onto a
+// typed options struct of the module that uses it; reading is strict (see
+// core/config.hpp) and validate() of each struct runs with the YAML location.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "cnclab/data/friedman1.hpp"
+#include "cnclab/data/split.hpp"
+#include "cnclab/nn/mlp.hpp"
+#include "cnclab/train/sgdm.hpp"
+
+namespace cnclab {
+
+// dataset: {generator, seed?, options: {...generator options...}}
+struct DatasetSpec {
+  std::string generator = "friedman1";
+  // Generator seed; absent = derived from the experiment seed ("generator").
+  std::optional<std::uint64_t> seed;
+  std::variant<Friedman1Options> options;
+};
+
+enum class Scaling { zscore, none };
+
+// normalisation: {inputs: zscore|none, targets: zscore|none}. Seed 000 Eq. 7
+// (z-score with the n-1 sample std), fitted on the training split only.
+struct NormalisationSpec {
+  Scaling inputs = Scaling::zscore;
+  Scaling targets = Scaling::zscore;
+};
+
+struct ExperimentSpec {
+  std::string name;
+  std::string description;
+  std::uint64_t seed = 0;  // master seed: every random stream derives from it by name
+  DatasetSpec dataset;
+  SplitOptions split;
+  NormalisationSpec normalisation;
+  // model: type mlp; `inputs`/`outputs` come from the dataset at run time.
+  MlpOptions model;
+  SgdmOptions trainer;  // trainer: type sgdm
+  std::vector<std::string> metrics = {"mse", "rmse", "mae", "max_abs_error", "r2"};
+
+  std::filesystem::path source_file;
+};
+
+struct LoadedExperiment {
+  ExperimentSpec spec;
+  // The full resolved configuration, defaults included, as YAML: what
+  // `validate` prints and every result file stores. Reloading it gives the
+  // same spec.
+  std::string resolved_yaml;
+};
+
+// Loads, merges includes, applies `key=value` overrides (then --seed), reads
+// and validates everything. Throws ConfigError naming file:line:col, key,
+// value and rule; unknown keys are errors.
+LoadedExperiment load_experiment(const std::filesystem::path& file,
+                                 const std::vector<std::string>& overrides = {},
+                                 std::optional<std::uint64_t> seed_override = std::nullopt);
+
+// The same from YAML text (tests and fuzzing); `origin` names it in messages.
+LoadedExperiment parse_experiment(const std::string& yaml_text, const std::string& origin,
+                                  const std::vector<std::string>& overrides = {});
+
+std::string to_yaml(const ExperimentSpec& spec);
+
+}  // namespace cnclab

@@ -1,0 +1,210 @@
+// End-to-end tests of the `cnclab` executable: exit codes, one-line errors,
+// nothing written on bad input, complete results read back by h5dump/h5diff
+// (independent tools from hdf5-tools).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace {
+namespace fs = std::filesystem;
+
+const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
+const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("cnclab_cli_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs a shell command line in dir_ with stdout/stderr captured.
+  Result sh(const std::string& command) const {
+    const std::string line = "cd '" + dir_.string() + "' && " + command + " >'" +
+                             (dir_ / ".out").string() + "' 2>'" + (dir_ / ".err").string() + "'";
+    const int status = std::system(line.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir_ / ".out");
+    r.err = slurp(dir_ / ".err");
+    fs::remove(dir_ / ".out");
+    fs::remove(dir_ / ".err");
+    return r;
+  }
+  Result cnclab(const std::string& args) const { return sh(kCnclab + " " + args); }
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  // Everything in dir_ except the files the test wrote itself.
+  std::vector<fs::path> outputs() const {
+    std::vector<fs::path> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir_)) {
+      if (e.is_regular_file() && e.path().extension() != ".yaml" && e.path().extension() != ".h5bad") {
+        out.push_back(e.path());
+      }
+    }
+    return out;
+  }
+  // A fast variant of the friedman experiment.
+  std::string quick(const std::string& extra = "") const {
+    return "run " + kExperiment + " trainer.epochs=3 dataset.options.samples=200 --quiet " + extra;
+  }
+
+  fs::path dir_;
+};
+
+void expect_one_line_error(const Result& r, int code, const std::string& fragment) {
+  EXPECT_EQ(r.code, code) << r.err;
+  EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+TEST_F(Cli, UnknownKeyIsUsageErrorAndWritesNothing) {
+  expect_one_line_error(cnclab(quick("trainer.momentm=0.5")), 2,
+                        "trainer.momentm: unknown key (did you mean 'momentum'?)");
+  EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(Cli, TypoInNestedKeyInFileNamesFileLineAndKey) {
+  const auto file = write("typo.yaml",
+                          "include: " + kExperiment + "\nmodel:\n  dropout:\n    keep_probabilty: 0.5\n");
+  expect_one_line_error(cnclab("run " + file.string() + " --quiet"), 2,
+                        file.string() + ":4:22: model.dropout.keep_probabilty: unknown key");
+  EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(Cli, WrongTypeIsUsageError) {
+  expect_one_line_error(cnclab(quick("trainer.epochs=many")), 2,
+                        "trainer.epochs = many: expected a non-negative integer");
+}
+
+TEST_F(Cli, OutOfRangeNamesValueAndRule) {
+  const Result r = cnclab(quick("trainer.momentum=1.5"));
+  expect_one_line_error(r, 2, "override trainer.momentum=1.5: trainer.momentum = 1.5:");
+  EXPECT_NE(r.err.find("[0, 1)"), std::string::npos) << r.err;
+  EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(Cli, MissingExperimentFileIsUsageError) {
+  const Result r = cnclab("run does_not_exist.yaml");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("does_not_exist.yaml"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, MalformedYamlNamesPosition) {
+  const auto file = write("bad.yaml", "name: x\nseed: [1, 2\n");
+  expect_one_line_error(cnclab("validate " + file.string()), 2, file.string() + ":");
+  EXPECT_NE(cnclab("validate " + file.string()).err.find("malformed YAML"), std::string::npos);
+}
+
+TEST_F(Cli, CorruptResultGivenToShowFailsCleanly) {
+  const auto file = write("corrupt.h5bad", "this is not an HDF5 file\n");
+  expect_one_line_error(cnclab("show " + file.string()), 1, file.string());
+}
+
+TEST_F(Cli, ValidatePrintsResolvedConfigWithDefaultsAndWritesNothing) {
+  const Result r = cnclab("validate " + kExperiment + " trainer.momentum=0.5");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("momentum: 0.5"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("early_stop_patience: 0"), std::string::npos) << r.out;  // a default
+  EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(Cli, HelpExplainsWithExample) {
+  for (const char* sub : {"run", "validate", "show", "reproduce", "version"}) {
+    const Result r = cnclab(std::string(sub) + " --help");
+    EXPECT_EQ(r.code, 0) << sub;
+    EXPECT_NE(r.out.find("Example"), std::string::npos) << sub << r.out;
+  }
+  EXPECT_EQ(cnclab("").code, 2);
+  EXPECT_EQ(cnclab("frobnicate").code, 2);
+}
+
+TEST_F(Cli, RunWritesCompleteResultReadableByShowAndH5dump) {
+  const Result r = cnclab(quick());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const fs::path file = dir_ / r.out.substr(0, r.out.find('\n'));
+  ASSERT_TRUE(fs::exists(file)) << r.out;
+  EXPECT_EQ(file.parent_path().filename(), "friedman1_mlp");
+  // No temporary left behind.
+  for (const auto& e : fs::directory_iterator(file.parent_path())) {
+    EXPECT_EQ(e.path().filename().string().find(".partial"), std::string::npos);
+  }
+  const Result show = cnclab("show " + file.string());
+  EXPECT_EQ(show.code, 0) << show.err;
+  EXPECT_NE(show.out.find("complete"), std::string::npos) << show.out;
+  EXPECT_NE(show.out.find("rmse"), std::string::npos) << show.out;
+  // h5dump (independent reader) sees the metric attributes and units.
+  const Result dump = sh("h5dump -A '" + file.string() + "'");
+  EXPECT_EQ(dump.code, 0) << dump.err;
+  EXPECT_NE(dump.out.find("\"units\""), std::string::npos);
+  EXPECT_NE(dump.out.find("\"rmse\""), std::string::npos);
+}
+
+TEST_F(Cli, SameSeedGivesIdenticalResultApartFromProvenance) {
+  const Result a = cnclab(quick("--out a --data-dir da"));
+  const Result b = cnclab(quick("--out b --data-dir db"));
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  const std::string fa = a.out.substr(0, a.out.find('\n'));
+  const std::string fb = b.out.substr(0, b.out.find('\n'));
+  EXPECT_EQ(fs::path(fa).filename(), fs::path(fb).filename());
+  // h5diff exits 0 only when every object and attribute is identical.
+  const Result diff = sh("h5diff --exclude-path /provenance " + fa + " " + fb);
+  EXPECT_EQ(diff.code, 0) << diff.out << diff.err;
+  // A different seed changes the result.
+  const Result c = cnclab(quick("--out c --data-dir dc --seed 7"));
+  ASSERT_EQ(c.code, 0) << c.err;
+  const std::string fc = c.out.substr(0, c.out.find('\n'));
+  EXPECT_NE(sh("h5diff -q --exclude-path /provenance " + fa + " " + fc).code, 0);
+}
+
+TEST_F(Cli, DivergedTrainingIsAFailedResultNotACrash) {
+  const Result r = cnclab(quick("trainer.learning_rate=1e12"));
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.out.find("FAILED"), std::string::npos) << r.out;
+  const std::string file = r.out.substr(r.out.rfind(": ") + 2, r.out.size() - r.out.rfind(": ") - 3);
+  const Result show = cnclab("show " + file);
+  EXPECT_EQ(show.code, 0) << show.err;
+  EXPECT_NE(show.out.find("failed"), std::string::npos) << show.out;
+}
+
+TEST_F(Cli, ReproduceRunsAFolderAndPrintsMetrics) {
+  fs::create_directories(dir_ / "exps");
+  write("exps/e.yaml", "include: " + kExperiment +
+                           "\ntrainer: {epochs: 2}\ndataset: {options: {samples: 100}}\n");
+  const Result r = cnclab("reproduce exps --quiet");
+  EXPECT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("friedman1_mlp"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("r2"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, VersionNamesLibraries) {
+  const Result r = cnclab("version");
+  EXPECT_EQ(r.code, 0);
+  for (const char* lib : {"cnclab", "HDF5", "Eigen", "yaml-cpp"}) {
+    EXPECT_NE(r.out.find(lib), std::string::npos) << lib << "\n" << r.out;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,78 @@
+#include "cnclab/experiment/spec.hpp"
+
+#include <gtest/gtest.h>
+
+#include "cnclab/core/error.hpp"
+
+namespace cnclab {
+namespace {
+
+const std::string kMinimal = "name: t\nseed: 3\n";
+
+std::string error_of(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_experiment(yaml, "e.yaml", overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Spec, DefaultsApplyAndResolvedYamlReloadsToTheSameSpec) {
+  const auto a = parse_experiment(kMinimal, "e.yaml");
+  EXPECT_EQ(a.spec.name, "t");
+  EXPECT_EQ(a.spec.seed, 3u);
+  EXPECT_DOUBLE_EQ(a.spec.trainer.momentum, SgdmOptions{}.momentum);
+  // Round trip: the resolved text is itself a valid experiment with no
+  // unknown keys, and resolves to the identical text.
+  const auto b = parse_experiment(a.resolved_yaml, "resolved.yaml");
+  EXPECT_EQ(a.resolved_yaml, b.resolved_yaml);
+}
+
+TEST(Spec, OverridesAreTypedAsYaml) {
+  const auto a = parse_experiment(kMinimal, "e.yaml",
+                                  {"model.hidden=[28, 20]", "trainer.learning_rate=1e-4",
+                                   "trainer.shuffle=false", "model.dropout.keep_probability=0.5"});
+  EXPECT_EQ(a.spec.model.hidden, (std::vector<std::size_t>{28, 20}));
+  EXPECT_DOUBLE_EQ(a.spec.trainer.learning_rate, 1e-4);
+  EXPECT_FALSE(a.spec.trainer.shuffle);
+  EXPECT_DOUBLE_EQ(a.spec.model.dropout_keep_probability, 0.5);
+}
+
+TEST(Spec, RequiredKeysAndUnknownKeys) {
+  EXPECT_NE(error_of("seed: 1\n").find("name"), std::string::npos);
+  EXPECT_NE(error_of("name: x\n").find("seed"), std::string::npos);
+  EXPECT_NE(error_of(kMinimal + "trainr: {}\n").find("e.yaml:3:1: trainr: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal + "dataset:\n  options:\n    sample: 10\n")
+                .find("dataset.options.sample: unknown key (did you mean 'samples'?)"),
+            std::string::npos);
+}
+
+TEST(Spec, OutOfRangeValuesNameKeyValueAndLocation) {
+  EXPECT_NE(error_of(kMinimal + "trainer:\n  momentum: 1.5\n").find("e.yaml:4:13: trainer.momentum = 1.5"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"split.train=1.2"}).find("split.train = 1.2"), std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"model.dropout.keep_probability=0"})
+                .find("model.dropout.keep_probability = 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"model.hidden_activation=swish"}).find("must be one of"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"metrics=[mse, accuracy]"}).find("unknown metric 'accuracy'"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"dataset.options.inputs=3"}).find("dataset.options.inputs = 3"),
+            std::string::npos);
+  EXPECT_NE(error_of("name: ../evil\nseed: 1\n").find("file-name-safe"), std::string::npos);
+}
+
+TEST(Spec, InitializerKeysDependOnType) {
+  const auto a = parse_experiment(kMinimal, "e.yaml",
+                                  {"model.init.weights={type: normal, mean: 0, std: 2}"});
+  EXPECT_DOUBLE_EQ(a.spec.model.weights.std, 2.0);
+  // `std` belongs to normal only: with xavier it is an unknown key.
+  EXPECT_NE(error_of(kMinimal, {"model.init.weights={type: xavier, std: 2}"}).find("unknown key"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace cnclab
