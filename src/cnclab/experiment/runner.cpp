@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 #include "cnclab/core/error.hpp"

@@ -1,0 +1,59 @@
+#include "cnclab/data/dataset.hpp"
+
+#include <cmath>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/hash.hpp"
+
+namespace cnclab {
+namespace {
+
+void check_matrix(const Eigen::MatrixXd& m, const char* what,
+                  const std::vector<std::string>& names, const std::vector<std::string>& units) {
+  const auto rows = static_cast<std::size_t>(m.rows());
+  if (names.size() != rows || units.size() != rows) {
+    throw Error(std::string("dataset ") + what + ": " + std::to_string(rows) + " rows but " +
+                std::to_string(names.size()) + " names and " + std::to_string(units.size()) +
+                " units");
+  }
+  for (Eigen::Index j = 0; j < m.cols(); ++j) {
+    for (Eigen::Index i = 0; i < m.rows(); ++i) {
+      if (!std::isfinite(m(i, j))) {
+        throw Error(std::string("dataset ") + what + ": " + names[static_cast<std::size_t>(i)] +
+                    " of sample " + std::to_string(j) + " is " + std::to_string(m(i, j)) +
+                    " (values must be finite)");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void Dataset::validate() const {
+  if (inputs.cols() != targets.cols()) {
+    throw Error("dataset: " + std::to_string(inputs.cols()) + " input samples but " +
+                std::to_string(targets.cols()) + " target samples");
+  }
+  check_matrix(inputs, "inputs", input_names, input_units);
+  check_matrix(targets, "targets", target_names, target_units);
+}
+
+std::string Dataset::content_hash() const {
+  Hasher h;
+  const auto add_strings = [&](const std::vector<std::string>& v) {
+    h.add(static_cast<std::uint64_t>(v.size()));
+    for (const auto& s : v) h.add(static_cast<std::uint64_t>(s.size())).add(s);
+  };
+  h.add(static_cast<std::uint64_t>(inputs.rows())).add(static_cast<std::uint64_t>(inputs.cols()));
+  h.add(static_cast<std::uint64_t>(targets.rows())).add(static_cast<std::uint64_t>(targets.cols()));
+  add_strings(input_names);
+  add_strings(input_units);
+  add_strings(target_names);
+  add_strings(target_units);
+  add_strings({generator, generator_config});
+  h.add(std::span<const double>(inputs.data(), static_cast<std::size_t>(inputs.size())));
+  h.add(std::span<const double>(targets.data(), static_cast<std::size_t>(targets.size())));
+  return h.hex();
+}
+
+}  // namespace cnclab

@@ -1,0 +1,73 @@
+#include "cnclab/data/dataset_file.hpp"
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/h5.hpp"
+
+namespace cnclab {
+
+namespace {
+// One units attribute per matrix: the common unit, or "mixed" (see the lists).
+std::string common_unit(const std::vector<std::string>& units) {
+  for (const auto& u : units) {
+    if (u != units.front()) return "mixed (see *_units)";
+  }
+  return units.empty() ? "1" : units.front();
+}
+}  // namespace
+
+void write_dataset(const std::filesystem::path& path, const Dataset& d) {
+  d.validate();
+  AtomicOutput out(path);
+  {
+    H5File f = H5File::create(out.temp_path());
+    f.set_attribute("/", "format", kDatasetFormat);
+    f.set_attribute("/", "format_version", std::int64_t{kDatasetFormatVersion});
+    f.set_attribute("/", "generator", d.generator);
+    f.set_attribute("/", "content_hash", d.content_hash());
+    f.write_matrix("/inputs", d.inputs, common_unit(d.input_units));
+    f.write_matrix("/targets", d.targets, common_unit(d.target_units));
+    f.write_strings("/input_names", d.input_names);
+    f.write_strings("/input_units", d.input_units);
+    f.write_strings("/target_names", d.target_names);
+    f.write_strings("/target_units", d.target_units);
+    f.write_string("/generator_config", d.generator_config);
+    f.set_attribute("/", "complete", std::int64_t{1});
+    f.close();
+  }
+  out.commit();
+}
+
+Dataset read_dataset(const std::filesystem::path& path) {
+  const H5File f = H5File::open_read(path);
+  const auto bad = [&](const std::string& what) { throw IoError(path.string() + ": " + what); };
+  if (!f.has_attribute("/", "format") || f.attribute_string("/", "format") != kDatasetFormat) {
+    bad("not a cnclab dataset file (root attribute format != cnclab-dataset)");
+  }
+  if (f.attribute_int("/", "format_version") != kDatasetFormatVersion) {
+    bad("unsupported dataset format_version");
+  }
+  if (!f.has_attribute("/", "complete") || f.attribute_int("/", "complete") != 1) {
+    bad("incomplete dataset file (interrupted write?)");
+  }
+  Dataset d;
+  d.inputs = f.read_matrix("/inputs");
+  d.targets = f.read_matrix("/targets");
+  d.input_names = f.read_strings("/input_names");
+  d.input_units = f.read_strings("/input_units");
+  d.target_names = f.read_strings("/target_names");
+  d.target_units = f.read_strings("/target_units");
+  d.generator = f.attribute_string("/", "generator");
+  d.generator_config = f.read_string("/generator_config");
+  try {
+    d.validate();
+  } catch (const Error& e) {
+    bad(e.what());
+  }
+  if (d.content_hash() != f.attribute_string("/", "content_hash")) {
+    bad("content hash mismatch: the data were modified or corrupted after writing");
+  }
+  return d;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,30 @@
+#pragma once
+// Friedman #1 regression benchmark (J. H. Friedman, "Multivariate adaptive
+// regression splines", Ann. Statist. 19(1), 1991):
+//   y = 10 sin(pi x1 x2) + 20 (x3 - 0.5)^2 + 10 x4 + 5 x5 + eps,
+//   x ~ U[0, 1)^d (d >= 5; x6..xd are noise features), eps ~ N(0, noise_std^2).
+#include <cstddef>
+#include <string>
+
+#include "cnclab/core/rng.hpp"
+#include "cnclab/data/dataset.hpp"
+
+namespace cnclab {
+
+struct Friedman1Options {
+  std::size_t samples = 1000;
+  std::size_t inputs = 10;  // d >= 5
+  double noise_std = 1.0;   // standard deviation of eps, >= 0
+  void validate() const;
+};
+
+// The noise-free function value.
+double friedman1_function(const double* x);
+
+Dataset generate_friedman1(const Friedman1Options& options, Rng& rng);
+
+// YAML text of the options (stored as the dataset's generator_config and
+// used in cache keys; numbers round-trip exactly).
+std::string generator_config_yaml(const Friedman1Options& options);
+
+}  // namespace cnclab

@@ -1,0 +1,245 @@
+#include "cnclab/experiment/result_file.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/h5.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+std::vector<double> to_std(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+Eigen::VectorXd to_eigen(const std::vector<double>& v) {
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+void write_scaling(H5File& f, const std::string& g, const ScalingRecord& s, const std::string& units) {
+  f.create_group(g);
+  f.set_attribute(g, "method", s.mean.size() ? "zscore" : "none");
+  if (s.mean.size()) {
+    f.write_vector(g + "/mean", to_std(s.mean), units);
+    f.write_vector(g + "/std", to_std(s.std), units);
+  }
+}
+
+ScalingRecord read_scaling(const H5File& f, const std::string& g) {
+  ScalingRecord s;
+  if (f.attribute_string(g, "method") == "zscore") {
+    s.mean = to_eigen(f.read_vector(g + "/mean"));
+    s.std = to_eigen(f.read_vector(g + "/std"));
+  }
+  return s;
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+}  // namespace
+
+void write_result(const fs::path& path, const RunRecord& r) {
+  AtomicOutput out(path);
+  {
+    H5File f = H5File::create(out.temp_path());
+    f.set_attribute("/", "format", kResultFormat);
+    f.set_attribute("/", "format_version", std::int64_t{kResultFormatVersion});
+    f.set_attribute("/", "experiment", r.experiment);
+    f.set_attribute("/", "config_hash", r.config_hash);
+    f.set_attribute("/", "status", r.provenance.status);
+    f.write_string("/config", r.resolved_yaml);
+    write_provenance(f, "/provenance", r.provenance);
+
+    f.create_group("/dataset");
+    f.set_attribute("/dataset", "file", r.dataset_file);
+    f.set_attribute("/dataset", "content_hash", r.dataset_hash);
+    f.write_strings("/dataset/input_names", r.input_names);
+    f.write_strings("/dataset/input_units", r.input_units);
+    f.write_strings("/dataset/target_names", r.target_names);
+    f.write_strings("/dataset/target_units", r.target_units);
+
+    f.write_indices("/split/train", r.split.train);
+    f.write_indices("/split/validation", r.split.validation);
+    f.write_indices("/split/test", r.split.test);
+
+    f.create_group("/model");
+    f.set_attribute("/model", "type", "mlp");
+    std::vector<double> sizes;
+    sizes.push_back(static_cast<double>(r.model.inputs));
+    for (auto h : r.model.hidden) sizes.push_back(static_cast<double>(h));
+    sizes.push_back(static_cast<double>(r.model.outputs));
+    f.write_vector("/model/layer_sizes", sizes, "1");
+    f.set_attribute("/model", "hidden_activation", to_string(r.model.hidden_activation));
+    f.set_attribute("/model", "output_activation", to_string(r.model.output_activation));
+    f.set_attribute("/model", "dropout_keep_probability", r.model.dropout_keep_probability);
+    f.set_attribute("/model", "dropout_placement", to_string(r.model.dropout_placement));
+    f.set_attribute("/model", "parameter_layout",
+                    "per layer: W (n_out x n_in, column-major) then b (n_out)");
+    f.write_vector("/model/parameters", to_std(r.parameters), "1");
+    write_scaling(f, "/model/input_scaling", r.input_scaling, join(r.input_units, ","));
+    write_scaling(f, "/model/target_scaling", r.target_scaling, join(r.target_units, ","));
+
+    f.create_group("/training");
+    f.set_attribute("/training", "trainer", "sgdm");
+    f.set_attribute("/training", "termination", to_string(r.training.termination));
+    f.set_attribute("/training", "message", r.training.message);
+    f.set_attribute("/training", "best_epoch", static_cast<std::int64_t>(r.training.best_epoch));
+    std::vector<double> epoch, train, val, wall;
+    for (const auto& e : r.training.history) {
+      epoch.push_back(static_cast<double>(e.epoch));
+      train.push_back(e.train_loss);
+      val.push_back(e.validation_loss);
+      wall.push_back(e.wall_seconds);
+    }
+    f.write_vector("/history/epoch", epoch, "1");
+    f.write_vector("/history/train_loss", train, "normalised MSE");
+    f.write_vector("/history/validation_loss", val, "normalised MSE");
+    f.write_vector("/history/test_loss", r.test_loss, "normalised MSE");
+    f.write_vector("/history/wall_seconds", wall, "s");
+
+    const std::string target_units = join(r.target_units, ",");
+    f.write_matrix("/test/predictions", r.test_predictions, target_units);
+    f.write_matrix("/test/targets", r.test_targets, target_units);
+
+    f.create_group("/metrics");
+    f.set_attribute("/metrics", "units", target_units + " (squared for mse; r2 is 1)");
+    for (const auto& [name, value] : r.metrics) f.set_attribute("/metrics", name, value);
+
+    // Written last: a file without it is not a complete result.
+    f.set_attribute("/", "complete", std::int64_t{1});
+    f.close();
+  }
+  out.commit();
+}
+
+RunRecord read_result(const fs::path& path) {
+  if (is_partial_path(path)) {
+    throw IoError(path.string() + ": a partial result (interrupted write), not a result file");
+  }
+  const H5File f = H5File::open_read(path);
+  const auto bad = [&](const std::string& what) { throw IoError(path.string() + ": " + what); };
+  if (!f.has_attribute("/", "format") || f.attribute_string("/", "format") != kResultFormat) {
+    bad("not a cnclab result file (root attribute format != cnclab-result)");
+  }
+  if (f.attribute_int("/", "format_version") != kResultFormatVersion) {
+    bad("unsupported result format_version " + std::to_string(f.attribute_int("/", "format_version")));
+  }
+  if (!f.has_attribute("/", "complete") || f.attribute_int("/", "complete") != 1) {
+    bad("incomplete result file (interrupted write?)");
+  }
+  RunRecord r;
+  r.experiment = f.attribute_string("/", "experiment");
+  r.config_hash = f.attribute_string("/", "config_hash");
+  r.resolved_yaml = f.read_string("/config");
+  r.provenance = read_provenance(f, "/provenance");
+  r.dataset_file = f.attribute_string("/dataset", "file");
+  r.dataset_hash = f.attribute_string("/dataset", "content_hash");
+  r.input_names = f.read_strings("/dataset/input_names");
+  r.input_units = f.read_strings("/dataset/input_units");
+  r.target_names = f.read_strings("/dataset/target_names");
+  r.target_units = f.read_strings("/dataset/target_units");
+  r.split.train = f.read_indices("/split/train");
+  r.split.validation = f.read_indices("/split/validation");
+  r.split.test = f.read_indices("/split/test");
+
+  const auto sizes = f.read_vector("/model/layer_sizes");
+  if (sizes.size() < 2) bad("/model/layer_sizes: needs at least 2 entries");
+  r.model.inputs = static_cast<std::size_t>(sizes.front());
+  r.model.outputs = static_cast<std::size_t>(sizes.back());
+  r.model.hidden.clear();
+  for (std::size_t i = 1; i + 1 < sizes.size(); ++i) r.model.hidden.push_back(static_cast<std::size_t>(sizes[i]));
+  try {
+    r.model.hidden_activation = parse_activation(f.attribute_string("/model", "hidden_activation"));
+    r.model.output_activation = parse_activation(f.attribute_string("/model", "output_activation"));
+  } catch (const OptionError& e) {
+    bad(std::string("/model: ") + e.what());
+  }
+  r.model.dropout_keep_probability = f.attribute_double("/model", "dropout_keep_probability");
+  r.parameters = to_eigen(f.read_vector("/model/parameters"));
+  r.input_scaling = read_scaling(f, "/model/input_scaling");
+  r.target_scaling = read_scaling(f, "/model/target_scaling");
+
+  const std::string termination = f.attribute_string("/training", "termination");
+  bool known = false;
+  for (auto t : {Termination::max_epochs, Termination::early_stop, Termination::diverged,
+                 Termination::stopped_by_callback}) {
+    if (to_string(t) == termination) r.training.termination = t, known = true;
+  }
+  if (!known) bad("/training: unknown termination '" + termination + "'");
+  r.training.message = f.attribute_string("/training", "message");
+  r.training.best_epoch = static_cast<std::size_t>(f.attribute_int("/training", "best_epoch"));
+  const auto epoch = f.read_vector("/history/epoch");
+  const auto train = f.read_vector("/history/train_loss");
+  const auto val = f.read_vector("/history/validation_loss");
+  const auto wall = f.read_vector("/history/wall_seconds");
+  if (train.size() != epoch.size() || val.size() != epoch.size() || wall.size() != epoch.size()) {
+    bad("/history: series of different lengths");
+  }
+  for (std::size_t i = 0; i < epoch.size(); ++i) {
+    r.training.history.push_back({static_cast<std::size_t>(epoch[i]), train[i], val[i], wall[i]});
+  }
+  r.test_loss = f.read_vector("/history/test_loss");
+  r.test_predictions = f.read_matrix("/test/predictions");
+  r.test_targets = f.read_matrix("/test/targets");
+  for (const auto& name : f.attribute_names("/metrics")) {
+    if (name != "units") r.metrics[name] = f.attribute_double("/metrics", name);
+  }
+  return r;
+}
+
+void print_result(const RunRecord& r, std::ostream& out) {
+  const Provenance& p = r.provenance;
+  out << "experiment   " << r.experiment << "\n"
+      << "status       " << p.status << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n"
+      << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
+      << "run          " << p.start_utc << " -> " << p.end_utc << " (" << number(p.wall_seconds)
+      << " s) on " << p.host << "\n"
+      << "seed         " << p.master_seed << " (";
+  bool first = true;
+  for (const auto& [name, seed] : p.derived_seeds) {
+    out << (first ? "" : ", ") << name << " " << seed;
+    first = false;
+  }
+  out << ")\n";
+  out << "dataset      " << r.dataset_file << " (" << r.test_targets.cols() + static_cast<Eigen::Index>(r.split.train.size() + r.split.validation.size())
+      << " samples, hash " << r.dataset_hash << ")\n"
+      << "split        train " << r.split.train.size() << ", validation " << r.split.validation.size()
+      << ", test " << r.split.test.size() << "\n"
+      << "model        mlp " << r.model.inputs;
+  for (auto h : r.model.hidden) out << "-" << h;
+  out << "-" << r.model.outputs << " (" << to_string(r.model.hidden_activation) << ", keep p "
+      << number(r.model.dropout_keep_probability) << ", " << r.parameters.size() << " parameters)\n";
+  out << "training     " << to_string(r.training.termination) << ": " << r.training.message << "\n";
+  if (!r.training.history.empty()) {
+    const auto& last = r.training.history.back();
+    out << "             final train loss " << number(last.train_loss);
+    if (!r.test_loss.empty()) out << ", test loss " << number(r.test_loss.back());
+    out << " (normalised MSE) after " << last.epoch << " epochs, " << number(last.wall_seconds)
+        << " s\n";
+  }
+  out << "metrics      (test split, " << join(r.target_units) << ")\n";
+  for (const auto& [name, value] : r.metrics) {
+    out << "  " << std::left << std::setw(14) << name << number(value) << "\n";
+  }
+  out << "config\n";
+  std::size_t start = 0;
+  while (start < r.resolved_yaml.size()) {
+    const auto end = r.resolved_yaml.find('\n', start);
+    out << "  " << r.resolved_yaml.substr(start, end - start) << "\n";
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+}
+
+}  // namespace cnclab

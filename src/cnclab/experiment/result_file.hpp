@@ -1,0 +1,26 @@
+#pragma once
+// The HDF5 result file of one run (layout in docs/result-format.md).
+//
+// Written under a partial name and renamed when complete; the root attribute
+// `complete` = 1 is the last thing written, so a file without it (or with a
+// partial name) is never taken for a result.
+#include <filesystem>
+#include <ostream>
+
+#include "cnclab/experiment/run_record.hpp"
+
+namespace cnclab {
+
+inline constexpr const char* kResultFormat = "cnclab-result";
+inline constexpr int kResultFormatVersion = 1;
+
+void write_result(const std::filesystem::path& path, const RunRecord& record);
+
+// Reads and checks a result file: format, version, completeness, shapes.
+// Throws IoError naming the file and the object on anything else.
+RunRecord read_result(const std::filesystem::path& path);
+
+// Human-readable summary for `cnclab show`.
+void print_result(const RunRecord& record, std::ostream& out);
+
+}  // namespace cnclab

@@ -1,0 +1,38 @@
+#pragma once
+// Atomic file output: write to a temporary name in the destination folder,
+// then fsync and rename over the final name. A reader sees either the old
+// file or the complete new one, never a torn write; a crash leaves at most a
+// temporary, recognisable by its name:
+//
+//   <dir>/.<final-name>.partial-<pid>-<16 hex digits>
+//
+// Every command that scans folders for results or datasets skips such names
+// (is_partial_path).
+#include <filesystem>
+
+namespace cnclab {
+
+class AtomicOutput {
+ public:
+  // Creates the parent folder of `final_path` if needed.
+  explicit AtomicOutput(std::filesystem::path final_path);
+  ~AtomicOutput();  // removes the temporary unless committed
+  AtomicOutput(const AtomicOutput&) = delete;
+  AtomicOutput& operator=(const AtomicOutput&) = delete;
+
+  // Where to write.
+  const std::filesystem::path& temp_path() const { return temp_; }
+  const std::filesystem::path& final_path() const { return final_; }
+  // fsync the temporary, rename it over the final path, fsync the folder.
+  // Throws IoError; on failure the temporary is removed by the destructor.
+  void commit();
+
+ private:
+  std::filesystem::path final_;
+  std::filesystem::path temp_;
+  bool committed_ = false;
+};
+
+bool is_partial_path(const std::filesystem::path& path);
+
+}  // namespace cnclab

@@ -1,0 +1,408 @@
+#include "cnclab/io/h5.hpp"
+
+#include <functional>
+
+#include "cnclab/core/error.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+// HDF5 prints its error stack to stderr by default; cnclab reports errors
+// itself. The setting is HDF5's own process-wide state, switched off once.
+void silence_hdf5_errors() {
+  static const bool silenced = [] {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)silenced;
+}
+
+H5Handle string_type() {
+  H5Handle t(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(t.get(), H5T_VARIABLE);
+  H5Tset_cset(t.get(), H5T_CSET_UTF8);
+  return t;
+}
+
+H5Handle link_creation_with_parents() {
+  H5Handle p(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+  H5Pset_create_intermediate_group(p.get(), 1);
+  return p;
+}
+
+}  // namespace
+
+H5Handle& H5Handle::operator=(H5Handle&& other) noexcept {
+  if (this != &other) {
+    reset();
+    id_ = other.id_;
+    closer_ = other.closer_;
+    other.id_ = -1;
+  }
+  return *this;
+}
+
+void H5Handle::reset() {
+  if (id_ >= 0 && closer_) closer_(id_);
+  id_ = -1;
+}
+
+std::string hdf5_version() {
+  unsigned major = 0, minor = 0, release = 0;
+  H5get_libversion(&major, &minor, &release);
+  return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(release);
+}
+
+H5File::H5File(fs::path path, H5Handle file) : path_(std::move(path)), file_(std::move(file)) {}
+
+void H5File::fail(const std::string& object, const std::string& what) const {
+  throw IoError(path_.string() + ": " + (object.empty() ? "" : object + ": ") + what);
+}
+
+H5File H5File::create(const fs::path& path) {
+  silence_hdf5_errors();
+  H5Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (!f.valid()) throw IoError(path.string() + ": cannot create HDF5 file");
+  return H5File(path, std::move(f));
+}
+
+H5File H5File::open_read(const fs::path& path) {
+  silence_hdf5_errors();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw IoError(path.string() + ": no such file");
+  if (!fs::is_regular_file(path, ec)) throw IoError(path.string() + ": not a regular file");
+  if (H5Fis_hdf5(path.c_str()) <= 0) {
+    throw IoError(path.string() + ": not an HDF5 file (or truncated/corrupt)");
+  }
+  H5Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!f.valid()) throw IoError(path.string() + ": cannot open HDF5 file (truncated or corrupt?)");
+  return H5File(path, std::move(f));
+}
+
+void H5File::flush() {
+  if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) fail("", "flush failed");
+}
+
+void H5File::close() {
+  if (!file_.valid()) return;
+  flush();
+  file_.reset();
+}
+
+bool H5File::exists(const std::string& name) const {
+  // Check each prefix: H5Lexists fails on a missing intermediate group.
+  std::size_t pos = 0;
+  while (pos != std::string::npos) {
+    pos = name.find('/', pos + 1);
+    const std::string prefix = name.substr(0, pos);
+    if (prefix.empty() || prefix == "/") continue;
+    if (H5Lexists(file_.get(), prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+  }
+  return true;
+}
+
+void H5File::create_group(const std::string& name) {
+  if (exists(name)) return;
+  const H5Handle lcpl = link_creation_with_parents();
+  H5Handle g(H5Gcreate2(file_.get(), name.c_str(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) fail(name, "cannot create group");
+}
+
+H5Handle H5File::create_dataset(const std::string& name, hid_t type,
+                                const std::vector<hsize_t>& dims) {
+  H5Handle space(dims.empty() ? H5Screate(H5S_SCALAR)
+                              : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                 H5Sclose);
+  const H5Handle lcpl = link_creation_with_parents();
+  H5Handle d(H5Dcreate2(file_.get(), name.c_str(), type, space.get(), lcpl.get(), H5P_DEFAULT,
+                        H5P_DEFAULT),
+             H5Dclose);
+  if (!d.valid()) fail(name, "cannot create dataset");
+  return d;
+}
+
+void H5File::write_vector(const std::string& name, std::span<const double> values,
+                          const std::string& units) {
+  H5Handle d = create_dataset(name, H5T_IEEE_F64LE, {values.size()});
+  if (!values.empty() &&
+      H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
+    fail(name, "cannot write dataset");
+  }
+  d.reset();
+  if (!units.empty()) set_attribute(name, "units", units);
+}
+
+void H5File::write_indices(const std::string& name, const std::vector<std::size_t>& values) {
+  std::vector<std::uint64_t> v(values.begin(), values.end());
+  H5Handle d = create_dataset(name, H5T_STD_U64LE, {v.size()});
+  if (!v.empty() &&
+      H5Dwrite(d.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0) {
+    fail(name, "cannot write dataset");
+  }
+}
+
+void H5File::write_matrix(const std::string& name, const Eigen::MatrixXd& m,
+                          const std::string& units) {
+  H5Handle d = create_dataset(name, H5T_IEEE_F64LE,
+                              {static_cast<hsize_t>(m.cols()), static_cast<hsize_t>(m.rows())});
+  if (m.size() > 0 &&
+      H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, m.data()) < 0) {
+    fail(name, "cannot write dataset");
+  }
+  d.reset();
+  if (!units.empty()) set_attribute(name, "units", units);
+}
+
+void H5File::write_string(const std::string& name, const std::string& text) {
+  const H5Handle type = string_type();
+  H5Handle d = create_dataset(name, type.get(), {});
+  const char* p = text.c_str();
+  if (H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &p) < 0) {
+    fail(name, "cannot write string");
+  }
+}
+
+void H5File::write_strings(const std::string& name, const std::vector<std::string>& texts) {
+  const H5Handle type = string_type();
+  H5Handle d = create_dataset(name, type.get(), {texts.size()});
+  std::vector<const char*> ptrs;
+  for (const auto& t : texts) ptrs.push_back(t.c_str());
+  if (!ptrs.empty() &&
+      H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0) {
+    fail(name, "cannot write strings");
+  }
+}
+
+H5Handle H5File::open_object(const std::string& name) const {
+  if (name != "/" && !exists(name)) fail(name, "not found");
+  H5Handle o(H5Oopen(file_.get(), name.c_str(), H5P_DEFAULT), H5Oclose);
+  if (!o.valid()) fail(name, "cannot open object");
+  return o;
+}
+
+namespace {
+template <class WriteFn>
+void write_attribute(hid_t object, const std::string& attr, hid_t type, WriteFn&& write,
+                     const std::function<void(const std::string&)>& fail) {
+  if (H5Aexists(object, attr.c_str()) > 0) H5Adelete(object, attr.c_str());
+  H5Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  H5Handle a(H5Acreate2(object, attr.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+             H5Aclose);
+  if (!a.valid() || write(a.get()) < 0) fail("cannot write attribute '" + attr + "'");
+}
+}  // namespace
+
+void H5File::set_attribute(const std::string& object, const std::string& attr, double value) {
+  const H5Handle o = open_object(object);
+  write_attribute(
+      o.get(), attr, H5T_IEEE_F64LE, [&](hid_t a) { return H5Awrite(a, H5T_NATIVE_DOUBLE, &value); },
+      [&](const std::string& w) { fail(object, w); });
+}
+
+void H5File::set_attribute(const std::string& object, const std::string& attr, std::int64_t value) {
+  const H5Handle o = open_object(object);
+  write_attribute(
+      o.get(), attr, H5T_STD_I64LE, [&](hid_t a) { return H5Awrite(a, H5T_NATIVE_INT64, &value); },
+      [&](const std::string& w) { fail(object, w); });
+}
+
+void H5File::set_attribute(const std::string& object, const std::string& attr,
+                           const std::string& value) {
+  const H5Handle o = open_object(object);
+  const H5Handle type = string_type();
+  const char* p = value.c_str();
+  write_attribute(
+      o.get(), attr, type.get(), [&](hid_t a) { return H5Awrite(a, type.get(), &p); },
+      [&](const std::string& w) { fail(object, w); });
+}
+
+H5Handle H5File::open_dataset(const std::string& name) const {
+  if (!exists(name)) fail(name, "not found");
+  H5Handle d(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid()) fail(name, "cannot open dataset");
+  return d;
+}
+
+std::vector<hsize_t> H5File::dims(hid_t dataset, const std::string& name, int rank) const {
+  H5Handle space(H5Dget_space(dataset), H5Sclose);
+  const int actual = H5Sget_simple_extent_ndims(space.get());
+  if (actual != rank) {
+    fail(name, "expected rank " + std::to_string(rank) + ", found " + std::to_string(actual));
+  }
+  std::vector<hsize_t> d(static_cast<std::size_t>(rank));
+  if (rank > 0) H5Sget_simple_extent_dims(space.get(), d.data(), nullptr);
+  return d;
+}
+
+namespace {
+H5T_class_t type_class(hid_t dataset) {
+  H5Handle t(H5Dget_type(dataset), H5Tclose);
+  return H5Tget_class(t.get());
+}
+}  // namespace
+
+std::vector<double> H5File::read_vector(const std::string& name) const {
+  const H5Handle d = open_dataset(name);
+  if (type_class(d.get()) != H5T_FLOAT) fail(name, "expected floating-point values");
+  const auto n = dims(d.get(), name, 1)[0];
+  std::vector<double> out(n);
+  if (n && H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
+    fail(name, "cannot read dataset");
+  }
+  return out;
+}
+
+std::vector<std::size_t> H5File::read_indices(const std::string& name) const {
+  const H5Handle d = open_dataset(name);
+  if (type_class(d.get()) != H5T_INTEGER) fail(name, "expected integer values");
+  const auto n = dims(d.get(), name, 1)[0];
+  std::vector<std::uint64_t> v(n);
+  if (n && H5Dread(d.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0) {
+    fail(name, "cannot read dataset");
+  }
+  return {v.begin(), v.end()};
+}
+
+Eigen::MatrixXd H5File::read_matrix(const std::string& name) const {
+  const H5Handle d = open_dataset(name);
+  if (type_class(d.get()) != H5T_FLOAT) fail(name, "expected floating-point values");
+  const auto shape = dims(d.get(), name, 2);
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(shape[1]), static_cast<Eigen::Index>(shape[0]));
+  if (m.size() &&
+      H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, m.data()) < 0) {
+    fail(name, "cannot read dataset");
+  }
+  return m;
+}
+
+std::string H5File::read_string(const std::string& name) const {
+  {
+    const H5Handle d = open_dataset(name);
+    if (type_class(d.get()) != H5T_STRING) fail(name, "expected a string");
+    dims(d.get(), name, 0);
+    const H5Handle type = string_type();
+    char* p = nullptr;
+    if (H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &p) < 0 || !p) {
+      fail(name, "cannot read string");
+    }
+    std::string s(p);
+    H5free_memory(p);
+    return s;
+  }
+}
+
+std::vector<std::string> H5File::read_strings(const std::string& name) const {
+  const H5Handle d = open_dataset(name);
+  if (type_class(d.get()) != H5T_STRING) fail(name, "expected strings");
+  const auto n = dims(d.get(), name, 1)[0];
+  const H5Handle type = string_type();
+  std::vector<char*> ptrs(n, nullptr);
+  if (n && H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0) {
+    fail(name, "cannot read strings");
+  }
+  std::vector<std::string> out;
+  for (char* p : ptrs) {
+    out.emplace_back(p ? p : "");
+    if (p) H5free_memory(p);
+  }
+  return out;
+}
+
+H5Handle H5File::open_attribute(const std::string& object, const std::string& attr) const {
+  const H5Handle o = open_object(object);
+  if (H5Aexists(o.get(), attr.c_str()) <= 0) fail(object, "attribute '" + attr + "' not found");
+  H5Handle a(H5Aopen(o.get(), attr.c_str(), H5P_DEFAULT), H5Aclose);
+  if (!a.valid()) fail(object, "cannot open attribute '" + attr + "'");
+  H5Handle space(H5Aget_space(a.get()), H5Sclose);
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) {
+    fail(object, "attribute '" + attr + "' is not a single value");
+  }
+  return a;
+}
+
+bool H5File::has_attribute(const std::string& object, const std::string& attr) const {
+  if (object != "/" && !exists(object)) return false;
+  const H5Handle o = open_object(object);
+  return H5Aexists(o.get(), attr.c_str()) > 0;
+}
+
+namespace {
+H5T_class_t attribute_class(hid_t a) {
+  H5Handle t(H5Aget_type(a), H5Tclose);
+  return H5Tget_class(t.get());
+}
+}  // namespace
+
+double H5File::attribute_double(const std::string& object, const std::string& attr) const {
+  const H5Handle a = open_attribute(object, attr);
+  const auto cls = attribute_class(a.get());
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER) fail(object, "attribute '" + attr + "' is not a number");
+  double v = 0;
+  if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0) fail(object, "cannot read attribute '" + attr + "'");
+  return v;
+}
+
+std::int64_t H5File::attribute_int(const std::string& object, const std::string& attr) const {
+  const H5Handle a = open_attribute(object, attr);
+  if (attribute_class(a.get()) != H5T_INTEGER) {
+    fail(object, "attribute '" + attr + "' is not an integer");
+  }
+  std::int64_t v = 0;
+  if (H5Aread(a.get(), H5T_NATIVE_INT64, &v) < 0) fail(object, "cannot read attribute '" + attr + "'");
+  return v;
+}
+
+std::string H5File::attribute_string(const std::string& object, const std::string& attr) const {
+  const H5Handle a = open_attribute(object, attr);
+  if (attribute_class(a.get()) != H5T_STRING) fail(object, "attribute '" + attr + "' is not a string");
+  H5Handle stored(H5Aget_type(a.get()), H5Tclose);
+  if (H5Tis_variable_str(stored.get()) > 0) {
+    const H5Handle type = string_type();
+    char* p = nullptr;
+    if (H5Aread(a.get(), type.get(), &p) < 0 || !p) fail(object, "cannot read attribute '" + attr + "'");
+    std::string s(p);
+    H5free_memory(p);
+    return s;
+  }
+  // Fixed-length string (written by another tool).
+  const std::size_t size = H5Tget_size(stored.get());
+  std::string s(size, '\0');
+  if (H5Aread(a.get(), stored.get(), s.data()) < 0) fail(object, "cannot read attribute '" + attr + "'");
+  return s.substr(0, s.find('\0'));
+}
+
+std::vector<std::string> H5File::attribute_names(const std::string& object) const {
+  const H5Handle o = open_object(object);
+  std::vector<std::string> names;
+  const auto collect = [](hid_t, const char* name, const H5A_info_t*, void* data) -> herr_t {
+    static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+    return 0;
+  };
+  hsize_t index = 0;
+  if (H5Aiterate2(o.get(), H5_INDEX_NAME, H5_ITER_INC, &index, collect, &names) < 0) {
+    fail(object, "cannot list attributes");
+  }
+  return names;
+}
+
+std::vector<std::string> H5File::children(const std::string& group) const {
+  const H5Handle g(H5Gopen2(file_.get(), group.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) fail(group, "not a group");
+  H5G_info_t info;
+  if (H5Gget_info(g.get(), &info) < 0) fail(group, "cannot list group");
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t len =
+        H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    if (len < 0) fail(group, "cannot list group");
+    std::string name(static_cast<std::size_t>(len) + 1, '\0');
+    H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
+                       H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(len));
+    names.push_back(name);
+  }
+  return names;
+}
+
+}  // namespace cnclab

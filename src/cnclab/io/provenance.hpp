@@ -1,0 +1,36 @@
+#pragma once
+// Who made a result, from what, when: stored in /provenance of every result.
+#include <cstdint>
+#include <map>
+#include <string>
+
+namespace cnclab {
+
+class H5File;
+
+struct Provenance {
+  std::string cnclab_version;
+  std::string git_commit;  // embedded at build time; "-dirty" when built from a modified tree
+  std::uint64_t master_seed = 0;
+  std::map<std::string, std::uint64_t> derived_seeds;  // stream name -> seed
+  std::string host;
+  std::string start_utc;  // ISO 8601, e.g. 2026-11-24T19:30:00Z
+  std::string end_utc;
+  double wall_seconds = 0;
+  std::map<std::string, std::string> libraries;  // name -> version
+  std::string status;                            // "complete" | "failed"
+  std::string failure_reason;
+};
+
+// Version, commit, host, libraries and start time filled in.
+Provenance make_provenance(std::uint64_t master_seed);
+
+std::string utc_now_iso8601();
+std::string host_name();
+// Eigen, HDF5, yaml-cpp, CLI11 versions this binary was built with.
+std::map<std::string, std::string> library_versions();
+
+void write_provenance(H5File& file, const std::string& group, const Provenance& p);
+Provenance read_provenance(const H5File& file, const std::string& group);
+
+}  // namespace cnclab

@@ -1,0 +1,13 @@
+#pragma once
+#include <string>
+
+namespace cnclab {
+
+// relu(z) = max(0, z) (seed 000 Eq. 3); tanh; sigmoid(z) = 1/(1+e^-z); linear(z) = z.
+enum class Activation { relu, tanh, sigmoid, linear };
+
+// Throws OptionError("activation", name, "must be one of: ...").
+Activation parse_activation(const std::string& name);
+std::string to_string(Activation a);
+
+}  // namespace cnclab

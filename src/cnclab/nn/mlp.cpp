@@ -1,0 +1,179 @@
+#include "cnclab/nn/mlp.hpp"
+
+#include <cmath>
+
+#include "cnclab/core/error.hpp"
+
+namespace cnclab {
+namespace {
+
+using MapMatrix = Eigen::Map<const Eigen::MatrixXd>;
+using MapVector = Eigen::Map<const Eigen::VectorXd>;
+
+void apply_activation(Activation f, Eigen::Ref<Eigen::MatrixXd> z) {
+  switch (f) {
+    case Activation::relu: z = z.cwiseMax(0.0); break;
+    case Activation::tanh: z = z.array().tanh(); break;
+    case Activation::sigmoid: z = (1.0 + (-z.array()).exp()).inverse(); break;
+    case Activation::linear: break;
+  }
+}
+
+// delta *= f'(z), written with the activation value a = f(z).
+void multiply_derivative(Activation f, const Eigen::MatrixXd& a, Eigen::Ref<Eigen::MatrixXd> delta) {
+  switch (f) {
+    case Activation::relu: delta = (a.array() > 0.0).select(delta, 0.0); break;
+    case Activation::tanh: delta.array() *= 1.0 - a.array().square(); break;
+    case Activation::sigmoid: delta.array() *= a.array() * (1.0 - a.array()); break;
+    case Activation::linear: break;
+  }
+}
+
+}  // namespace
+
+std::string to_string(DropoutPlacement p) {
+  return p == DropoutPlacement::between_hidden ? "between_hidden" : "after_every_hidden";
+}
+
+void MlpOptions::validate() const {
+  if (inputs < 1) throw OptionError("inputs", std::to_string(inputs), "must be at least 1");
+  if (outputs < 1) throw OptionError("outputs", std::to_string(outputs), "must be at least 1");
+  for (std::size_t i = 0; i < hidden.size(); ++i) {
+    if (hidden[i] < 1 || hidden[i] > 100000) {
+      throw OptionError("hidden", std::to_string(hidden[i]),
+                        "layer " + std::to_string(i + 1) + " width must be in [1, 100000]");
+    }
+  }
+  if (!(dropout_keep_probability > 0.0 && dropout_keep_probability <= 1.0)) {
+    throw OptionError("dropout_keep_probability", std::to_string(dropout_keep_probability),
+                      "must be in (0, 1] (it is the probability of keeping a unit)");
+  }
+  weights.validate();
+  biases.validate();
+}
+
+Mlp::Mlp(MlpOptions options) : options_(std::move(options)) {
+  options_.validate();
+  sizes_.push_back(static_cast<Eigen::Index>(options_.inputs));
+  for (auto h : options_.hidden) sizes_.push_back(static_cast<Eigen::Index>(h));
+  sizes_.push_back(static_cast<Eigen::Index>(options_.outputs));
+  const std::size_t L = num_layers();
+  Eigen::Index offset = 0;
+  for (std::size_t l = 1; l <= L; ++l) {
+    offsets_.push_back(offset);
+    offset += (sizes_[l - 1] + 1) * sizes_[l];
+  }
+  num_parameters_ = static_cast<std::size_t>(offset);
+  dropout_.assign(L + 1, false);
+  if (options_.dropout_keep_probability < 1.0) {
+    // Hidden layers are l = 1..L-1.
+    const std::size_t last = options_.dropout_placement == DropoutPlacement::between_hidden ? L - 1 : L;
+    for (std::size_t l = 1; l < last; ++l) dropout_[l] = true;
+  }
+}
+
+void Mlp::initialise(Eigen::VectorXd& params, Rng& rng) const {
+  params.resize(static_cast<Eigen::Index>(num_parameters_));
+  for (std::size_t l = 1; l <= num_layers(); ++l) {
+    const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
+    Eigen::Map<Eigen::MatrixXd> w(params.data() + weight_offset(l - 1), out, in);
+    Eigen::Map<Eigen::MatrixXd> b(params.data() + weight_offset(l - 1) + in * out, out, 1);
+    options_.weights.fill(w, in, out, rng);
+    options_.biases.fill(b, in, out, rng);
+  }
+}
+
+Eigen::MatrixXd Mlp::predict(const Eigen::VectorXd& params, const Eigen::MatrixXd& x) const {
+  if (x.rows() != sizes_.front()) {
+    throw Error("Mlp::predict: expected " + std::to_string(sizes_.front()) + " input rows, got " +
+                std::to_string(x.rows()));
+  }
+  Eigen::MatrixXd a = x;
+  for (std::size_t l = 1; l <= num_layers(); ++l) {
+    const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
+    const MapMatrix w(params.data() + weight_offset(l - 1), out, in);
+    const MapVector b(params.data() + weight_offset(l - 1) + in * out, out);
+    Eigen::MatrixXd z = w * a;
+    z.colwise() += b;
+    apply_activation(l == num_layers() ? options_.output_activation : options_.hidden_activation, z);
+    a = std::move(z);
+  }
+  return a;
+}
+
+void Mlp::prepare(Workspace& ws, Eigen::Index batch) const {
+  if (ws.batch == batch && ws.a.size() == sizes_.size()) return;
+  const std::size_t n = sizes_.size();
+  ws.a.resize(n);
+  ws.d.resize(n);
+  ws.mask.resize(n);
+  ws.delta.resize(n);
+  for (std::size_t l = 0; l < n; ++l) {
+    ws.a[l].resize(sizes_[l], batch);
+    ws.delta[l].resize(sizes_[l], batch);
+    if (dropout_[l]) {
+      ws.d[l].resize(sizes_[l], batch);
+      ws.mask[l].resize(sizes_[l], batch);
+    }
+  }
+  ws.batch = batch;
+}
+
+void Mlp::draw_dropout_masks(Workspace& ws, Rng& rng) const {
+  const double p = options_.dropout_keep_probability;
+  const double scale = 1.0 / p;
+  for (std::size_t l = 0; l < sizes_.size(); ++l) {
+    if (!dropout_[l]) continue;
+    double* m = ws.mask[l].data();
+    for (Eigen::Index i = 0; i < ws.mask[l].size(); ++i) m[i] = rng.uniform() < p ? scale : 0.0;
+  }
+}
+
+double Mlp::loss_and_gradient(const Eigen::VectorXd& params,
+                              const Eigen::Ref<const Eigen::MatrixXd>& x,
+                              const Eigen::Ref<const Eigen::MatrixXd>& y, Workspace& ws,
+                              Eigen::VectorXd& gradient) const {
+  const std::size_t L = num_layers();
+  const Eigen::Index batch = x.cols();
+  prepare(ws, batch);
+  gradient.resize(static_cast<Eigen::Index>(num_parameters_));
+
+  // Forward.
+  ws.a[0] = x;
+  for (std::size_t l = 1; l <= L; ++l) {
+    const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
+    const MapMatrix w(params.data() + weight_offset(l - 1), out, in);
+    const MapVector b(params.data() + weight_offset(l - 1) + in * out, out);
+    const Eigen::MatrixXd& input = dropout_[l - 1] ? ws.d[l - 1] : ws.a[l - 1];
+    ws.a[l].noalias() = w * input;
+    ws.a[l].colwise() += b;
+    apply_activation(l == L ? options_.output_activation : options_.hidden_activation, ws.a[l]);
+    if (dropout_[l]) ws.d[l] = ws.a[l].cwiseProduct(ws.mask[l]);
+  }
+
+  // Loss and output error: dMSE/da_L = 2 (a_L - y) / (n_L * batch).
+  ws.delta[L] = ws.a[L] - y;
+  const double count = static_cast<double>(ws.delta[L].size());
+  const double loss = ws.delta[L].squaredNorm() / count;
+  ws.delta[L] *= 2.0 / count;
+
+  // Backward.
+  for (std::size_t l = L; l >= 1; --l) {
+    multiply_derivative(l == L ? options_.output_activation : options_.hidden_activation, ws.a[l],
+                        ws.delta[l]);
+    const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
+    const MapMatrix w(params.data() + weight_offset(l - 1), out, in);
+    Eigen::Map<Eigen::MatrixXd> gw(gradient.data() + weight_offset(l - 1), out, in);
+    Eigen::Map<Eigen::VectorXd> gb(gradient.data() + weight_offset(l - 1) + in * out, out);
+    const Eigen::MatrixXd& input = dropout_[l - 1] ? ws.d[l - 1] : ws.a[l - 1];
+    gw.noalias() = ws.delta[l] * input.transpose();
+    gb.noalias() = ws.delta[l].rowwise().sum();
+    if (l > 1) {
+      ws.delta[l - 1].noalias() = w.transpose() * ws.delta[l];
+      if (dropout_[l - 1]) ws.delta[l - 1].array() *= ws.mask[l - 1].array();
+    }
+  }
+  return loss;
+}
+
+}  // namespace cnclab

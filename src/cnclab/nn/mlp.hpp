@@ -1,0 +1,103 @@
+#pragma once
+// Fully connected feedforward network (multilayer perceptron) over one flat
+// parameter vector, with inverted dropout (PyTorch semantics).
+//
+// Parameter layout, layer by layer l = 1..L: W_l (n_l x n_{l-1}, column-major)
+// then b_l (n_l). Batches hold one sample per column.
+//
+// Forward (seed 000 Eqs. 2-3, 12-13):
+//   a_0 = x;  z_l = W_l d_{l-1} + b_l;  a_l = f_l(z_l);  d_l = a_l * r_l / p
+// with r_l ~ Bernoulli(p) on hidden layers that have dropout (p = keep
+// probability; r = 1, no scaling, at evaluation and on other layers).
+// Loss: MSE = mean over all outputs and samples of (a_L - y)^2 (PyTorch's
+// MSELoss 'mean').
+#include <Eigen/Core>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "cnclab/core/rng.hpp"
+#include "cnclab/nn/activation.hpp"
+#include "cnclab/nn/initializer.hpp"
+
+namespace cnclab {
+
+enum class DropoutPlacement {
+  // On the output of every hidden layer that feeds another hidden layer
+  // (seed 000 step 6: "use Dropout in every two hidden layers"); with hidden
+  // [28, 20]: after the 28-unit layer only.
+  between_hidden,
+  // On the output of every hidden layer, the last included (PyTorch's usual
+  // Linear-ReLU-Dropout stacking).
+  after_every_hidden,
+};
+std::string to_string(DropoutPlacement p);
+
+struct MlpOptions {
+  std::size_t inputs = 1;
+  std::vector<std::size_t> hidden = {28, 20};  // seed 000: two hidden layers, 28 and 20
+  std::size_t outputs = 1;
+  Activation hidden_activation = Activation::relu;
+  Activation output_activation = Activation::linear;
+  // Probability of KEEPING a unit (seed 000 Eq. 13: P(r = 1) = p). 1 = no dropout.
+  double dropout_keep_probability = 1.0;
+  DropoutPlacement dropout_placement = DropoutPlacement::between_hidden;
+  Initializer weights{Initializer::Kind::normal, 0.0, 1.0};  // seed 000: N(0, 1)
+  // Seed 000 draws biases from U(c, d) without giving c and d; U(0, 0.1) is
+  // our choice (small, positive: keeps ReLU units active at the start).
+  Initializer biases{Initializer::Kind::uniform, 0.0, 1.0, 0.0, 0.1};
+
+  // Sizes >= 1, keep probability in (0, 1], initialisers valid.
+  void validate() const;
+};
+
+class Mlp {
+ public:
+  // Buffers for one batch size; reused across mini-batches (no allocation in
+  // the training loop).
+  struct Workspace {
+    std::vector<Eigen::MatrixXd> a;     // activations a_l (pre-dropout), l = 0..L
+    std::vector<Eigen::MatrixXd> d;     // dropped-out activations d_l (hidden layers with dropout)
+    std::vector<Eigen::MatrixXd> mask;  // r_l / p, same shape as d_l
+    std::vector<Eigen::MatrixXd> delta;
+    Eigen::Index batch = 0;
+  };
+
+  explicit Mlp(MlpOptions options);  // validates
+
+  const MlpOptions& options() const { return options_; }
+  // n_0 = inputs, n_1.. = hidden, n_L = outputs.
+  const std::vector<Eigen::Index>& layer_sizes() const { return sizes_; }
+  std::size_t num_layers() const { return sizes_.size() - 1; }
+  // sum_l (n_{l-1} + 1) n_l
+  std::size_t num_parameters() const { return num_parameters_; }
+  bool has_dropout(std::size_t layer) const { return dropout_[layer]; }
+
+  // Draws all weights and biases with the configured initialisers.
+  void initialise(Eigen::VectorXd& params, Rng& rng) const;
+
+  // Evaluation-mode outputs (no dropout).
+  Eigen::MatrixXd predict(const Eigen::VectorXd& params, const Eigen::MatrixXd& x) const;
+
+  // Sizes the workspace for batches of `batch` samples.
+  void prepare(Workspace& ws, Eigen::Index batch) const;
+  // New inverted-dropout masks in ws (entries 0 or 1/p), for the batch size
+  // ws was prepared for.
+  void draw_dropout_masks(Workspace& ws, Rng& rng) const;
+  // Training-mode MSE and its gradient (overwritten) for the batch x, y,
+  // using the masks currently in ws. x: inputs x batch, y: outputs x batch.
+  double loss_and_gradient(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                           const Eigen::Ref<const Eigen::MatrixXd>& y, Workspace& ws,
+                           Eigen::VectorXd& gradient) const;
+
+ private:
+  Eigen::Index weight_offset(std::size_t layer) const { return offsets_[layer]; }
+
+  MlpOptions options_;
+  std::vector<Eigen::Index> sizes_;
+  std::vector<Eigen::Index> offsets_;  // start of W_l in the flat vector, l = 1..L (index l-1)
+  std::vector<bool> dropout_;          // per layer l = 0..L: dropout on a_l
+  std::size_t num_parameters_ = 0;
+};
+
+}  // namespace cnclab

@@ -1,0 +1,6 @@
+#pragma once
+// Umbrella header of the nn module.
+#include "cnclab/nn/activation.hpp"
+#include "cnclab/nn/initializer.hpp"
+#include "cnclab/nn/mlp.hpp"
+#include "cnclab/nn/zscore.hpp"

@@ -1,0 +1,41 @@
+#pragma once
+// Stochastic gradient descent with momentum, seed 000 Eq. (14):
+//   v_{t+1} = beta v_t - eta dE/dw(t),   w(t+1) = w(t) + v_{t+1},   v_0 = 0,
+// one update per mini-batch. (PyTorch's form v <- beta v + g, w <- w - eta v
+// is the same sequence of weights for a constant eta.)
+#include <Eigen/Core>
+#include <cstddef>
+#include <functional>
+
+#include "cnclab/core/rng.hpp"
+#include "cnclab/train/objective.hpp"
+#include "cnclab/train/summary.hpp"
+
+namespace cnclab {
+
+struct SgdmOptions {
+  double learning_rate = 1e-5;  // eta > 0 (seed 000: 1e-5)
+  double momentum = 0.8;        // beta in [0, 1) (seed 000: 0.8)
+  // Samples per update; 1 = seed 000's per-sample SGD. The last batch of an
+  // epoch holds the remainder (n mod batch_size) and is used, not dropped.
+  std::size_t batch_size = 1;
+  std::size_t epochs = 2000;  // seed 000: 2000
+  bool shuffle = true;        // new random sample order every epoch
+  // Stop after this many epochs without a lower validation loss and restore
+  // the best parameters; 0 = off. Needs a validation set.
+  std::size_t early_stop_patience = 0;
+
+  void validate() const;
+};
+
+struct SgdmHooks {
+  // Loss on held-out data at the end of each epoch (evaluation mode).
+  std::function<double(const Eigen::VectorXd& params)> validation_loss;
+  // Called after every epoch; returning false stops training.
+  std::function<bool(const EpochRecord&, const Eigen::VectorXd& params)> on_epoch;
+};
+
+Summary train_sgdm(SeparableObjective& objective, Eigen::VectorXd& params,
+                   const SgdmOptions& options, Rng& shuffle_rng, const SgdmHooks& hooks = {});
+
+}  // namespace cnclab
