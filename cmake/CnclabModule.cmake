@@ -14,6 +14,7 @@ function(cnclab_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main cnclab_warnings)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   target_compile_definitions(${name} PRIVATE
     CNCLAB_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     CNCLAB_BINARY_DIR="${PROJECT_BINARY_DIR}")

@@ -406,7 +406,36 @@ void ConfigReader::fail(const std::string& key, const std::string& rule) const {
 
 void ConfigReader::rethrow_option_error(const OptionError& e) const {
   const std::string key = dotted(e.field());
-  throw ConfigError(doc_->location(key).str() + ": " + key + " = " + e.value() + ": " + e.rule());
+  // Quote the value as the user wrote it when the field is a key of this
+  // section ("1.5", not the options struct's "1.500000").
+  std::string value = e.value();
+  YAML::Node n = node_;
+  std::size_t start = 0;
+  const std::string& field = e.field();
+  bool found = true;
+  while (found) {
+    const auto dot = field.find('.', start);
+    const std::string part = field.substr(start, dot == std::string::npos ? dot : dot - start);
+    YAML::Node next;
+    found = false;
+    if (n.IsMap()) {
+      for (auto it = n.begin(); it != n.end(); ++it) {
+        if (it->first.Scalar() == part) {
+          next.reset(it->second);
+          found = true;
+          break;
+        }
+      }
+    }
+    if (!found) break;
+    n.reset(next);
+    if (dot == std::string::npos) {
+      value = node_text(n);
+      break;
+    }
+    start = dot + 1;
+  }
+  throw ConfigError(doc_->location(key).str() + ": " + key + " = " + value + ": " + e.rule());
 }
 
 // ---------------------------------------------------------------- decoding
