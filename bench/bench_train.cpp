@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
       o.epochs = epochs;
       const auto t0 = std::chrono::steady_clock::now();
       const Summary s = train_sgdm(objective, p, o, shuffle);
-      const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double sec =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (s.termination != Termination::max_epochs) {
         std::fprintf(stderr, "benchmark training stopped: %s\n", s.message.c_str());
         return 1;

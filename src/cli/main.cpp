@@ -1,7 +1,6 @@
 // cnclab command line: CLI11 wiring only; the work is in the library.
 // Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.
 #include <CLI/CLI.hpp>
-
 #include <iostream>
 #include <optional>
 #include <string>
@@ -33,7 +32,9 @@ int main(int argc, char** argv) {
   std::optional<std::uint64_t> seed;
 
   auto* run = app.add_subcommand("run", "Run one experiment and write its HDF5 result");
-  run->add_option("experiment", experiment, "Experiment YAML file")->required()->check(CLI::ExistingFile);
+  run->add_option("experiment", experiment, "Experiment YAML file")
+      ->required()
+      ->check(CLI::ExistingFile);
   run->add_option("overrides", overrides,
                   "Config overrides key=value, values typed as YAML (1e-4, true, [28, 20])");
   run->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
@@ -44,23 +45,32 @@ int main(int argc, char** argv) {
       "Example:\n  cnclab run experiments/friedman/friedman1_mlp.yaml trainer.learning_rate=1e-3 "
       "model.hidden=[32,16] --seed 7\nWrites results/<name>/<name>-seed<N>-<hash>.h5 atomically.");
 
-  auto* validate = app.add_subcommand("validate", "Check an experiment config and print it resolved; writes nothing");
-  validate->add_option("experiment", experiment, "Experiment YAML file")->required()->check(CLI::ExistingFile);
+  auto* validate = app.add_subcommand(
+      "validate", "Check an experiment config and print it resolved; writes nothing");
+  validate->add_option("experiment", experiment, "Experiment YAML file")
+      ->required()
+      ->check(CLI::ExistingFile);
   validate->add_option("overrides", overrides, "Config overrides key=value");
   validate->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
-  validate->footer("Example:\n  cnclab validate experiments/friedman/friedman1_mlp.yaml trainer.momentum=0.9");
+  validate->footer(
+      "Example:\n  cnclab validate experiments/friedman/friedman1_mlp.yaml trainer.momentum=0.9");
 
   std::vector<std::string> paths;
-  auto* show = app.add_subcommand("show", "Print a result file: config, provenance, metrics, training");
+  auto* show =
+      app.add_subcommand("show", "Print a result file: config, provenance, metrics, training");
   show->add_option("result", paths, "Result HDF5 file(s)")->required();
   show->footer("Example:\n  cnclab show results/friedman1_mlp/friedman1_mlp-seed42-*.h5");
 
-  auto* reproduce = app.add_subcommand("reproduce", "Run experiments (default: all under experiments/) and print their metrics");
+  auto* reproduce = app.add_subcommand(
+      "reproduce", "Run experiments (default: all under experiments/) and print their metrics");
   reproduce->add_option("paths", paths, "Experiment files or folders (default: experiments)");
   reproduce->add_option("--out", common.results_dir, "Results folder")->capture_default_str();
-  reproduce->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")->capture_default_str();
+  reproduce->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")
+      ->capture_default_str();
   reproduce->add_flag("--quiet,-q", common.quiet, "No progress output");
-  reproduce->footer("Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce experiments/friedman");
+  reproduce->footer(
+      "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
+      "experiments/friedman");
 
   auto* version = app.add_subcommand("version", "Print version, git commit and library versions");
   version->footer("Example:\n  cnclab version");

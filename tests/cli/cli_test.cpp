@@ -31,7 +31,8 @@ class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("cnclab_cli_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("cnclab_cli_test_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -59,7 +60,8 @@ class Cli : public ::testing::Test {
   std::vector<fs::path> outputs() const {
     std::vector<fs::path> out;
     for (const auto& e : fs::recursive_directory_iterator(dir_)) {
-      if (e.is_regular_file() && e.path().extension() != ".yaml" && e.path().extension() != ".h5bad") {
+      if (e.is_regular_file() && e.path().extension() != ".yaml" &&
+          e.path().extension() != ".h5bad") {
         out.push_back(e.path());
       }
     }
@@ -86,8 +88,8 @@ TEST_F(Cli, UnknownKeyIsUsageErrorAndWritesNothing) {
 }
 
 TEST_F(Cli, TypoInNestedKeyInFileNamesFileLineAndKey) {
-  const auto file = write("typo.yaml",
-                          "include: " + kExperiment + "\nmodel:\n  dropout:\n    keep_probabilty: 0.5\n");
+  const auto file = write(
+      "typo.yaml", "include: " + kExperiment + "\nmodel:\n  dropout:\n    keep_probabilty: 0.5\n");
   expect_one_line_error(cnclab("run " + file.string() + " --quiet"), 2,
                         file.string() + ":4:22: model.dropout.keep_probabilty: unknown key");
   EXPECT_TRUE(outputs().empty());
@@ -186,7 +188,8 @@ TEST_F(Cli, DivergedTrainingIsAFailedResultNotACrash) {
   const Result r = cnclab(quick("trainer.learning_rate=1e12"));
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.out.find("FAILED"), std::string::npos) << r.out;
-  const std::string file = r.out.substr(r.out.rfind(": ") + 2, r.out.size() - r.out.rfind(": ") - 3);
+  const std::string file =
+      r.out.substr(r.out.rfind(": ") + 2, r.out.size() - r.out.rfind(": ") - 3);
   const Result show = cnclab("show " + file);
   EXPECT_EQ(show.code, 0) << show.err;
   EXPECT_NE(show.out.find("failed"), std::string::npos) << show.out;
@@ -194,8 +197,8 @@ TEST_F(Cli, DivergedTrainingIsAFailedResultNotACrash) {
 
 TEST_F(Cli, ReproduceRunsAFolderAndPrintsMetrics) {
   fs::create_directories(dir_ / "exps");
-  write("exps/e.yaml", "include: " + kExperiment +
-                           "\ntrainer: {epochs: 2}\ndataset: {options: {samples: 100}}\n");
+  write("exps/e.yaml",
+        "include: " + kExperiment + "\ntrainer: {epochs: 2}\ndataset: {options: {samples: 100}}\n");
   const Result r = cnclab("reproduce exps --quiet");
   EXPECT_EQ(r.code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("friedman1_mlp"), std::string::npos) << r.out;

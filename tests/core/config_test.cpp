@@ -26,9 +26,10 @@ std::string config_error(F&& f) {
 class TempDir {
  public:
   TempDir() {
-    path_ = fs::temp_directory_path() /
-            ("cnclab_config_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-             "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    path_ =
+        fs::temp_directory_path() /
+        ("cnclab_config_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(path_);
     fs::create_directories(path_);
   }
@@ -109,8 +110,9 @@ TEST(Config, MalformedYamlNamesPosition) {
 }
 
 TEST(Config, DuplicateKeyRejected) {
-  EXPECT_NE(config_error([] { ConfigDocument::parse("a: 1\na: 2\n", "d.yaml"); })
-                .find("d.yaml:2:1: a: duplicate key"),
+  EXPECT_NE(config_error([] {
+              ConfigDocument::parse("a: 1\na: 2\n", "d.yaml");
+            }).find("d.yaml:2:1: a: duplicate key"),
             std::string::npos);
 }
 
@@ -127,13 +129,14 @@ TEST(Config, MissingFileIsConfigError) {
 TEST(Config, IncludesMergeLaterOverridesEarlierAndKeepLocations) {
   TempDir dir;
   dir.write("configs/base.yaml", "trainer:\n  momentum: 0.5\n  epochs: 10\nname: base\n");
-  const auto exp = dir.write("experiments/e.yaml",
-                             "include: ../configs/base.yaml\ntrainer:\n  epochs: 20\n");
+  const auto exp =
+      dir.write("experiments/e.yaml", "include: ../configs/base.yaml\ntrainer:\n  epochs: 20\n");
   auto doc = ConfigDocument::load(exp);
   auto t = doc.root().section("trainer");
   EXPECT_DOUBLE_EQ(t.get<double>("momentum", 0), 0.5);  // from the include
   EXPECT_EQ(t.get<std::uint64_t>("epochs", 0), 20u);    // overridden by the file
-  EXPECT_EQ(doc.location("trainer.momentum").file, (dir.path() / "experiments/../configs/base.yaml").string());
+  EXPECT_EQ(doc.location("trainer.momentum").file,
+            (dir.path() / "experiments/../configs/base.yaml").string());
   EXPECT_EQ(doc.location("trainer.epochs").line, 3);
   EXPECT_EQ(doc.location("trainer.epochs").file, exp.string());
 }

@@ -18,8 +18,8 @@ TEST(Override, ParsesDottedKeyAndYamlTypedValue) {
 }
 
 TEST(Override, RejectsMalformedText) {
-  for (const char* bad : {"novalue", "=3", "a..b=1", ".a=1", "a.=1", "a b=1", "a=", "a=  ",
-                          "a=[1, 2", "a=~", "a=null"}) {
+  for (const char* bad : {"novalue", "=3", "a..b=1", ".a=1", "a.=1", "a b=1",
+                          "a=", "a=  ", "a=[1, 2", "a=~", "a=null"}) {
     EXPECT_THROW(parse_override(bad), ConfigError) << bad;
   }
 }

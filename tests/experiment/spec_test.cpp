@@ -50,7 +50,8 @@ TEST(Spec, RequiredKeysAndUnknownKeys) {
 }
 
 TEST(Spec, OutOfRangeValuesNameKeyValueAndLocation) {
-  EXPECT_NE(error_of(kMinimal + "trainer:\n  momentum: 1.5\n").find("e.yaml:4:13: trainer.momentum = 1.5"),
+  EXPECT_NE(error_of(kMinimal + "trainer:\n  momentum: 1.5\n")
+                .find("e.yaml:4:13: trainer.momentum = 1.5"),
             std::string::npos);
   EXPECT_NE(error_of(kMinimal, {"split.train=1.2"}).find("split.train = 1.2"), std::string::npos);
   EXPECT_NE(error_of(kMinimal, {"model.dropout.keep_probability=0"})
@@ -66,8 +67,8 @@ TEST(Spec, OutOfRangeValuesNameKeyValueAndLocation) {
 }
 
 TEST(Spec, InitializerKeysDependOnType) {
-  const auto a = parse_experiment(kMinimal, "e.yaml",
-                                  {"model.init.weights={type: normal, mean: 0, std: 2}"});
+  const auto a =
+      parse_experiment(kMinimal, "e.yaml", {"model.init.weights={type: normal, mean: 0, std: 2}"});
   EXPECT_DOUBLE_EQ(a.spec.model.weights.std, 2.0);
   // `std` belongs to normal only: with xavier it is an unknown key.
   EXPECT_NE(error_of(kMinimal, {"model.init.weights={type: xavier, std: 2}"}).find("unknown key"),

@@ -83,8 +83,9 @@ TEST(H5, MatrixIsStoredSamplesByFeaturesInCOrder) {
 
 TEST(H5, ErrorsNameFileAndObject) {
   TempDir dir;
-  EXPECT_NE(io_error([&] { H5File::open_read(dir / "missing.h5"); }).find("missing.h5: no such file"),
-            std::string::npos);
+  EXPECT_NE(
+      io_error([&] { H5File::open_read(dir / "missing.h5"); }).find("missing.h5: no such file"),
+      std::string::npos);
   std::ofstream(dir / "text.h5") << "not hdf5 at all";
   EXPECT_NE(io_error([&] { H5File::open_read(dir / "text.h5"); }).find("not an HDF5 file"),
             std::string::npos);
@@ -95,11 +96,14 @@ TEST(H5, ErrorsNameFileAndObject) {
     f.write_string("/s", "x");
   }
   const H5File f = H5File::open_read(path);
-  EXPECT_NE(io_error([&] { f.read_vector("/nope"); }).find("a.h5: /nope: not found"), std::string::npos);
-  EXPECT_NE(io_error([&] { f.read_matrix("/v"); }).find("/v: expected rank 2"), std::string::npos);
-  EXPECT_NE(io_error([&] { f.read_vector("/s"); }).find("/s: expected floating-point"), std::string::npos);
-  EXPECT_NE(io_error([&] { f.attribute_string("/v", "units"); }).find("attribute 'units' not found"),
+  EXPECT_NE(io_error([&] { f.read_vector("/nope"); }).find("a.h5: /nope: not found"),
             std::string::npos);
+  EXPECT_NE(io_error([&] { f.read_matrix("/v"); }).find("/v: expected rank 2"), std::string::npos);
+  EXPECT_NE(io_error([&] { f.read_vector("/s"); }).find("/s: expected floating-point"),
+            std::string::npos);
+  EXPECT_NE(
+      io_error([&] { f.attribute_string("/v", "units"); }).find("attribute 'units' not found"),
+      std::string::npos);
 }
 
 TEST(H5, TruncatedFileIsAnErrorNotACrash) {

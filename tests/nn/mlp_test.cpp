@@ -57,7 +57,8 @@ void check_gradient(const MlpOptions& o, std::uint64_t seed) {
 TEST(Mlp, GradientMatchesFiniteDifferencesForEveryActivation) {
   // ReLU's kink: with random weights no pre-activation lands within h of 0
   // for these seeds (a kink would show as one large mismatch).
-  for (Activation a : {Activation::relu, Activation::tanh, Activation::sigmoid, Activation::linear}) {
+  for (Activation a :
+       {Activation::relu, Activation::tanh, Activation::sigmoid, Activation::linear}) {
     SCOPED_TRACE(to_string(a));
     check_gradient(options(a, Activation::linear, {6, 4}, 3, 2), 11);
     check_gradient(options(Activation::tanh, a, {5}, 4, 1), 12);

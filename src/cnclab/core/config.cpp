@@ -58,8 +58,7 @@ void index_tree(const YAML::Node& node, const std::string& prefix, const std::st
     }
     const std::string dotted = join(prefix, key.Scalar());
     if (!seen.insert(key.Scalar()).second) {
-      throw ConfigError(mark_location(file, key.Mark()).str() + ": " + dotted +
-                        ": duplicate key");
+      throw ConfigError(mark_location(file, key.Mark()).str() + ": " + dotted + ": duplicate key");
     }
     const YAML::Node& value = it->second;
     out[dotted] = mark_location(file, value.IsScalar() ? value.Mark() : key.Mark());
@@ -69,7 +68,9 @@ void index_tree(const YAML::Node& node, const std::string& prefix, const std::st
 
 // yaml-cpp's const operator[] returns an invalid node for a missing key, on
 // which IsMap() throws.
-bool is_map(const YAML::Node& n) { return n.IsDefined() && n.IsMap(); }
+bool is_map(const YAML::Node& n) {
+  return n.IsDefined() && n.IsMap();
+}
 
 // dst <- src, key by key for maps; anything else replaces.
 void merge_into(YAML::Node& dst, const YAML::Node& src) {
@@ -216,7 +217,9 @@ bool parse_int_text(const std::string& s, std::int64_t& out) {
   return ec == std::errc() && ptr == end && begin != end;
 }
 
-bool is_plain_scalar(const YAML::Node& n) { return n.IsScalar() && n.Tag() != "!"; }
+bool is_plain_scalar(const YAML::Node& n) {
+  return n.IsScalar() && n.Tag() != "!";
+}
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -295,7 +298,9 @@ void ConfigDocument::apply(const Override& override) {
   for (auto& [k, loc] : below) state_->locations[k] = where;
 }
 
-ConfigReader ConfigDocument::root() const { return ConfigReader(*this, tree_, ""); }
+ConfigReader ConfigDocument::root() const {
+  return ConfigReader(*this, tree_, "");
+}
 
 std::string ConfigDocument::to_yaml() const {
   YAML::Emitter out;
@@ -315,37 +320,37 @@ SourceLocation ConfigDocument::location(const std::string& dotted_key) const {
 
 void ConfigDocument::check_all_consumed() const {
   const auto& known = state_->consumed;
-  std::function<void(const YAML::Node&, const std::string&)> walk =
-      [&](const YAML::Node& node, const std::string& prefix) {
-        if (!node.IsMap()) return;
-        for (auto it = node.begin(); it != node.end(); ++it) {
-          const std::string dotted = join(prefix, it->first.Scalar());
-          if (known.count(dotted + "/*")) continue;  // consumed whole (raw)
-          if (!known.count(dotted)) {
-            // Suggest the closest key the readers asked for at this level.
-            std::string best;
-            std::size_t best_distance = 3;  // suggest only near misses
-            std::string allowed;
-            const std::string parent = prefix.empty() ? "" : prefix + ".";
-            for (const auto& k : known) {
-              if (k.compare(0, parent.size(), parent) != 0) continue;
-              const std::string rest = k.substr(parent.size());
-              if (rest.empty() || rest.find('.') != std::string::npos ||
-                  rest.find('/') != std::string::npos) {
-                continue;
-              }
-              allowed += (allowed.empty() ? "" : ", ") + rest;
-              const std::size_t d = edit_distance(rest, it->first.Scalar());
-              if (d < best_distance) best_distance = d, best = rest;
-            }
-            std::string msg = location(dotted).str() + ": " + dotted + ": unknown key";
-            if (!best.empty()) msg += " (did you mean '" + best + "'?)";
-            if (!allowed.empty()) msg += "; allowed here: " + allowed;
-            throw ConfigError(msg);
+  std::function<void(const YAML::Node&, const std::string&)> walk = [&](const YAML::Node& node,
+                                                                        const std::string& prefix) {
+    if (!node.IsMap()) return;
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const std::string dotted = join(prefix, it->first.Scalar());
+      if (known.count(dotted + "/*")) continue;  // consumed whole (raw)
+      if (!known.count(dotted)) {
+        // Suggest the closest key the readers asked for at this level.
+        std::string best;
+        std::size_t best_distance = 3;  // suggest only near misses
+        std::string allowed;
+        const std::string parent = prefix.empty() ? "" : prefix + ".";
+        for (const auto& k : known) {
+          if (k.compare(0, parent.size(), parent) != 0) continue;
+          const std::string rest = k.substr(parent.size());
+          if (rest.empty() || rest.find('.') != std::string::npos ||
+              rest.find('/') != std::string::npos) {
+            continue;
           }
-          walk(it->second, dotted);
+          allowed += (allowed.empty() ? "" : ", ") + rest;
+          const std::size_t d = edit_distance(rest, it->first.Scalar());
+          if (d < best_distance) best_distance = d, best = rest;
         }
-      };
+        std::string msg = location(dotted).str() + ": " + dotted + ": unknown key";
+        if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+        if (!allowed.empty()) msg += "; allowed here: " + allowed;
+        throw ConfigError(msg);
+      }
+      walk(it->second, dotted);
+    }
+  };
   walk(tree_, "");
 }
 
@@ -362,7 +367,9 @@ YAML::Node ConfigReader::child(const std::string& key) const {
   return YAML::Node();
 }
 
-void ConfigReader::mark(const std::string& key) const { doc_->state_->consumed.insert(dotted(key)); }
+void ConfigReader::mark(const std::string& key) const {
+  doc_->state_->consumed.insert(dotted(key));
+}
 
 bool ConfigReader::has(const std::string& key) const {
   mark(key);
@@ -373,7 +380,8 @@ bool ConfigReader::has(const std::string& key) const {
 ConfigReader ConfigReader::section(const std::string& key) const {
   mark(key);
   YAML::Node n = child(key);
-  if (!n.IsDefined() || n.IsNull()) return ConfigReader(*doc_, YAML::Node(YAML::NodeType::Map), dotted(key));
+  if (!n.IsDefined() || n.IsNull())
+    return ConfigReader(*doc_, YAML::Node(YAML::NodeType::Map), dotted(key));
   if (!n.IsMap()) fail(key, "expected a section (a map of keys)");
   return ConfigReader(*doc_, n, dotted(key));
 }
@@ -391,7 +399,9 @@ std::vector<std::string> ConfigReader::keys() const {
   return out;
 }
 
-std::string ConfigReader::dotted(const std::string& key) const { return join(path_, key); }
+std::string ConfigReader::dotted(const std::string& key) const {
+  return join(path_, key);
+}
 
 SourceLocation ConfigReader::location(const std::string& key) const {
   return doc_->location(dotted(key));
@@ -487,7 +497,8 @@ std::uint64_t decode_uint(const ConfigReader& r, const std::string& key, const Y
   if (begin != end && *begin == '+') ++begin;
   auto [ptr, ec] = std::from_chars(begin, end, value);
   if (ec == std::errc::result_out_of_range) r.fail(key, "integer too large");
-  if (ec != std::errc() || ptr != end || begin == end) r.fail(key, "expected a non-negative integer");
+  if (ec != std::errc() || ptr != end || begin == end)
+    r.fail(key, "expected a non-negative integer");
   return value;
 }
 

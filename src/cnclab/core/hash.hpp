@@ -22,6 +22,8 @@ class Hasher {
   std::uint64_t h_ = 0xCBF29CE484222325ULL;  // FNV-1a 64-bit offset basis
 };
 
-inline std::string hash_hex(std::string_view bytes) { return Hasher().add(bytes).hex(); }
+inline std::string hash_hex(std::string_view bytes) {
+  return Hasher().add(bytes).hex();
+}
 
 }  // namespace cnclab

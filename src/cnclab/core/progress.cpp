@@ -47,7 +47,7 @@ void Progress::update(std::size_t done, const std::string& status) {
   const auto now = std::chrono::steady_clock::now();
   const double since = std::chrono::duration<double>(now - last_draw_).count();
   const double interval = mode_ == ProgressMode::terminal ? options_.redraw_interval_seconds
-                                                           : options_.plain_interval_seconds;
+                                                          : options_.plain_interval_seconds;
   if (since < interval) return;
   last_draw_ = now;
   draw(false);

@@ -8,8 +8,8 @@
 namespace cnclab {
 namespace {
 
-void check_matrix(const Eigen::MatrixXd& m, const char* what,
-                  const std::vector<std::string>& names, const std::vector<std::string>& units) {
+void check_matrix(const Eigen::MatrixXd& m, const char* what, const std::vector<std::string>& names,
+                  const std::vector<std::string>& units) {
   const auto rows = static_cast<std::size_t>(m.rows());
   if (names.size() != rows || units.size() != rows) {
     throw Error(std::string("dataset ") + what + ": " + std::to_string(rows) + " rows but " +

@@ -27,8 +27,11 @@ Split make_random_split(std::size_t n, const SplitOptions& options, Rng& rng) {
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
   rng.shuffle(order);
-  const auto n_train = std::min(n, static_cast<std::size_t>(std::llround(options.train_fraction * static_cast<double>(n))));
-  const auto n_val = std::min(n - n_train, static_cast<std::size_t>(std::llround(options.validation_fraction * static_cast<double>(n))));
+  const auto n_train = std::min(
+      n, static_cast<std::size_t>(std::llround(options.train_fraction * static_cast<double>(n))));
+  const auto n_val = std::min(
+      n - n_train,
+      static_cast<std::size_t>(std::llround(options.validation_fraction * static_cast<double>(n))));
   Split s;
   s.train.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n_train));
   s.validation.assign(order.begin() + static_cast<std::ptrdiff_t>(n_train),

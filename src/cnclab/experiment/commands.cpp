@@ -54,7 +54,8 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
 int validate_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                      std::optional<std::uint64_t> seed, std::ostream& out) {
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed);
-  out << "# " << experiment.string() << ": valid; resolved configuration:\n" << loaded.resolved_yaml;
+  out << "# " << experiment.string() << ": valid; resolved configuration:\n"
+      << loaded.resolved_yaml;
   return 0;
 }
 
@@ -68,7 +69,8 @@ int show_command(const std::vector<std::string>& result_files, std::ostream& out
 
 std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
   std::vector<fs::path> files;
-  const std::vector<std::string> roots = paths.empty() ? std::vector<std::string>{"experiments"} : paths;
+  const std::vector<std::string> roots =
+      paths.empty() ? std::vector<std::string>{"experiments"} : paths;
   for (const auto& root : roots) {
     std::error_code ec;
     if (fs::is_regular_file(root, ec)) {
@@ -76,7 +78,8 @@ std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
     } else if (fs::is_directory(root, ec)) {
       for (const auto& entry : fs::recursive_directory_iterator(root)) {
         const auto ext = entry.path().extension();
-        if (entry.is_regular_file() && (ext == ".yaml" || ext == ".yml")) files.push_back(entry.path());
+        if (entry.is_regular_file() && (ext == ".yaml" || ext == ".yml"))
+          files.push_back(entry.path());
       }
     } else {
       throw ConfigError(root + ": no such experiment file or folder");

@@ -18,12 +18,15 @@ std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
   return s;
 }
 
-std::vector<double> to_std(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+std::vector<double> to_std(const Eigen::VectorXd& v) {
+  return {v.data(), v.data() + v.size()};
+}
 Eigen::VectorXd to_eigen(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
 
-void write_scaling(H5File& f, const std::string& g, const ScalingRecord& s, const std::string& units) {
+void write_scaling(H5File& f, const std::string& g, const ScalingRecord& s,
+                   const std::string& units) {
   f.create_group(g);
   f.set_attribute(g, "method", s.mean.size() ? "zscore" : "none");
   if (s.mean.size()) {
@@ -133,7 +136,8 @@ RunRecord read_result(const fs::path& path) {
     bad("not a cnclab result file (root attribute format != cnclab-result)");
   }
   if (f.attribute_int("/", "format_version") != kResultFormatVersion) {
-    bad("unsupported result format_version " + std::to_string(f.attribute_int("/", "format_version")));
+    bad("unsupported result format_version " +
+        std::to_string(f.attribute_int("/", "format_version")));
   }
   if (!f.has_attribute("/", "complete") || f.attribute_int("/", "complete") != 1) {
     bad("incomplete result file (interrupted write?)");
@@ -158,7 +162,8 @@ RunRecord read_result(const fs::path& path) {
   r.model.inputs = static_cast<std::size_t>(sizes.front());
   r.model.outputs = static_cast<std::size_t>(sizes.back());
   r.model.hidden.clear();
-  for (std::size_t i = 1; i + 1 < sizes.size(); ++i) r.model.hidden.push_back(static_cast<std::size_t>(sizes[i]));
+  for (std::size_t i = 1; i + 1 < sizes.size(); ++i)
+    r.model.hidden.push_back(static_cast<std::size_t>(sizes[i]));
   try {
     r.model.hidden_activation = parse_activation(f.attribute_string("/model", "hidden_activation"));
     r.model.output_activation = parse_activation(f.attribute_string("/model", "output_activation"));
@@ -201,7 +206,8 @@ RunRecord read_result(const fs::path& path) {
 void print_result(const RunRecord& r, std::ostream& out) {
   const Provenance& p = r.provenance;
   out << "experiment   " << r.experiment << "\n"
-      << "status       " << p.status << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n"
+      << "status       " << p.status << (p.failure_reason.empty() ? "" : ": " + p.failure_reason)
+      << "\n"
       << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
       << "run          " << p.start_utc << " -> " << p.end_utc << " (" << number(p.wall_seconds)
       << " s) on " << p.host << "\n"
@@ -212,14 +218,17 @@ void print_result(const RunRecord& r, std::ostream& out) {
     first = false;
   }
   out << ")\n";
-  out << "dataset      " << r.dataset_file << " (" << r.test_targets.cols() + static_cast<Eigen::Index>(r.split.train.size() + r.split.validation.size())
+  out << "dataset      " << r.dataset_file << " ("
+      << r.test_targets.cols() +
+             static_cast<Eigen::Index>(r.split.train.size() + r.split.validation.size())
       << " samples, hash " << r.dataset_hash << ")\n"
-      << "split        train " << r.split.train.size() << ", validation " << r.split.validation.size()
-      << ", test " << r.split.test.size() << "\n"
+      << "split        train " << r.split.train.size() << ", validation "
+      << r.split.validation.size() << ", test " << r.split.test.size() << "\n"
       << "model        mlp " << r.model.inputs;
   for (auto h : r.model.hidden) out << "-" << h;
   out << "-" << r.model.outputs << " (" << to_string(r.model.hidden_activation) << ", keep p "
-      << number(r.model.dropout_keep_probability) << ", " << r.parameters.size() << " parameters)\n";
+      << number(r.model.dropout_keep_probability) << ", " << r.parameters.size()
+      << " parameters)\n";
   out << "training     " << to_string(r.training.termination) << ": " << r.training.message << "\n";
   if (!r.training.history.empty()) {
     const auto& last = r.training.history.back();

@@ -25,7 +25,8 @@ constexpr const char* kStreams[] = {"generator", "split", "init", "dropout", "sh
 
 Eigen::MatrixXd columns(const Eigen::MatrixXd& m, const std::vector<std::size_t>& idx) {
   Eigen::MatrixXd out(m.rows(), static_cast<Eigen::Index>(idx.size()));
-  for (std::size_t j = 0; j < idx.size(); ++j) out.col(static_cast<Eigen::Index>(j)) = m.col(static_cast<Eigen::Index>(idx[j]));
+  for (std::size_t j = 0; j < idx.size(); ++j)
+    out.col(static_cast<Eigen::Index>(j)) = m.col(static_cast<Eigen::Index>(idx[j]));
   return out;
 }
 
@@ -46,12 +47,13 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   rec.resolved_yaml = experiment.resolved_yaml;
   rec.config_hash = hash_hex(experiment.resolved_yaml);
   rec.provenance = make_provenance(spec.seed);
-  for (const char* stream : kStreams) rec.provenance.derived_seeds[stream] = derive_seed(spec.seed, stream);
+  for (const char* stream : kStreams)
+    rec.provenance.derived_seeds[stream] = derive_seed(spec.seed, stream);
   if (spec.dataset.seed) rec.provenance.derived_seeds["generator"] = *spec.dataset.seed;
 
   // Dataset (generated or reused from the cache).
-  const CachedDataset cached = obtain_dataset(spec.dataset, rec.provenance.derived_seeds["generator"],
-                                              options.datasets_dir, options.log);
+  const CachedDataset cached = obtain_dataset(
+      spec.dataset, rec.provenance.derived_seeds["generator"], options.datasets_dir, options.log);
   const Dataset& data = cached.dataset;
   rec.dataset_file = cached.path.string();
   rec.dataset_hash = cached.content_hash;
@@ -107,7 +109,8 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   Rng dropout_rng(spec.seed, "dropout");
   Rng shuffle_rng(spec.seed, "shuffle");
   MlpRegressionObjective objective(mlp, xn_train, yn_train, dropout_rng);
-  const auto mse = [&](const Eigen::VectorXd& p, const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
+  const auto mse = [&](const Eigen::VectorXd& p, const Eigen::MatrixXd& x,
+                       const Eigen::MatrixXd& y) {
     if (x.cols() == 0) return std::nan("");
     return (mlp.predict(p, x) - y).array().square().mean();
   };

@@ -20,8 +20,8 @@ struct RunOptions {
 
 struct RunOutcome {
   std::filesystem::path result_file;
-  bool ok = false;          // false: training diverged (result written with status "failed")
-  std::string message;      // termination message
+  bool ok = false;      // false: training diverged (result written with status "failed")
+  std::string message;  // termination message
   std::map<std::string, double> metrics;
 };
 

@@ -41,7 +41,8 @@ Activation read_activation(const ConfigReader& r, const std::string& key, Activa
 
 Initializer read_initializer(const ConfigReader& r, const Initializer& fallback) {
   Initializer init = fallback;
-  const auto kind = choice(r, "type", to_string(fallback.kind), {"normal", "uniform", "xavier", "he"});
+  const auto kind =
+      choice(r, "type", to_string(fallback.kind), {"normal", "uniform", "xavier", "he"});
   init.kind = kind == "normal"    ? Initializer::Kind::normal
               : kind == "uniform" ? Initializer::Kind::uniform
               : kind == "xavier"  ? Initializer::Kind::xavier

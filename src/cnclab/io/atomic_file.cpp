@@ -34,10 +34,11 @@ AtomicOutput::AtomicOutput(fs::path final_path) : final_(std::move(final_path)) 
   if (ec) throw IoError(dir.string() + ": cannot create folder: " + ec.message());
   // Unique per process and call: pid plus a hash of the clock and address.
   const auto now = std::chrono::steady_clock::now().time_since_epoch().count();
-  const std::string tag = Hasher()
-                              .add(static_cast<std::uint64_t>(now))
-                              .add(static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(this)))
-                              .hex();
+  const std::string tag =
+      Hasher()
+          .add(static_cast<std::uint64_t>(now))
+          .add(static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(this)))
+          .hex();
   // Built by appending: GCC 12 warns falsely (-Wrestrict, PR105329) on
   // `"literal" + std::string` chains.
   std::string name = ".";
@@ -59,8 +60,8 @@ AtomicOutput::~AtomicOutput() {
 void AtomicOutput::commit() {
   fsync_path(temp_, false);
   if (std::rename(temp_.c_str(), final_.c_str()) != 0) {
-    throw IoError(final_.string() + ": cannot rename " + temp_.string() + " into place: " +
-                  std::strerror(errno));
+    throw IoError(final_.string() + ": cannot rename " + temp_.string() +
+                  " into place: " + std::strerror(errno));
   }
   committed_ = true;
   fsync_path(final_.parent_path().empty() ? fs::path(".") : final_.parent_path(), true);

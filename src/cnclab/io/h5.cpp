@@ -111,8 +111,9 @@ void H5File::create_group(const std::string& name) {
 
 H5Handle H5File::create_dataset(const std::string& name, hid_t type,
                                 const std::vector<hsize_t>& dims) {
-  H5Handle space(dims.empty() ? H5Screate(H5S_SCALAR)
-                              : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+  H5Handle space(dims.empty()
+                     ? H5Screate(H5S_SCALAR)
+                     : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                  H5Sclose);
   const H5Handle lcpl = link_creation_with_parents();
   H5Handle d(H5Dcreate2(file_.get(), name.c_str(), type, space.get(), lcpl.get(), H5P_DEFAULT,
@@ -196,7 +197,8 @@ void write_attribute(hid_t object, const std::string& attr, hid_t type, WriteFn&
 void H5File::set_attribute(const std::string& object, const std::string& attr, double value) {
   const H5Handle o = open_object(object);
   write_attribute(
-      o.get(), attr, H5T_IEEE_F64LE, [&](hid_t a) { return H5Awrite(a, H5T_NATIVE_DOUBLE, &value); },
+      o.get(), attr, H5T_IEEE_F64LE,
+      [&](hid_t a) { return H5Awrite(a, H5T_NATIVE_DOUBLE, &value); },
       [&](const std::string& w) { fail(object, w); });
 }
 
@@ -337,9 +339,11 @@ H5T_class_t attribute_class(hid_t a) {
 double H5File::attribute_double(const std::string& object, const std::string& attr) const {
   const H5Handle a = open_attribute(object, attr);
   const auto cls = attribute_class(a.get());
-  if (cls != H5T_FLOAT && cls != H5T_INTEGER) fail(object, "attribute '" + attr + "' is not a number");
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER)
+    fail(object, "attribute '" + attr + "' is not a number");
   double v = 0;
-  if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0) fail(object, "cannot read attribute '" + attr + "'");
+  if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0)
+    fail(object, "cannot read attribute '" + attr + "'");
   return v;
 }
 
@@ -349,18 +353,21 @@ std::int64_t H5File::attribute_int(const std::string& object, const std::string&
     fail(object, "attribute '" + attr + "' is not an integer");
   }
   std::int64_t v = 0;
-  if (H5Aread(a.get(), H5T_NATIVE_INT64, &v) < 0) fail(object, "cannot read attribute '" + attr + "'");
+  if (H5Aread(a.get(), H5T_NATIVE_INT64, &v) < 0)
+    fail(object, "cannot read attribute '" + attr + "'");
   return v;
 }
 
 std::string H5File::attribute_string(const std::string& object, const std::string& attr) const {
   const H5Handle a = open_attribute(object, attr);
-  if (attribute_class(a.get()) != H5T_STRING) fail(object, "attribute '" + attr + "' is not a string");
+  if (attribute_class(a.get()) != H5T_STRING)
+    fail(object, "attribute '" + attr + "' is not a string");
   H5Handle stored(H5Aget_type(a.get()), H5Tclose);
   if (H5Tis_variable_str(stored.get()) > 0) {
     const H5Handle type = string_type();
     char* p = nullptr;
-    if (H5Aread(a.get(), type.get(), &p) < 0 || !p) fail(object, "cannot read attribute '" + attr + "'");
+    if (H5Aread(a.get(), type.get(), &p) < 0 || !p)
+      fail(object, "cannot read attribute '" + attr + "'");
     std::string s(p);
     H5free_memory(p);
     return s;
@@ -368,7 +375,8 @@ std::string H5File::attribute_string(const std::string& object, const std::strin
   // Fixed-length string (written by another tool).
   const std::size_t size = H5Tget_size(stored.get());
   std::string s(size, '\0');
-  if (H5Aread(a.get(), stored.get(), s.data()) < 0) fail(object, "cannot read attribute '" + attr + "'");
+  if (H5Aread(a.get(), stored.get(), s.data()) < 0)
+    fail(object, "cannot read attribute '" + attr + "'");
   return s.substr(0, s.find('\0'));
 }
 

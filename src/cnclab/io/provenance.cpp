@@ -63,7 +63,8 @@ void write_provenance(H5File& f, const std::string& g, const Provenance& p) {
   f.set_attribute(g, "status", p.status);
   f.set_attribute(g, "failure_reason", p.failure_reason);
   f.create_group(g + "/seeds");
-  for (const auto& [name, seed] : p.derived_seeds) f.set_attribute(g + "/seeds", name, std::to_string(seed));
+  for (const auto& [name, seed] : p.derived_seeds)
+    f.set_attribute(g + "/seeds", name, std::to_string(seed));
   f.create_group(g + "/libraries");
   for (const auto& [name, version] : p.libraries) f.set_attribute(g + "/libraries", name, version);
 }

@@ -23,13 +23,16 @@ void Initializer::fill(Eigen::Ref<Eigen::MatrixXd> out, Eigen::Index fan_in, Eig
                        Rng& rng) const {
   const auto draw = [&]() -> double {
     switch (kind) {
-      case Kind::normal: return rng.normal(mean, std);
-      case Kind::uniform: return rng.uniform(low, high);
+      case Kind::normal:
+        return rng.normal(mean, std);
+      case Kind::uniform:
+        return rng.uniform(low, high);
       case Kind::xavier: {
         const double a = std::sqrt(6.0 / static_cast<double>(fan_in + fan_out));
         return rng.uniform(-a, a);
       }
-      case Kind::he: return rng.normal(0.0, std::sqrt(2.0 / static_cast<double>(fan_in)));
+      case Kind::he:
+        return rng.normal(0.0, std::sqrt(2.0 / static_cast<double>(fan_in)));
     }
     return 0.0;
   };
@@ -40,10 +43,14 @@ void Initializer::fill(Eigen::Ref<Eigen::MatrixXd> out, Eigen::Index fan_in, Eig
 
 std::string to_string(Initializer::Kind kind) {
   switch (kind) {
-    case Initializer::Kind::normal: return "normal";
-    case Initializer::Kind::uniform: return "uniform";
-    case Initializer::Kind::xavier: return "xavier";
-    case Initializer::Kind::he: return "he";
+    case Initializer::Kind::normal:
+      return "normal";
+    case Initializer::Kind::uniform:
+      return "uniform";
+    case Initializer::Kind::xavier:
+      return "xavier";
+    case Initializer::Kind::he:
+      return "he";
   }
   return "?";
 }

@@ -12,20 +12,35 @@ using MapVector = Eigen::Map<const Eigen::VectorXd>;
 
 void apply_activation(Activation f, Eigen::Ref<Eigen::MatrixXd> z) {
   switch (f) {
-    case Activation::relu: z = z.cwiseMax(0.0); break;
-    case Activation::tanh: z = z.array().tanh(); break;
-    case Activation::sigmoid: z = (1.0 + (-z.array()).exp()).inverse(); break;
-    case Activation::linear: break;
+    case Activation::relu:
+      z = z.cwiseMax(0.0);
+      break;
+    case Activation::tanh:
+      z = z.array().tanh();
+      break;
+    case Activation::sigmoid:
+      z = (1.0 + (-z.array()).exp()).inverse();
+      break;
+    case Activation::linear:
+      break;
   }
 }
 
 // delta *= f'(z), written with the activation value a = f(z).
-void multiply_derivative(Activation f, const Eigen::MatrixXd& a, Eigen::Ref<Eigen::MatrixXd> delta) {
+void multiply_derivative(Activation f, const Eigen::MatrixXd& a,
+                         Eigen::Ref<Eigen::MatrixXd> delta) {
   switch (f) {
-    case Activation::relu: delta = (a.array() > 0.0).select(delta, 0.0); break;
-    case Activation::tanh: delta.array() *= 1.0 - a.array().square(); break;
-    case Activation::sigmoid: delta.array() *= a.array() * (1.0 - a.array()); break;
-    case Activation::linear: break;
+    case Activation::relu:
+      delta = (a.array() > 0.0).select(delta, 0.0);
+      break;
+    case Activation::tanh:
+      delta.array() *= 1.0 - a.array().square();
+      break;
+    case Activation::sigmoid:
+      delta.array() *= a.array() * (1.0 - a.array());
+      break;
+    case Activation::linear:
+      break;
   }
 }
 
@@ -67,7 +82,8 @@ Mlp::Mlp(MlpOptions options) : options_(std::move(options)) {
   dropout_.assign(L + 1, false);
   if (options_.dropout_keep_probability < 1.0) {
     // Hidden layers are l = 1..L-1.
-    const std::size_t last = options_.dropout_placement == DropoutPlacement::between_hidden ? L - 1 : L;
+    const std::size_t last =
+        options_.dropout_placement == DropoutPlacement::between_hidden ? L - 1 : L;
     for (std::size_t l = 1; l < last; ++l) dropout_[l] = true;
   }
 }
@@ -95,7 +111,8 @@ Eigen::MatrixXd Mlp::predict(const Eigen::VectorXd& params, const Eigen::MatrixX
     const MapVector b(params.data() + weight_offset(l - 1) + in * out, out);
     Eigen::MatrixXd z = w * a;
     z.colwise() += b;
-    apply_activation(l == num_layers() ? options_.output_activation : options_.hidden_activation, z);
+    apply_activation(l == num_layers() ? options_.output_activation : options_.hidden_activation,
+                     z);
     a = std::move(z);
   }
   return a;

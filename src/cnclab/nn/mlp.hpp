@@ -86,7 +86,8 @@ class Mlp {
   void draw_dropout_masks(Workspace& ws, Rng& rng) const;
   // Training-mode MSE and its gradient (overwritten) for the batch x, y,
   // using the masks currently in ws. x: inputs x batch, y: outputs x batch.
-  double loss_and_gradient(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
+  double loss_and_gradient(const Eigen::VectorXd& params,
+                           const Eigen::Ref<const Eigen::MatrixXd>& x,
                            const Eigen::Ref<const Eigen::MatrixXd>& y, Workspace& ws,
                            Eigen::VectorXd& gradient) const;
 

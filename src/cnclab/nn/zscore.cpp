@@ -11,8 +11,9 @@ ZScoreNormaliser::ZScoreNormaliser(Eigen::VectorXd mean, Eigen::VectorXd std)
   if (mean_.size() != std_.size()) throw Error("z-score: mean and std sizes differ");
   for (Eigen::Index i = 0; i < std_.size(); ++i) {
     if (!(std_[i] > 0) || !std::isfinite(std_[i]) || !std::isfinite(mean_[i])) {
-      throw Error("z-score: feature " + std::to_string(i) + " has mean " + std::to_string(mean_[i]) +
-                  " and std " + std::to_string(std_[i]) + " (std must be finite and > 0)");
+      throw Error("z-score: feature " + std::to_string(i) + " has mean " +
+                  std::to_string(mean_[i]) + " and std " + std::to_string(std_[i]) +
+                  " (std must be finite and > 0)");
     }
   }
 }

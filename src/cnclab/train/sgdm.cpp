@@ -12,17 +12,22 @@ namespace cnclab {
 
 std::string to_string(Termination t) {
   switch (t) {
-    case Termination::max_epochs: return "max_epochs";
-    case Termination::early_stop: return "early_stop";
-    case Termination::diverged: return "diverged";
-    case Termination::stopped_by_callback: return "stopped_by_callback";
+    case Termination::max_epochs:
+      return "max_epochs";
+    case Termination::early_stop:
+      return "early_stop";
+    case Termination::diverged:
+      return "diverged";
+    case Termination::stopped_by_callback:
+      return "stopped_by_callback";
   }
   return "?";
 }
 
 void SgdmOptions::validate() const {
   if (!(learning_rate > 0) || !std::isfinite(learning_rate)) {
-    throw OptionError("learning_rate", std::to_string(learning_rate), "must be a finite number > 0");
+    throw OptionError("learning_rate", std::to_string(learning_rate),
+                      "must be a finite number > 0");
   }
   if (!(momentum >= 0 && momentum < 1)) {
     throw OptionError("momentum", std::to_string(momentum), "must be in [0, 1)");
@@ -93,7 +98,8 @@ Summary train_sgdm(SeparableObjective& objective, Eigen::VectorXd& params,
       summary.best_epoch = epoch;
       if (options.early_stop_patience > 0) best_params = params;
     }
-    if (options.early_stop_patience > 0 && epoch - summary.best_epoch >= options.early_stop_patience) {
+    if (options.early_stop_patience > 0 &&
+        epoch - summary.best_epoch >= options.early_stop_patience) {
       if (best_params.size() == params.size()) params = best_params;
       summary.termination = Termination::early_stop;
       summary.message = "early stop: no validation improvement for " +

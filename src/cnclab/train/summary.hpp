@@ -16,10 +16,10 @@ enum class Termination {
 std::string to_string(Termination t);
 
 struct EpochRecord {
-  std::size_t epoch = 0;        // 1-based
-  double train_loss = 0;        // mean mini-batch loss over the epoch (training mode)
-  double validation_loss = 0;   // NaN when there is no validation set
-  double wall_seconds = 0;      // since training started
+  std::size_t epoch = 0;       // 1-based
+  double train_loss = 0;       // mean mini-batch loss over the epoch (training mode)
+  double validation_loss = 0;  // NaN when there is no validation set
+  double wall_seconds = 0;     // since training started
 };
 
 struct Summary {
