@@ -19,7 +19,7 @@ std::string common_unit(const std::vector<std::string>& units) {
 void write_dataset(const std::filesystem::path& path, const Dataset& d) {
   d.validate();
   AtomicOutput out(path);
-  {
+  try {
     H5File f = H5File::create(out.temp_path());
     f.set_attribute("/", "format", kDatasetFormat);
     f.set_attribute("/", "format_version", std::int64_t{kDatasetFormatVersion});
@@ -34,8 +34,11 @@ void write_dataset(const std::filesystem::path& path, const Dataset& d) {
     f.write_string("/generator_config", d.generator_config);
     f.set_attribute("/", "complete", std::int64_t{1});
     f.close();
+    out.commit();
+  } catch (const IoError& e) {
+    // Name the file the user asked for; the temporary is removed by `out`.
+    throw IoError(path.string() + ": dataset not written: " + std::string(e.what()));
   }
-  out.commit();
 }
 
 Dataset read_dataset(const std::filesystem::path& path) {

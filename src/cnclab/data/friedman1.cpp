@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/resources.hpp"
 
 namespace cnclab {
 
@@ -28,6 +29,9 @@ double friedman1_function(const double* x) {
 
 Dataset generate_friedman1(const Friedman1Options& options, Rng& rng) {
   options.validate();
+  check_memory(static_cast<double>(options.samples) * static_cast<double>(options.inputs + 1) * 8.0,
+               "friedman1 dataset (" + std::to_string(options.samples) + " samples x " +
+                   std::to_string(options.inputs + 1) + " values)");
   Dataset d;
   const auto n = static_cast<Eigen::Index>(options.samples);
   const auto dim = static_cast<Eigen::Index>(options.inputs);

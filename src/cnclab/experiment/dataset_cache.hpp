@@ -19,6 +19,12 @@ struct CachedDataset {
   bool reused = false;
 };
 
+struct DatasetShape {
+  std::size_t samples = 0, inputs = 0, outputs = 0;
+};
+// The shape the generator will produce, known without generating.
+DatasetShape dataset_shape(const DatasetSpec& spec);
+
 // Generates the dataset `spec` describes with generator seed `seed`.
 Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed);
 

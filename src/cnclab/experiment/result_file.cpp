@@ -54,7 +54,7 @@ std::string number(double v) {
 
 void write_result(const fs::path& path, const RunRecord& r) {
   AtomicOutput out(path);
-  {
+  try {
     H5File f = H5File::create(out.temp_path());
     f.set_attribute("/", "format", kResultFormat);
     f.set_attribute("/", "format_version", std::int64_t{kResultFormatVersion});
@@ -122,8 +122,11 @@ void write_result(const fs::path& path, const RunRecord& r) {
     // Written last: a file without it is not a complete result.
     f.set_attribute("/", "complete", std::int64_t{1});
     f.close();
+    out.commit();
+  } catch (const IoError& e) {
+    // Name the file the user asked for; the temporary is removed by `out`.
+    throw IoError(path.string() + ": result not written: " + std::string(e.what()));
   }
-  out.commit();
 }
 
 RunRecord read_result(const fs::path& path) {

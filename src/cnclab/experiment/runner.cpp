@@ -7,6 +7,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
+#include "cnclab/core/resources.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/experiment/dataset_cache.hpp"
 #include "cnclab/experiment/metrics.hpp"
@@ -30,6 +31,29 @@ Eigen::MatrixXd columns(const Eigen::MatrixXd& m, const std::vector<std::size_t>
   return out;
 }
 
+// Estimate before allocating: the dataset is held about four times (as
+// generated or read, split into parts, normalised parts, test predictions),
+// the network's parameters four times (parameters, velocity, gradient, best),
+// and one activation per unit and evaluated sample.
+void check_run_memory(const ExperimentSpec& spec) {
+  const auto [samples, inputs, outputs] = dataset_shape(spec.dataset);
+  const double n = static_cast<double>(samples);
+  const double values = static_cast<double>(inputs + outputs);
+  double parameters = 0, units = static_cast<double>(inputs + outputs);
+  std::size_t fan_in = inputs;
+  for (std::size_t width : spec.model.hidden) {
+    parameters += static_cast<double>((fan_in + 1) * width);
+    units += static_cast<double>(width);
+    fan_in = width;
+  }
+  parameters += static_cast<double>((fan_in + 1) * outputs);
+  const double bytes = 8.0 * (4.0 * n * values + 4.0 * parameters + 2.0 * n * units);
+  check_memory(bytes, spec.name + ": the run (" + std::to_string(samples) + " samples x " +
+                          std::to_string(inputs + outputs) + " values, " +
+                          std::to_string(static_cast<std::uint64_t>(parameters)) +
+                          " network parameters)");
+}
+
 }  // namespace
 
 fs::path result_path(const LoadedExperiment& experiment, const fs::path& results_dir) {
@@ -50,6 +74,8 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   for (const char* stream : kStreams)
     rec.provenance.derived_seeds[stream] = derive_seed(spec.seed, stream);
   if (spec.dataset.seed) rec.provenance.derived_seeds["generator"] = *spec.dataset.seed;
+
+  check_run_memory(spec);
 
   // Dataset (generated or reused from the cache).
   const CachedDataset cached = obtain_dataset(

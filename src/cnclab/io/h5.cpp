@@ -8,14 +8,19 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-// HDF5 prints its error stack to stderr by default; cnclab reports errors
-// itself. The setting is HDF5's own process-wide state, switched off once.
-void silence_hdf5_errors() {
-  static const bool silenced = [] {
+// Process-wide HDF5 settings, made once before the library's first use:
+// - H5dont_atexit: HDF5 1.10's exit handler closes files still open and
+//   segfaults (H5F__close_cb) on a file whose close already failed, e.g.
+//   after a disk-full write. cnclab closes every file it completes explicitly,
+//   so nothing needs the handler.
+// - no automatic error-stack printing: cnclab reports errors itself.
+void init_hdf5() {
+  static const bool done = [] {
+    H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     return true;
   }();
-  (void)silenced;
+  (void)done;
 }
 
 H5Handle string_type() {
@@ -49,6 +54,7 @@ void H5Handle::reset() {
 }
 
 std::string hdf5_version() {
+  init_hdf5();
   unsigned major = 0, minor = 0, release = 0;
   H5get_libversion(&major, &minor, &release);
   return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(release);
@@ -61,14 +67,14 @@ void H5File::fail(const std::string& object, const std::string& what) const {
 }
 
 H5File H5File::create(const fs::path& path) {
-  silence_hdf5_errors();
+  init_hdf5();
   H5Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
   if (!f.valid()) throw IoError(path.string() + ": cannot create HDF5 file");
   return H5File(path, std::move(f));
 }
 
 H5File H5File::open_read(const fs::path& path) {
-  silence_hdf5_errors();
+  init_hdf5();
   std::error_code ec;
   if (!fs::exists(path, ec)) throw IoError(path.string() + ": no such file");
   if (!fs::is_regular_file(path, ec)) throw IoError(path.string() + ": not a regular file");
@@ -81,7 +87,9 @@ H5File H5File::open_read(const fs::path& path) {
 }
 
 void H5File::flush() {
-  if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) fail("", "flush failed");
+  if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) {
+    fail("", "cannot write to disk (disk full or file size limit?)");
+  }
 }
 
 void H5File::close() {
