@@ -205,6 +205,13 @@ TEST_F(Cli, ReproduceRunsAFolderAndPrintsMetrics) {
   EXPECT_NE(r.out.find("r2"), std::string::npos) << r.out;
 }
 
+TEST_F(Cli, ImpossibleDatasetIsAResourceErrorNotACrash) {
+  const Result r = cnclab(quick("dataset.options.samples=100000000 dataset.options.inputs=10000"));
+  expect_one_line_error(r, 1, "needs about");
+  EXPECT_NE(r.err.find("TiB"), std::string::npos) << r.err;
+  EXPECT_TRUE(outputs().empty());
+}
+
 TEST_F(Cli, VersionNamesLibraries) {
   const Result r = cnclab("version");
   EXPECT_EQ(r.code, 0);

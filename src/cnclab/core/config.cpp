@@ -50,7 +50,9 @@ void index_tree(const YAML::Node& node, const std::string& prefix, const std::st
   if (!node.IsMap()) return;
   std::set<std::string> seen;
   for (auto it = node.begin(); it != node.end(); ++it) {
-    const YAML::Node& key = it->first;
+    // Copies, not references: yaml-cpp's iterator returns a temporary proxy
+    // whose members die with the full expression.
+    const YAML::Node key = it->first;
     if (!key.IsScalar()) {
       throw ConfigError(mark_location(file, key.Mark()).str() + ": " +
                         (prefix.empty() ? std::string("top level") : prefix) +
@@ -60,7 +62,7 @@ void index_tree(const YAML::Node& node, const std::string& prefix, const std::st
     if (!seen.insert(key.Scalar()).second) {
       throw ConfigError(mark_location(file, key.Mark()).str() + ": " + dotted + ": duplicate key");
     }
-    const YAML::Node& value = it->second;
+    const YAML::Node value = it->second;
     out[dotted] = mark_location(file, value.IsScalar() ? value.Mark() : key.Mark());
     index_tree(value, dotted, file, out, count);
   }
