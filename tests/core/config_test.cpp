@@ -200,3 +200,16 @@ TEST(Config, AliasBombIsRejectedNotExpanded) {
 
 }  // namespace
 }  // namespace cnclab
+
+namespace cnclab {
+namespace {
+
+// Found by fuzzing: a self-referencing alias is infinitely deep; it must be
+// a ConfigError, not a stack overflow.
+TEST(Config, RecursiveAliasIsRejected) {
+  EXPECT_NE(config_error([] { ConfigDocument::parse("a: &a [*a]\n", "r.yaml"); }).find("nested deeper"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace cnclab

@@ -17,6 +17,9 @@ namespace {
 // these only stop include cycles and YAML alias bombs.
 constexpr int kMaxIncludeDepth = 16;
 constexpr std::size_t kMaxNodes = 200000;
+// Nesting limit: bounds the recursion of every tree walk (a self-referencing
+// alias such as `&a [*a]` is infinitely deep). Found by fuzzing.
+constexpr int kMaxDepth = 64;
 
 std::string join(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
@@ -38,13 +41,18 @@ void erase_below(std::map<std::string, SourceLocation>& locations, const std::st
 // Records the location of every map key below `node` and rejects what a
 // config may not contain: non-scalar or duplicate keys, oversized trees.
 void index_tree(const YAML::Node& node, const std::string& prefix, const std::string& file,
-                std::map<std::string, SourceLocation>& out, std::size_t& count) {
+                std::map<std::string, SourceLocation>& out, std::size_t& count, int depth = 0) {
+  if (depth > kMaxDepth) {
+    throw ConfigError(mark_location(file, node.Mark()).str() + ": " +
+                      (prefix.empty() ? std::string("config") : prefix) + ": nested deeper than " +
+                      std::to_string(kMaxDepth) + " levels (recursive alias?)");
+  }
   if (++count > kMaxNodes) {
     throw ConfigError(file + ": config has more than " + std::to_string(kMaxNodes) +
                       " nodes (alias expansion?)");
   }
   if (node.IsSequence()) {
-    for (const auto& item : node) index_tree(item, prefix, file, out, count);
+    for (const auto& item : node) index_tree(item, prefix, file, out, count, depth + 1);
     return;
   }
   if (!node.IsMap()) return;
@@ -64,7 +72,7 @@ void index_tree(const YAML::Node& node, const std::string& prefix, const std::st
     }
     const YAML::Node value = it->second;
     out[dotted] = mark_location(file, value.IsScalar() ? value.Mark() : key.Mark());
-    index_tree(value, dotted, file, out, count);
+    index_tree(value, dotted, file, out, count, depth + 1);
   }
 }
 
