@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "cnclab/core/error.hpp"
+#include "common/temp_dir.hpp"
 
 namespace cnclab {
 namespace {
@@ -23,27 +24,15 @@ std::string config_error(F&& f) {
   return "";
 }
 
-class TempDir {
+// A temp dir with a helper to write files into it.
+class TempDir : public testing::TempDir {
  public:
-  TempDir() {
-    path_ =
-        fs::temp_directory_path() /
-        ("cnclab_config_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
   fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path p = path_ / name;
+    const fs::path p = path() / name;
     fs::create_directories(p.parent_path());
     std::ofstream(p) << text;
     return p;
   }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
 };
 
 TEST(Config, TypedReadsAndDefaults) {
@@ -207,8 +196,9 @@ namespace {
 // Found by fuzzing: a self-referencing alias is infinitely deep; it must be
 // a ConfigError, not a stack overflow.
 TEST(Config, RecursiveAliasIsRejected) {
-  EXPECT_NE(config_error([] { ConfigDocument::parse("a: &a [*a]\n", "r.yaml"); }).find("nested deeper"),
-            std::string::npos);
+  EXPECT_NE(
+      config_error([] { ConfigDocument::parse("a: &a [*a]\n", "r.yaml"); }).find("nested deeper"),
+      std::string::npos);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
 
 namespace cnclab {
@@ -21,8 +22,7 @@ void write_dataset(const std::filesystem::path& path, const Dataset& d) {
   AtomicOutput out(path);
   try {
     H5File f = H5File::create(out.temp_path());
-    f.set_attribute("/", "format", kDatasetFormat);
-    f.set_attribute("/", "format_version", std::int64_t{kDatasetFormatVersion});
+    write_format(f, kDatasetFormat, kDatasetFormatVersion);
     f.set_attribute("/", "generator", d.generator);
     f.set_attribute("/", "content_hash", d.content_hash());
     f.write_matrix("/inputs", d.inputs, common_unit(d.input_units));
@@ -32,7 +32,7 @@ void write_dataset(const std::filesystem::path& path, const Dataset& d) {
     f.write_strings("/target_names", d.target_names);
     f.write_strings("/target_units", d.target_units);
     f.write_string("/generator_config", d.generator_config);
-    f.set_attribute("/", "complete", std::int64_t{1});
+    mark_complete(f);
     f.close();
     out.commit();
   } catch (const IoError& e) {
@@ -44,15 +44,7 @@ void write_dataset(const std::filesystem::path& path, const Dataset& d) {
 Dataset read_dataset(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
   const auto bad = [&](const std::string& what) { throw IoError(path.string() + ": " + what); };
-  if (!f.has_attribute("/", "format") || f.attribute_string("/", "format") != kDatasetFormat) {
-    bad("not a cnclab dataset file (root attribute format != cnclab-dataset)");
-  }
-  if (f.attribute_int("/", "format_version") != kDatasetFormatVersion) {
-    bad("unsupported dataset format_version");
-  }
-  if (!f.has_attribute("/", "complete") || f.attribute_int("/", "complete") != 1) {
-    bad("incomplete dataset file (interrupted write?)");
-  }
+  require_format(f, kDatasetFormat, kDatasetFormatVersion);
   Dataset d;
   d.inputs = f.read_matrix("/inputs");
   d.targets = f.read_matrix("/targets");

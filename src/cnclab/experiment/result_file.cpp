@@ -6,6 +6,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
 
 namespace cnclab {
@@ -56,8 +57,7 @@ void write_result(const fs::path& path, const RunRecord& r) {
   AtomicOutput out(path);
   try {
     H5File f = H5File::create(out.temp_path());
-    f.set_attribute("/", "format", kResultFormat);
-    f.set_attribute("/", "format_version", std::int64_t{kResultFormatVersion});
+    write_format(f, kResultFormat, kResultFormatVersion);
     f.set_attribute("/", "experiment", r.experiment);
     f.set_attribute("/", "config_hash", r.config_hash);
     f.set_attribute("/", "status", r.provenance.status);
@@ -119,8 +119,7 @@ void write_result(const fs::path& path, const RunRecord& r) {
     f.set_attribute("/metrics", "units", target_units + " (squared for mse; r2 is 1)");
     for (const auto& [name, value] : r.metrics) f.set_attribute("/metrics", name, value);
 
-    // Written last: a file without it is not a complete result.
-    f.set_attribute("/", "complete", std::int64_t{1});
+    mark_complete(f);  // last
     f.close();
     out.commit();
   } catch (const IoError& e) {
@@ -130,21 +129,9 @@ void write_result(const fs::path& path, const RunRecord& r) {
 }
 
 RunRecord read_result(const fs::path& path) {
-  if (is_partial_path(path)) {
-    throw IoError(path.string() + ": a partial result (interrupted write), not a result file");
-  }
   const H5File f = H5File::open_read(path);
   const auto bad = [&](const std::string& what) { throw IoError(path.string() + ": " + what); };
-  if (!f.has_attribute("/", "format") || f.attribute_string("/", "format") != kResultFormat) {
-    bad("not a cnclab result file (root attribute format != cnclab-result)");
-  }
-  if (f.attribute_int("/", "format_version") != kResultFormatVersion) {
-    bad("unsupported result format_version " +
-        std::to_string(f.attribute_int("/", "format_version")));
-  }
-  if (!f.has_attribute("/", "complete") || f.attribute_int("/", "complete") != 1) {
-    bad("incomplete result file (interrupted write?)");
-  }
+  require_format(f, kResultFormat, kResultFormatVersion);
   RunRecord r;
   r.experiment = f.attribute_string("/", "experiment");
   r.config_hash = f.attribute_string("/", "config_hash");
