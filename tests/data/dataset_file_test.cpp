@@ -51,10 +51,11 @@ TEST(DatasetFile, ReadableByPlainHdf5CApi) {
   const hid_t attr = H5Aopen(ds, "units", H5P_DEFAULT);
   ASSERT_GE(attr, 0);
   const hid_t type = H5Aget_type(attr);
-  char* units = nullptr;
-  H5Aread(attr, type, &units);
-  EXPECT_STREQ(units, "1");
-  H5free_memory(units);
+  ASSERT_EQ(H5Tget_class(type), H5T_STRING);
+  ASSERT_EQ(H5Tis_variable_str(type), 0);  // fixed-length by design
+  std::string units(H5Tget_size(type), '\0');
+  H5Aread(attr, type, units.data());
+  EXPECT_EQ(units.substr(0, units.find('\0')), "1");
   H5Tclose(type);
   H5Aclose(attr);
   H5Sclose(space);

@@ -1,5 +1,7 @@
 #include "cnclab/io/h5.hpp"
 
+#include <algorithm>
+#include <cstring>
 #include <functional>
 
 #include "cnclab/core/error.hpp"
@@ -23,11 +25,28 @@ void init_hdf5() {
   (void)done;
 }
 
-H5Handle string_type() {
+// Strings are stored fixed-length (UTF-8, null-padded), never variable-length:
+// variable-length data lives in HDF5's global heap, whose parser in libhdf5
+// 1.10 overflows buffers on corrupt files (found by fuzzing the readers), and
+// the readers refuse variable-length strings before the library touches it.
+H5Handle string_type(std::size_t length) {
   H5Handle t(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(t.get(), H5T_VARIABLE);
+  H5Tset_size(t.get(), std::max<std::size_t>(length, 1));  // size 0 is not a valid type
+  H5Tset_strpad(t.get(), H5T_STR_NULLPAD);
   H5Tset_cset(t.get(), H5T_CSET_UTF8);
   return t;
+}
+
+// Bytes of `count` fixed-length strings of `length` into std::strings, each
+// cut at its first NUL (null-padded or null-terminated).
+std::vector<std::string> split_fixed(const std::vector<char>& bytes, std::size_t length,
+                                     std::size_t count) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < count; ++i) {
+    const char* p = bytes.data() + i * length;
+    out.emplace_back(p, strnlen(p, length));
+  }
+  return out;
 }
 
 H5Handle link_creation_with_parents() {
@@ -164,21 +183,27 @@ void H5File::write_matrix(const std::string& name, const Eigen::MatrixXd& m,
 }
 
 void H5File::write_string(const std::string& name, const std::string& text) {
-  const H5Handle type = string_type();
+  const H5Handle type = string_type(text.size());
   H5Handle d = create_dataset(name, type.get(), {});
-  const char* p = text.c_str();
-  if (H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &p) < 0) {
+  std::vector<char> bytes(std::max<std::size_t>(text.size(), 1), '\0');
+  std::copy(text.begin(), text.end(), bytes.begin());
+  if (H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) < 0) {
     fail(name, "cannot write string");
   }
 }
 
 void H5File::write_strings(const std::string& name, const std::vector<std::string>& texts) {
-  const H5Handle type = string_type();
+  std::size_t length = 1;
+  for (const auto& t : texts) length = std::max(length, t.size());
+  const H5Handle type = string_type(length);
   H5Handle d = create_dataset(name, type.get(), {texts.size()});
-  std::vector<const char*> ptrs;
-  for (const auto& t : texts) ptrs.push_back(t.c_str());
-  if (!ptrs.empty() &&
-      H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0) {
+  std::vector<char> bytes(length * texts.size(), '\0');
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    std::copy(texts[i].begin(), texts[i].end(),
+              bytes.begin() + static_cast<std::ptrdiff_t>(i * length));
+  }
+  if (!texts.empty() &&
+      H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) < 0) {
     fail(name, "cannot write strings");
   }
 }
@@ -220,10 +245,11 @@ void H5File::set_attribute(const std::string& object, const std::string& attr, s
 void H5File::set_attribute(const std::string& object, const std::string& attr,
                            const std::string& value) {
   const H5Handle o = open_object(object);
-  const H5Handle type = string_type();
-  const char* p = value.c_str();
+  const H5Handle type = string_type(value.size());
+  std::vector<char> bytes(std::max<std::size_t>(value.size(), 1), '\0');
+  std::copy(value.begin(), value.end(), bytes.begin());
   write_attribute(
-      o.get(), attr, type.get(), [&](hid_t a) { return H5Awrite(a, type.get(), &p); },
+      o.get(), attr, type.get(), [&](hid_t a) { return H5Awrite(a, type.get(), bytes.data()); },
       [&](const std::string& w) { fail(object, w); });
 }
 
@@ -286,37 +312,41 @@ Eigen::MatrixXd H5File::read_matrix(const std::string& name) const {
   return m;
 }
 
-std::string H5File::read_string(const std::string& name) const {
-  {
-    const H5Handle d = open_dataset(name);
-    if (type_class(d.get()) != H5T_STRING) fail(name, "expected a string");
-    dims(d.get(), name, 0);
-    const H5Handle type = string_type();
-    char* p = nullptr;
-    if (H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &p) < 0 || !p) {
-      fail(name, "cannot read string");
-    }
-    std::string s(p);
-    H5free_memory(p);
-    return s;
+H5Handle H5File::fixed_string_type(hid_t stored, const std::string& object) const {
+  if (H5Tget_class(stored) != H5T_STRING) fail(object, "expected a string");
+  if (H5Tis_variable_str(stored) != 0) {
+    fail(object, "variable-length strings are not read (cnclab writes fixed-length strings)");
   }
+  const std::size_t length = H5Tget_size(stored);
+  if (length == 0 || length > kMaxStringBytes) fail(object, "string length out of range");
+  return string_type(length);
+}
+
+std::string H5File::read_string(const std::string& name) const {
+  const H5Handle d = open_dataset(name);
+  dims(d.get(), name, 0);
+  const H5Handle stored(H5Dget_type(d.get()), H5Tclose);
+  const H5Handle type = fixed_string_type(stored.get(), name);
+  const std::size_t length = H5Tget_size(type.get());
+  std::vector<char> bytes(length, '\0');
+  if (H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) < 0) {
+    fail(name, "cannot read string");
+  }
+  return split_fixed(bytes, length, 1).front();
 }
 
 std::vector<std::string> H5File::read_strings(const std::string& name) const {
   const H5Handle d = open_dataset(name);
-  if (type_class(d.get()) != H5T_STRING) fail(name, "expected strings");
   const auto n = dims(d.get(), name, 1)[0];
-  const H5Handle type = string_type();
-  std::vector<char*> ptrs(n, nullptr);
-  if (n && H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0) {
+  const H5Handle stored(H5Dget_type(d.get()), H5Tclose);
+  const H5Handle type = fixed_string_type(stored.get(), name);
+  const std::size_t length = H5Tget_size(type.get());
+  if (n > kMaxStringBytes / length) fail(name, "string list too large");
+  std::vector<char> bytes(length * n, '\0');
+  if (n && H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) < 0) {
     fail(name, "cannot read strings");
   }
-  std::vector<std::string> out;
-  for (char* p : ptrs) {
-    out.emplace_back(p ? p : "");
-    if (p) H5free_memory(p);
-  }
-  return out;
+  return split_fixed(bytes, length, n);
 }
 
 H5Handle H5File::open_attribute(const std::string& object, const std::string& attr) const {
@@ -368,24 +398,13 @@ std::int64_t H5File::attribute_int(const std::string& object, const std::string&
 
 std::string H5File::attribute_string(const std::string& object, const std::string& attr) const {
   const H5Handle a = open_attribute(object, attr);
-  if (attribute_class(a.get()) != H5T_STRING)
-    fail(object, "attribute '" + attr + "' is not a string");
-  H5Handle stored(H5Aget_type(a.get()), H5Tclose);
-  if (H5Tis_variable_str(stored.get()) > 0) {
-    const H5Handle type = string_type();
-    char* p = nullptr;
-    if (H5Aread(a.get(), type.get(), &p) < 0 || !p)
-      fail(object, "cannot read attribute '" + attr + "'");
-    std::string s(p);
-    H5free_memory(p);
-    return s;
-  }
-  // Fixed-length string (written by another tool).
-  const std::size_t size = H5Tget_size(stored.get());
-  std::string s(size, '\0');
-  if (H5Aread(a.get(), stored.get(), s.data()) < 0)
-    fail(object, "cannot read attribute '" + attr + "'");
-  return s.substr(0, s.find('\0'));
+  const H5Handle stored(H5Aget_type(a.get()), H5Tclose);
+  const std::string where = object + ": attribute '" + attr + "'";
+  const H5Handle type = fixed_string_type(stored.get(), where);
+  const std::size_t length = H5Tget_size(type.get());
+  std::vector<char> bytes(length, '\0');
+  if (H5Aread(a.get(), type.get(), bytes.data()) < 0) fail(where, "cannot read");
+  return split_fixed(bytes, length, 1).front();
 }
 
 std::vector<std::string> H5File::attribute_names(const std::string& object) const {

@@ -90,6 +90,12 @@ class H5File {
   H5Handle open_attribute(const std::string& object, const std::string& attr) const;
   std::vector<hsize_t> dims(hid_t dataset, const std::string& name, int rank) const;
   H5Handle create_dataset(const std::string& name, hid_t type, const std::vector<hsize_t>& dims);
+  // The in-memory type to read a stored fixed-length string type with;
+  // IoError for variable-length or absurd lengths.
+  H5Handle fixed_string_type(hid_t stored, const std::string& object) const;
+
+  // Largest string (or string list) read: results hold YAML text of a few KiB.
+  static constexpr std::size_t kMaxStringBytes = std::size_t{64} << 20;
 
   std::filesystem::path path_;
   H5Handle file_;
