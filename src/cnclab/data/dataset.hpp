@@ -19,7 +19,13 @@ struct Dataset {
   // Sizes consistent (names and units per row, same sample count) and every
   // value finite; throws cnclab::Error naming the matrix, feature and sample.
   void validate() const;
-  // FNV-1a over shapes, names, units, generator, generator config and values.
+  // 16 hex digits of FNV-1a (cnclab::Hasher) over, in order: the shapes of
+  // inputs and targets; input names, input units, target names, target
+  // units, generator and generator_config (each list and string prefixed by
+  // its length, so boundaries count); then the IEEE-754 bytes of inputs and
+  // of targets in storage order (sample by sample). Bit-exact: 0.0 and -0.0
+  // differ. Identical content gives identical hashes on any platform with
+  // little-endian doubles.
   std::string content_hash() const;
 };
 

@@ -4,14 +4,16 @@
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
+#include "cnclab/io/isolated_read.hpp"
 
 namespace cnclab {
 
 namespace {
-// One units attribute per matrix: the common unit, or "mixed" (see the lists).
-std::string common_unit(const std::vector<std::string>& units) {
+// The `units` attribute of a matrix: the unit all its features share, or a
+// pointer to the per-feature list when they differ.
+std::string common_unit(const std::vector<std::string>& units, const std::string& list) {
   for (const auto& u : units) {
-    if (u != units.front()) return "mixed (see *_units)";
+    if (u != units.front()) return "mixed: see " + list;
   }
   return units.empty() ? "1" : units.front();
 }
@@ -25,8 +27,8 @@ void write_dataset(const std::filesystem::path& path, const Dataset& d) {
     write_format(f, kDatasetFormat, kDatasetFormatVersion);
     f.set_attribute("/", "generator", d.generator);
     f.set_attribute("/", "content_hash", d.content_hash());
-    f.write_matrix("/inputs", d.inputs, common_unit(d.input_units));
-    f.write_matrix("/targets", d.targets, common_unit(d.target_units));
+    f.write_matrix("/inputs", d.inputs, common_unit(d.input_units, "/input_units"));
+    f.write_matrix("/targets", d.targets, common_unit(d.target_units, "/target_units"));
     f.write_strings("/input_names", d.input_names);
     f.write_strings("/input_units", d.input_units);
     f.write_strings("/target_names", d.target_names);
@@ -41,7 +43,17 @@ void write_dataset(const std::filesystem::path& path, const Dataset& d) {
   }
 }
 
+namespace {
+Dataset read_dataset_in_process(const std::filesystem::path& path);
+}  // namespace
+
 Dataset read_dataset(const std::filesystem::path& path) {
+  probe_in_child(path, [&] { read_dataset_in_process(path); });
+  return read_dataset_in_process(path);
+}
+
+namespace {
+Dataset read_dataset_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
   const auto bad = [&](const std::string& what) { throw IoError(path.string() + ": " + what); };
   require_format(f, kDatasetFormat, kDatasetFormatVersion);
@@ -64,5 +76,6 @@ Dataset read_dataset(const std::filesystem::path& path) {
   }
   return d;
 }
+}  // namespace
 
 }  // namespace cnclab

@@ -1,11 +1,16 @@
 #pragma once
-// Dataset files (HDF5), layout:
-//   /            attrs format="cnclab-dataset", format_version=1, generator,
-//                content_hash, complete=1 (written last)
-//   /inputs      (N, n_inputs)  float64, attr units (per-feature units in /input_units)
-//   /targets     (N, n_outputs) float64
-//   /input_names, /input_units, /target_names, /target_units   string lists
-//   /generator_config   YAML text
+// Dataset files (HDF5). Layout (N samples, d inputs, m outputs):
+//   /                  attrs format = "cnclab-dataset", format_version = 1 (int64),
+//                      generator, content_hash (Dataset::content_hash, 16 hex),
+//                      complete = 1 (int64, written last)
+//   /inputs            (N, d) float64, attr units: the common unit of the
+//                      inputs, or "mixed: see /input_units"
+//   /targets           (N, m) float64, attr units likewise
+//   /input_names       (d) strings    /input_units   (d) strings
+//   /target_names      (m) strings    /target_units  (m) strings
+//   /generator_config  scalar string: YAML text of the generator options
+// Strings are fixed-length UTF-8. Row i of /inputs is sample i (h5py:
+// f["inputs"][i]).
 #include <filesystem>
 
 #include "cnclab/data/dataset.hpp"

@@ -8,6 +8,7 @@
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
+#include "cnclab/io/isolated_read.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -128,7 +129,17 @@ void write_result(const fs::path& path, const RunRecord& r) {
   }
 }
 
-RunRecord read_result(const fs::path& path) {
+namespace {
+RunRecord read_result_in_process(const std::filesystem::path& path);
+}  // namespace
+
+RunRecord read_result(const std::filesystem::path& path) {
+  probe_in_child(path, [&] { read_result_in_process(path); });
+  return read_result_in_process(path);
+}
+
+namespace {
+RunRecord read_result_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
   const auto bad = [&](const std::string& what) { throw IoError(path.string() + ": " + what); };
   require_format(f, kResultFormat, kResultFormatVersion);
@@ -192,6 +203,7 @@ RunRecord read_result(const fs::path& path) {
   }
   return r;
 }
+}  // namespace
 
 void print_result(const RunRecord& r, std::ostream& out) {
   const Provenance& p = r.provenance;

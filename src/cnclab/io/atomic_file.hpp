@@ -7,14 +7,19 @@
 //   <dir>/.<final-name>.partial-<pid>-<16 hex digits>
 //
 // Every command that scans folders for results or datasets skips such names
-// (is_partial_path).
+// (is_partial_path). The leading dot also hides them from `ls` and globs.
+//
+// Usage: AtomicOutput out(path); write out.temp_path() and close it;
+// out.commit(). Leaving the scope without commit() removes the temporary, so
+// an abandoned or failed write leaves the previous file at `path` untouched.
 #include <filesystem>
 
 namespace cnclab {
 
 class AtomicOutput {
  public:
-  // Creates the parent folder of `final_path` if needed.
+  // Creates the parent folder of `final_path` if needed; does not create the
+  // temporary itself.
   explicit AtomicOutput(std::filesystem::path final_path);
   ~AtomicOutput();  // removes the temporary unless committed
   AtomicOutput(const AtomicOutput&) = delete;
@@ -33,6 +38,7 @@ class AtomicOutput {
   bool committed_ = false;
 };
 
+// True if the file name has the temporary's pattern above.
 bool is_partial_path(const std::filesystem::path& path);
 
 }  // namespace cnclab

@@ -53,8 +53,6 @@ void write_provenance(H5File& f, const std::string& g, const Provenance& p) {
   f.create_group(g);
   f.set_attribute(g, "cnclab_version", p.cnclab_version);
   f.set_attribute(g, "git_commit", p.git_commit);
-  // Seeds are written as strings: HDF5 attributes readers commonly use are
-  // signed 64-bit, and a uint64 seed may not fit.
   f.set_attribute(g, "master_seed", std::to_string(p.master_seed));
   f.set_attribute(g, "host", p.host);
   f.set_attribute(g, "start_utc", p.start_utc);

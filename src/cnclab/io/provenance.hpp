@@ -1,5 +1,14 @@
 #pragma once
 // Who made a result, from what, when: stored in /provenance of every result.
+//
+// Layout under `group` (all scalar string attributes unless noted):
+//   <group>            cnclab_version, git_commit, master_seed (decimal text),
+//                      host, start_utc, end_utc, wall_seconds (float64),
+//                      status, failure_reason
+//   <group>/seeds      one attribute per derived stream: name = seed (decimal text)
+//   <group>/libraries  one attribute per library: name = version
+// Seeds are decimal text because common readers map HDF5 integers to
+// signed 64-bit and a uint64 seed may not fit.
 #include <cstdint>
 #include <map>
 #include <string>

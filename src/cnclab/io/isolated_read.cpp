@@ -1,0 +1,111 @@
+#include "cnclab/io/isolated_read.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <string>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/resources.hpp"
+
+// AddressSanitizer reserves terabytes of virtual memory: an address-space
+// limit would break it, so sanitizer builds rely on its own allocator limits.
+#if defined(__SANITIZE_ADDRESS__)
+#define CNCLAB_HAS_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CNCLAB_HAS_ASAN 1
+#endif
+#endif
+
+namespace cnclab {
+namespace {
+
+constexpr unsigned kChildSeconds = 60;  // a sane file reads in milliseconds
+constexpr int kExitIoError = 3;
+constexpr int kExitOtherError = 4;
+
+[[noreturn]] void child(int fd, const std::function<void()>& read) {
+  // Library diagnostics and sanitizer reports of the probe are not ours to print.
+  const int devnull = ::open("/dev/null", O_WRONLY);
+  if (devnull >= 0) ::dup2(devnull, STDERR_FILENO);
+  ::alarm(kChildSeconds);
+#ifndef CNCLAB_HAS_ASAN
+  const rlim_t limit = memory_budget_bytes() / 2;
+  const rlimit as{limit, limit};
+  ::setrlimit(RLIMIT_AS, &as);
+#endif
+  std::string message;
+  int code = 0;
+  try {
+    read();
+  } catch (const IoError& e) {
+    message = e.what();
+    code = kExitIoError;
+  } catch (const std::exception& e) {
+    message = e.what();
+    code = kExitOtherError;
+  } catch (...) {
+    code = kExitOtherError;
+  }
+  for (std::size_t done = 0; done < message.size();) {
+    const ssize_t n = ::write(fd, message.data() + done, message.size() - done);
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  ::_exit(code);  // no exit handlers, no leak check: the parent decides
+}
+
+}  // namespace
+
+void probe_in_child(const std::filesystem::path& file, const std::function<void()>& read) {
+  int fds[2];
+  if (::pipe(fds) != 0)
+    throw IoError(file.string() + ": cannot create pipe: " + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw IoError(file.string() + ": cannot fork to read safely: " + std::strerror(errno));
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    child(fds[1], read);
+  }
+  ::close(fds[1]);
+  std::string message;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) != 0;) {
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    message.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status)) {
+    switch (WEXITSTATUS(status)) {
+      case 0:
+        return;
+      case kExitIoError:
+        throw IoError(message);
+      default:
+        throw IoError(file.string() + ": unreadable: " + message);
+    }
+  }
+  const int sig = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+  throw IoError(file.string() + ": corrupt HDF5 file: the HDF5 library " +
+                (sig == SIGALRM ? std::string("did not finish reading it in ") +
+                                      std::to_string(kChildSeconds) + " s"
+                                : std::string("crashed reading it (signal ") + std::to_string(sig) +
+                                      ", " + ::strsignal(sig) + ")"));
+}
+
+}  // namespace cnclab
