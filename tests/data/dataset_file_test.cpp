@@ -4,102 +4,272 @@
 #include <hdf5.h>
 
 #include <cmath>
+#include <fstream>
+#include <limits>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/data/friedman1.hpp"
+#include "cnclab/io/atomic_file.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
 namespace {
 
 using testing::TempDir;
+namespace fs = std::filesystem;
+
+constexpr Eigen::Index kSamples = 20;
+constexpr Eigen::Index kInputs = 6;
 
 Dataset small() {
   Rng rng(1);
-  return generate_friedman1({20, 6, 0.5}, rng);
+  return generate_friedman1({kSamples, kInputs, 0.5}, rng);
+}
+
+// A hand-made dataset with mixed units and non-ASCII text.
+Dataset mixed() {
+  Dataset d;
+  d.inputs.resize(2, 3);
+  d.inputs << 1, 2, 3, 4, 5, 6;
+  d.targets.resize(2, 3);
+  d.targets << 0.5, -0.5, 1e-6, 7, 8, 9;
+  d.input_names = {"x", "angle"};
+  d.input_units = {"mm", "deg"};
+  d.target_names = {"step error", "t"};
+  d.target_units = {"µm", "µm"};
+  d.generator = "hand";
+  d.generator_config = "note: \"µ\"\n";
+  return d;
+}
+
+template <class F>
+std::string io_error(F&& f) {
+  try {
+    f();
+  } catch (const IoError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected IoError";
+  return "";
+}
+
+#define EXPECT_IO_ERROR(statement, text)                           \
+  do {                                                             \
+    const std::string message_ = io_error([&] { statement; });     \
+    EXPECT_NE(message_.find(text), std::string::npos) << message_; \
+  } while (0)
+
+// Runs `edit` on the file opened read-write through the raw C API.
+template <class F>
+void edit_raw(const fs::path& path, F&& edit) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  edit(file);
+  H5Fclose(file);
+}
+
+std::string raw_string_attribute(hid_t object, const char* name) {
+  const hid_t attr = H5Aopen(object, name, H5P_DEFAULT);
+  if (attr < 0) return "<missing>";
+  const hid_t type = H5Aget_type(attr);
+  std::string s(H5Tget_size(type), '\0');
+  H5Aread(attr, type, s.data());
+  H5Tclose(type);
+  H5Aclose(attr);
+  return s.substr(0, s.find('\0'));
 }
 
 TEST(DatasetFile, RoundTripKeepsEverythingAndTheHash) {
   TempDir dir;
-  const Dataset d = small();
-  write_dataset(dir / "d.h5", d);
-  const Dataset r = read_dataset(dir / "d.h5");
-  EXPECT_EQ(r.inputs, d.inputs);
-  EXPECT_EQ(r.targets, d.targets);
-  EXPECT_EQ(r.input_names, d.input_names);
-  EXPECT_EQ(r.target_units, d.target_units);
-  EXPECT_EQ(r.generator_config, d.generator_config);
-  EXPECT_EQ(r.content_hash(), d.content_hash());
+  for (const Dataset& d : {small(), mixed()}) {
+    const auto path = dir / (d.generator + ".h5");
+    write_dataset(path, d);
+    const Dataset r = read_dataset(path);
+    EXPECT_EQ(r.inputs, d.inputs);
+    EXPECT_EQ(r.targets, d.targets);
+    EXPECT_EQ(r.input_names, d.input_names);
+    EXPECT_EQ(r.input_units, d.input_units);
+    EXPECT_EQ(r.target_names, d.target_names);
+    EXPECT_EQ(r.target_units, d.target_units);
+    EXPECT_EQ(r.generator, d.generator);
+    EXPECT_EQ(r.generator_config, d.generator_config);
+    EXPECT_EQ(r.content_hash(), d.content_hash());
+  }
 }
 
 // Reads the file through the raw HDF5 C API, not the wrapper classes.
 TEST(DatasetFile, ReadableByPlainHdf5CApi) {
   TempDir dir;
-  const Dataset d = small();
+  const Dataset d = mixed();
   write_dataset(dir / "d.h5", d);
   const hid_t file = H5Fopen((dir / "d.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(file, 0);
-  const hid_t ds = H5Dopen2(file, "/inputs", H5P_DEFAULT);
-  const hid_t space = H5Dget_space(ds);
-  hsize_t dims[2] = {0, 0};
-  H5Sget_simple_extent_dims(space, dims, nullptr);
-  EXPECT_EQ(dims[0], 20u);  // samples
-  EXPECT_EQ(dims[1], 6u);   // features
-  std::vector<double> raw(20 * 6);
-  H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data());
-  EXPECT_EQ(raw[3 * 6 + 2], d.inputs(2, 3));  // sample 3, feature x3
-  const hid_t attr = H5Aopen(ds, "units", H5P_DEFAULT);
-  ASSERT_GE(attr, 0);
-  const hid_t type = H5Aget_type(attr);
-  ASSERT_EQ(H5Tget_class(type), H5T_STRING);
-  ASSERT_EQ(H5Tis_variable_str(type), 0);  // fixed-length by design
-  std::string units(H5Tget_size(type), '\0');
-  H5Aread(attr, type, units.data());
-  EXPECT_EQ(units.substr(0, units.find('\0')), "1");
-  H5Tclose(type);
-  H5Aclose(attr);
-  H5Sclose(space);
-  H5Dclose(ds);
+  const hid_t root = H5Gopen2(file, "/", H5P_DEFAULT);
+  EXPECT_EQ(raw_string_attribute(root, "format"), "cnclab-dataset");
+  EXPECT_EQ(raw_string_attribute(root, "content_hash"), d.content_hash());
+  H5Gclose(root);
+  for (const char* name : {"/inputs", "/targets"}) {
+    const hid_t ds = H5Dopen2(file, name, H5P_DEFAULT);
+    ASSERT_GE(ds, 0) << name;
+    const hid_t space = H5Dget_space(ds);
+    hsize_t dims[2] = {0, 0};
+    ASSERT_EQ(H5Sget_simple_extent_dims(space, dims, nullptr), 2);
+    EXPECT_EQ(dims[0], 3u);  // samples
+    EXPECT_EQ(dims[1], 2u);  // features
+    double raw[3][2];
+    ASSERT_GE(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw), 0);
+    const Eigen::MatrixXd& m = std::string(name) == "/inputs" ? d.inputs : d.targets;
+    for (int sample = 0; sample < 3; ++sample) {
+      for (int feature = 0; feature < 2; ++feature) {
+        EXPECT_EQ(raw[sample][feature], m(feature, sample)) << name;
+      }
+    }
+    H5Sclose(space);
+    H5Dclose(ds);
+  }
+  const hid_t inputs = H5Dopen2(file, "/inputs", H5P_DEFAULT);
+  EXPECT_EQ(raw_string_attribute(inputs, "units"), "mixed: see /input_units");
+  H5Dclose(inputs);
+  const hid_t targets = H5Dopen2(file, "/targets", H5P_DEFAULT);
+  EXPECT_EQ(raw_string_attribute(targets, "units"), "µm");
+  H5Dclose(targets);
   H5Fclose(file);
 }
 
 TEST(DatasetFile, TamperedValueIsDetectedByHash) {
   TempDir dir;
-  write_dataset(dir / "d.h5", small());
-  {
-    const hid_t file = H5Fopen((dir / "d.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-    const hid_t ds = H5Dopen2(file, "/targets", H5P_DEFAULT);
-    std::vector<double> t(20);
-    H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.data());
-    t[7] += 1e-9;
-    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.data());
+  const auto path = dir / "d.h5";
+  write_dataset(path, small());
+  edit_raw(path, [](hid_t file) {
+    const hid_t ds = H5Dopen2(file, "/inputs", H5P_DEFAULT);
+    std::vector<double> v(kSamples * kInputs);
+    H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    v[7 * kInputs + 2] = std::nextafter(v[7 * kInputs + 2], 2.0);  // one ulp of one value
+    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
     H5Dclose(ds);
-    H5Fclose(file);
-  }
-  try {
-    read_dataset(dir / "d.h5");
-    FAIL();
-  } catch (const IoError& e) {
-    EXPECT_NE(std::string(e.what()).find("content hash mismatch"), std::string::npos);
+  });
+  EXPECT_IO_ERROR(read_dataset(path), path.string() + ": content hash mismatch");
+}
+
+TEST(DatasetFile, MissingTextTruncatedOrForeignFilesAreIoErrorsNamingThem) {
+  TempDir dir;
+  EXPECT_IO_ERROR(read_dataset(dir / "missing.h5"), (dir / "missing.h5").string());
+
+  std::ofstream(dir / "text.h5") << "samples: 1000\n";
+  EXPECT_IO_ERROR(read_dataset(dir / "text.h5"), (dir / "text.h5").string());
+
+  const auto truncated = dir / "truncated.h5";
+  write_dataset(truncated, small());
+  fs::resize_file(truncated, fs::file_size(truncated) / 2);
+  EXPECT_IO_ERROR(read_dataset(truncated), truncated.string());
+
+  const auto incomplete = dir / "incomplete.h5";
+  write_dataset(incomplete, small());
+  edit_raw(incomplete, [](hid_t file) { H5Adelete(file, "complete"); });
+  EXPECT_IO_ERROR(read_dataset(incomplete), incomplete.string() + ": incomplete file");
+
+  const auto other = dir / "other.h5";
+  write_dataset(other, small());
+  edit_raw(other, [](hid_t file) { H5Adelete(file, "format"); });
+  EXPECT_IO_ERROR(read_dataset(other), other.string() + ": not a cnclab-dataset file");
+
+  // A finished temporary of an interrupted write is still not a dataset.
+  const auto partial = dir / ".d.h5.partial-1-0123456789abcdef";
+  ASSERT_TRUE(is_partial_path(partial));
+  write_dataset(dir / "d.h5", small());
+  fs::copy_file(dir / "d.h5", partial);
+  EXPECT_IO_ERROR(read_dataset(partial), partial.string());
+}
+
+TEST(DatasetFile, WrongShapeInTheFileIsAnIoError) {
+  TempDir dir;
+  const auto path = dir / "d.h5";
+  write_dataset(path, small());
+  edit_raw(path, [](hid_t file) {
+    H5Ldelete(file, "/input_names", H5P_DEFAULT);
+    const hsize_t n = 2;
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, 2);
+    const hid_t ds =
+        H5Dcreate2(file, "/input_names", type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, "x1x2");
+    H5Dclose(ds);
+    H5Tclose(type);
+    H5Sclose(space);
+  });
+  // Written ASCII, null-terminated, as h5py does: readable, but too few names.
+  EXPECT_IO_ERROR(read_dataset(path), path.string() + ": dataset inputs: 6 rows but 2 names");
+}
+
+TEST(DatasetFile, InvalidDatasetIsNotWrittenAndOldFileSurvives) {
+  TempDir dir;
+  const auto path = dir / "d.h5";
+  const Dataset good = small();
+  write_dataset(path, good);
+  Dataset bad = good;
+  bad.targets(0, 3) = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(write_dataset(path, bad), Error);
+  EXPECT_EQ(read_dataset(path).content_hash(), good.content_hash());
+  for (const auto& e : fs::directory_iterator(dir.path())) {
+    EXPECT_FALSE(is_partial_path(e.path())) << e.path();
   }
 }
 
-TEST(Dataset, ValidateNamesNonFiniteFeatureAndSample) {
+TEST(Dataset, ValidateNamesNonFiniteMatrixFeatureAndSample) {
   Dataset d = small();
   d.inputs(4, 11) = std::nan("");
   try {
     d.validate();
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("x5 of sample 11"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("inputs: x5 of sample 11 is nan"), std::string::npos)
+        << e.what();
+  }
+  d = small();
+  d.targets(0, 19) = -std::numeric_limits<double>::infinity();
+  try {
+    d.validate();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("targets: y of sample 19 is -inf"), std::string::npos)
+        << e.what();
   }
 }
 
-TEST(Dataset, HashChangesWithOneValue) {
+TEST(Dataset, ValidateChecksSizes) {
   Dataset d = small();
-  const auto h = d.content_hash();
+  EXPECT_NO_THROW(d.validate());
+  EXPECT_EQ(d.num_samples(), static_cast<std::size_t>(kSamples));
+  d.input_units.pop_back();
+  EXPECT_THROW(d.validate(), Error);
+  d = small();
+  d.targets.resize(1, kSamples - 1);
+  d.targets.setZero();
+  EXPECT_THROW(d.validate(), Error);
+}
+
+TEST(Dataset, HashChangesWithAnyPartOfTheContent) {
+  const Dataset base = small();
+  const auto h = base.content_hash();
+  EXPECT_EQ(small().content_hash(), h);  // same content, same hash
+  Dataset d = base;
   d.targets(0, 0) = std::nextafter(d.targets(0, 0), 1e9);
   EXPECT_NE(d.content_hash(), h);
+  d = base;
+  d.inputs(5, 19) = std::nextafter(d.inputs(5, 19), -1.0);
+  EXPECT_NE(d.content_hash(), h);
+  d = base;
+  d.input_units[0] = "mm";
+  EXPECT_NE(d.content_hash(), h);
+  d = base;
+  d.target_names[0] = "z";
+  EXPECT_NE(d.content_hash(), h);
+  // Moving a character across a name boundary changes the hash.
+  Dataset a = mixed(), b = mixed();
+  a.input_names = {"ab", "c"};
+  b.input_names = {"a", "bc"};
+  EXPECT_NE(a.content_hash(), b.content_hash());
 }
 
 }  // namespace

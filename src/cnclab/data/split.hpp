@@ -18,9 +18,13 @@ struct Split {
   std::vector<std::size_t> train, validation, test;  // each sorted ascending
 };
 
-// A uniformly random partition (Fisher-Yates with `rng`):
-// n_train = round(train_fraction * n), n_validation = round(validation_fraction * n)
-// (capped so the parts never exceed n), test = the rest.
+// A uniformly random partition: one Fisher-Yates shuffle of 0..n-1 with
+// `rng` (n - 1 draws of rng.below), cut into
+//   n_train      = round(train_fraction * n),
+//   n_validation = min(round(validation_fraction * n), n - n_train),
+//   n_test       = n - n_train - n_validation,
+// with round = std::llround (halves away from zero). Deterministic given the
+// rng state; each part is sorted ascending.
 Split make_random_split(std::size_t n, const SplitOptions& options, Rng& rng);
 
 }  // namespace cnclab

@@ -1,0 +1,86 @@
+#include "cnclab/io/provenance.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "cnclab/io/h5.hpp"
+#include "common/temp_dir.hpp"
+
+namespace cnclab {
+namespace {
+
+using testing::TempDir;
+
+TEST(Provenance, RoundTripsThroughAGroup) {
+  TempDir dir;
+  Provenance p = make_provenance(18446744073709551615ull);  // uint64 max survives
+  p.derived_seeds = {{"split", 1}, {"init", 18446744073709551614ull}};
+  p.end_utc = "2026-01-02T03:04:05Z";
+  p.wall_seconds = 12.25;
+  p.status = "failed";
+  p.failure_reason = "diverged: loss µ NaN";
+  {
+    H5File f = H5File::create(dir / "p.h5");
+    write_provenance(f, "/provenance", p);
+    f.close();
+  }
+  const Provenance r = read_provenance(H5File::open_read(dir / "p.h5"), "/provenance");
+  EXPECT_EQ(r.cnclab_version, p.cnclab_version);
+  EXPECT_EQ(r.git_commit, p.git_commit);
+  EXPECT_EQ(r.master_seed, p.master_seed);
+  EXPECT_EQ(r.derived_seeds, p.derived_seeds);
+  EXPECT_EQ(r.host, p.host);
+  EXPECT_EQ(r.start_utc, p.start_utc);
+  EXPECT_EQ(r.end_utc, p.end_utc);
+  EXPECT_EQ(r.wall_seconds, p.wall_seconds);
+  EXPECT_EQ(r.libraries, p.libraries);
+  EXPECT_EQ(r.status, p.status);
+  EXPECT_EQ(r.failure_reason, p.failure_reason);
+}
+
+TEST(Provenance, VersionMatchesTheProjectVersionInCMakeLists) {
+  std::ifstream in(std::string(CNCLAB_SOURCE_DIR) + "/CMakeLists.txt");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::smatch m;
+  const std::string text = ss.str();
+  ASSERT_TRUE(std::regex_search(text, m, std::regex(R"(project\(cnclab VERSION ([0-9.]+))")));
+  const Provenance p = make_provenance(7);
+  EXPECT_EQ(p.cnclab_version, m[1].str());
+  EXPECT_TRUE(std::regex_match(p.git_commit, std::regex("[0-9a-f]{12}(-dirty)?|unknown")))
+      << p.git_commit;
+  EXPECT_EQ(p.master_seed, 7u);
+  EXPECT_FALSE(p.host.empty());
+}
+
+TEST(Provenance, UtcTimeIsIso8601AndNow) {
+  const std::string s = utc_now_iso8601();
+  ASSERT_TRUE(std::regex_match(s, std::regex(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}Z)"))) << s;
+  std::tm tm{};
+  ASSERT_NE(strptime(s.c_str(), "%Y-%m-%dT%H:%M:%SZ", &tm), nullptr);
+  const std::time_t parsed = timegm(&tm);
+  const std::time_t now = std::time(nullptr);
+  EXPECT_LE(std::abs(static_cast<long>(now - parsed)), 2L);
+}
+
+TEST(Provenance, LibraryVersionsAreTheCompiledOnes) {
+  const auto libs = library_versions();
+  EXPECT_EQ(libs.at("Eigen"), std::to_string(EIGEN_WORLD_VERSION) + "." +
+                                  std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                                  std::to_string(EIGEN_MINOR_VERSION));
+  // The runtime library must be the one whose header we compiled against.
+  EXPECT_EQ(libs.at("HDF5"), std::to_string(H5_VERS_MAJOR) + "." + std::to_string(H5_VERS_MINOR) +
+                                 "." + std::to_string(H5_VERS_RELEASE));
+  const std::regex dotted(R"(\d+\.\d+(\.\d+)?)");
+  EXPECT_TRUE(std::regex_match(libs.at("yaml-cpp"), dotted)) << libs.at("yaml-cpp");
+  EXPECT_TRUE(std::regex_match(libs.at("CLI11"), dotted)) << libs.at("CLI11");
+}
+
+}  // namespace
+}  // namespace cnclab
