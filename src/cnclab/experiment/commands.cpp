@@ -5,6 +5,7 @@
 #include <iomanip>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/io/provenance.hpp"
@@ -12,12 +13,6 @@
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
-
-std::string format_metric(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 std::string metrics_line(const std::map<std::string, double>& metrics) {
   std::string s;

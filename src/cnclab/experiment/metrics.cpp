@@ -1,6 +1,7 @@
 #include "cnclab/experiment/metrics.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "cnclab/core/error.hpp"
 
@@ -46,6 +47,12 @@ std::map<std::string, double> regression_metrics(const Eigen::MatrixXd& predicti
     }
   }
   return out;
+}
+
+std::string format_metric(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  return buf;
 }
 
 }  // namespace cnclab

@@ -19,4 +19,7 @@ std::map<std::string, double> regression_metrics(const Eigen::MatrixXd& predicti
                                                  const Eigen::MatrixXd& targets,
                                                  const std::vector<std::string>& names);
 
+// A metric or loss for people to read: 6 significant digits ("%.6g").
+std::string format_metric(double value);
+
 }  // namespace cnclab

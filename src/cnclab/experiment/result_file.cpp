@@ -5,6 +5,7 @@
 #include <iomanip>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
@@ -44,12 +45,6 @@ ScalingRecord read_scaling(const H5File& f, const std::string& g) {
     s.std = to_eigen(f.read_vector(g + "/std"));
   }
   return s;
-}
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
 }
 
 }  // namespace
@@ -211,8 +206,8 @@ void print_result(const RunRecord& r, std::ostream& out) {
       << "status       " << p.status << (p.failure_reason.empty() ? "" : ": " + p.failure_reason)
       << "\n"
       << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
-      << "run          " << p.start_utc << " -> " << p.end_utc << " (" << number(p.wall_seconds)
-      << " s) on " << p.host << "\n"
+      << "run          " << p.start_utc << " -> " << p.end_utc << " ("
+      << format_metric(p.wall_seconds) << " s) on " << p.host << "\n"
       << "seed         " << p.master_seed << " (";
   bool first = true;
   for (const auto& [name, seed] : p.derived_seeds) {
@@ -229,19 +224,19 @@ void print_result(const RunRecord& r, std::ostream& out) {
       << "model        mlp " << r.model.inputs;
   for (auto h : r.model.hidden) out << "-" << h;
   out << "-" << r.model.outputs << " (" << to_string(r.model.hidden_activation) << ", keep p "
-      << number(r.model.dropout_keep_probability) << ", " << r.parameters.size()
+      << format_metric(r.model.dropout_keep_probability) << ", " << r.parameters.size()
       << " parameters)\n";
   out << "training     " << to_string(r.training.termination) << ": " << r.training.message << "\n";
   if (!r.training.history.empty()) {
     const auto& last = r.training.history.back();
-    out << "             final train loss " << number(last.train_loss);
-    if (!r.test_loss.empty()) out << ", test loss " << number(r.test_loss.back());
-    out << " (normalised MSE) after " << last.epoch << " epochs, " << number(last.wall_seconds)
-        << " s\n";
+    out << "             final train loss " << format_metric(last.train_loss);
+    if (!r.test_loss.empty()) out << ", test loss " << format_metric(r.test_loss.back());
+    out << " (normalised MSE) after " << last.epoch << " epochs, "
+        << format_metric(last.wall_seconds) << " s\n";
   }
   out << "metrics      (test split, " << join(r.target_units) << ")\n";
   for (const auto& [name, value] : r.metrics) {
-    out << "  " << std::left << std::setw(14) << name << number(value) << "\n";
+    out << "  " << std::left << std::setw(14) << name << format_metric(value) << "\n";
   }
   out << "config\n";
   std::size_t start = 0;
