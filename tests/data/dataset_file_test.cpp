@@ -10,6 +10,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/data/friedman1.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "common/expect_error.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
@@ -41,23 +42,6 @@ Dataset mixed() {
   d.generator_config = "note: \"µ\"\n";
   return d;
 }
-
-template <class F>
-std::string io_error(F&& f) {
-  try {
-    f();
-  } catch (const IoError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected IoError";
-  return "";
-}
-
-#define EXPECT_IO_ERROR(statement, text)                           \
-  do {                                                             \
-    const std::string message_ = io_error([&] { statement; });     \
-    EXPECT_NE(message_.find(text), std::string::npos) << message_; \
-  } while (0)
 
 // Runs `edit` on the file opened read-write through the raw C API.
 template <class F>

@@ -11,30 +11,13 @@
 #include <thread>
 
 #include "cnclab/core/error.hpp"
+#include "common/expect_error.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
 namespace {
 
 using testing::TempDir;
-
-// The IoError message of f(), or "" (and a test failure) if it throws none.
-template <class F>
-std::string io_error(F&& f) {
-  try {
-    f();
-  } catch (const IoError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected IoError";
-  return "";
-}
-
-#define EXPECT_IO_ERROR(statement, text)                           \
-  do {                                                             \
-    const std::string message_ = io_error([&] { statement; });     \
-    EXPECT_NE(message_.find(text), std::string::npos) << message_; \
-  } while (0)
 
 // Bytes written to stderr (fd 2) while f runs.
 template <class F>

@@ -27,6 +27,11 @@ class Quadratic : public SeparableObjective {
   Eigen::VectorXd a_, c_;
 };
 
+// f(w) = 1/2 a (w - c)^2 in one dimension.
+Quadratic scalar_quadratic(double a, double c) {
+  return Quadratic(Eigen::VectorXd::Constant(1, a), Eigen::VectorXd::Constant(1, c));
+}
+
 TEST(Sgdm, StepsFollowEquation14ByHand) {
   Eigen::VectorXd a(2), c(2), w(2);
   a << 1, 4;
@@ -100,11 +105,8 @@ TEST(Sgdm, LinearNetworkReachesLeastSquaresSolution) {
 }
 
 TEST(Sgdm, MomentumZeroIsPlainGradientDescent) {
-  Eigen::VectorXd a(1), c(1), w(1);
-  a << 2;
-  c << 3;
-  w << 0;
-  Quadratic q(a, c);
+  Quadratic q = scalar_quadratic(2, 3);
+  Eigen::VectorXd w = Eigen::VectorXd::Constant(1, 0);
   SgdmOptions o;
   o.learning_rate = 0.1;
   o.momentum = 0.0;
@@ -115,11 +117,8 @@ TEST(Sgdm, MomentumZeroIsPlainGradientDescent) {
 }
 
 TEST(Sgdm, DivergenceIsATerminationNotAnException) {
-  Eigen::VectorXd a(1), c(1), w(1);
-  a << 10;
-  c << 1;
-  w << 0;
-  Quadratic q(a, c);
+  Quadratic q = scalar_quadratic(10, 1);
+  Eigen::VectorXd w = Eigen::VectorXd::Constant(1, 0);
   SgdmOptions o;
   o.learning_rate = 10;  // |1 - eta a| = 99 > 1: diverges
   o.momentum = 0.0;
@@ -131,11 +130,8 @@ TEST(Sgdm, DivergenceIsATerminationNotAnException) {
 }
 
 TEST(Sgdm, EarlyStopRestoresBestParameters) {
-  Eigen::VectorXd a(1), c(1), w(1);
-  a << 1;
-  c << 0;
-  w << 1;
-  Quadratic q(a, c);
+  Quadratic q = scalar_quadratic(1, 0);
+  Eigen::VectorXd w = Eigen::VectorXd::Constant(1, 1);
   SgdmOptions o;
   o.learning_rate = 0.1;
   o.momentum = 0.0;
@@ -153,11 +149,8 @@ TEST(Sgdm, EarlyStopRestoresBestParameters) {
 }
 
 TEST(Sgdm, CallbackCanStop) {
-  Eigen::VectorXd a(1), c(1), w(1);
-  a << 1;
-  c << 0;
-  w << 1;
-  Quadratic q(a, c);
+  Quadratic q = scalar_quadratic(1, 0);
+  Eigen::VectorXd w = Eigen::VectorXd::Constant(1, 1);
   SgdmOptions o;
   o.epochs = 100;
   SgdmHooks hooks;
