@@ -53,8 +53,9 @@ TEST(MinMax, RejectsNonFiniteEmptyAndBadRanges) {
   Eigen::MatrixXd x = Eigen::MatrixXd::Ones(2, 3);
   x(1, 2) = std::nan("");
   EXPECT_THROW(m.fit(x), Error);
-  EXPECT_THROW(MinMaxNormaliser(Eigen::VectorXd::Constant(1, 2.0), Eigen::VectorXd::Constant(1, 1.0)),
-               Error);
+  EXPECT_THROW(
+      MinMaxNormaliser(Eigen::VectorXd::Constant(1, 2.0), Eigen::VectorXd::Constant(1, 1.0)),
+      Error);
   m.fit(Eigen::MatrixXd::Ones(2, 3));
   EXPECT_THROW(m.transform(Eigen::MatrixXd::Ones(3, 3)), Error);
 }

@@ -58,7 +58,8 @@ void check_jacobian(const Case& c, std::uint64_t seed) {
   mlp.prepare(ws, batch);
   mlp.loss_and_gradient(p, x, t, ws, g);
   const Eigen::MatrixXd r = y - t;
-  const Eigen::VectorXd jt = jac.transpose() * Eigen::Map<const Eigen::VectorXd>(r.data(), r.size());
+  const Eigen::VectorXd jt =
+      jac.transpose() * Eigen::Map<const Eigen::VectorXd>(r.data(), r.size());
   EXPECT_TRUE(g.isApprox(2.0 / static_cast<double>(r.size()) * jt, 1e-12));
 }
 

@@ -41,10 +41,14 @@ NistProblem load(const std::string& name) {
     std::string key;
     if (std::isalpha(static_cast<unsigned char>(line[0]))) in >> key;
     const auto v = numbers(in);
-    if (key == "start1") p.start1 = v;
-    else if (key == "start2") p.start2 = v;
-    else if (key == "certified") p.certified = v;
-    else if (key == "certified_rss") p.certified_rss = v.at(0);
+    if (key == "start1")
+      p.start1 = v;
+    else if (key == "start2")
+      p.start2 = v;
+    else if (key == "certified")
+      p.certified = v;
+    else if (key == "certified_rss")
+      p.certified_rss = v.at(0);
     else {
       EXPECT_EQ(v.size(), 2u) << line;
       p.y.push_back(v.at(0));
@@ -55,7 +59,8 @@ NistProblem load(const std::string& name) {
 }
 
 // Residual e_i = f(x_i; b) - y_i with the model's analytic gradient in b.
-using Model = std::function<double(double x, const Eigen::VectorXd& b, Eigen::Ref<Eigen::RowVectorXd> grad)>;
+using Model =
+    std::function<double(double x, const Eigen::VectorXd& b, Eigen::Ref<Eigen::RowVectorXd> grad)>;
 
 class CurveFit : public ResidualObjective {
  public:
@@ -85,8 +90,9 @@ void expect_certified(const std::string& file, const Model& model) {
   ASSERT_EQ(p.start2.size(), p.certified.size());
   for (const auto& start : {p.start1, p.start2}) {
     CurveFit fit(p, model);
-    Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(start.data(), static_cast<Eigen::Index>(start.size()));
-    LmOptions o;  // trainlm defaults
+    Eigen::VectorXd b =
+        Eigen::Map<const Eigen::VectorXd>(start.data(), static_cast<Eigen::Index>(start.size()));
+    LmOptions o;         // trainlm defaults
     o.min_gradient = 0;  // run to the rounding floor (mu_max) or the epoch limit
     o.epochs = 5000;
     const Summary s = train_lm(fit, b, o);
@@ -121,7 +127,9 @@ double rational(double x, const Eigen::VectorXd& b, Eigen::Ref<Eigen::RowVectorX
   return num / den;
 }
 
-TEST(NistStrd, Thurber) { expect_certified("thurber.txt", rational); }
+TEST(NistStrd, Thurber) {
+  expect_certified("thurber.txt", rational);
+}
 
 TEST(NistStrd, Mgh09) {
   expect_certified("mgh09.txt", [](double x, const Eigen::VectorXd& b, auto g) {

@@ -28,28 +28,6 @@ void check_finite_positive(const char* field, double v) {
   }
 }
 
-struct Regularisation {
-  double alpha = 0, beta = 1, gamma = 0;
-};
-
-// After an accepted step (J^T J at the new weights): gamma, alpha, beta.
-void update_hyperparameters(Regularisation& r, const NormalEquations& ne, double ssw, double n,
-                            Summary& summary) {
-  const double w = static_cast<double>(ne.jte.size());
-  double gamma = effective_parameters(ne.jtj, r.alpha, r.beta);
-  if (!std::isfinite(gamma)) return;  // keep alpha, beta: factorisation failed
-  gamma = std::min(std::max(gamma, 0.0), w);
-  r.gamma = gamma;
-  r.alpha = ssw == 0 ? 1.0 : gamma / (2.0 * ssw);
-  if (ne.sse == 0) {
-    r.beta = 1.0;
-  } else if (n - gamma > 0) {
-    r.beta = (n - gamma) / (2.0 * ne.sse);
-  } else {
-    ++summary.beta_guard_count;  // keep the previous beta
-  }
-}
-
 Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& params,
                             const LmOptions& o, bool bayesian, const LmHooks& hooks,
                             const char* name) {
@@ -70,7 +48,7 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
     return summary;
   }
   double ssw = params.squaredNorm();
-  Regularisation reg;
+  BayesianHyperparameters reg;  // lm: alpha 0, beta 1 throughout
   reg.gamma = static_cast<double>(nw);
   if (bayesian) {
     reg.beta = ne.sse == 0 ? 1.0 : (n - reg.gamma) / (2.0 * ne.sse);
@@ -131,7 +109,9 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
     if (!builder.build(params, ne)) {
       return stop(Termination::diverged, "Jacobian not finite in epoch " + std::to_string(epoch));
     }
-    if (bayesian) update_hyperparameters(reg, ne, ssw, n, summary);
+    if (bayesian && !reestimate_hyperparameters(reg, ne.jtj, ne.sse, ssw, n)) {
+      ++summary.beta_guard_count;
+    }
     f = reg.beta * ne.sse + reg.alpha * ssw;
 
     EpochRecord record;
@@ -187,6 +167,23 @@ double effective_parameters(const Eigen::MatrixXd& jtj_lower, double alpha, doub
   Eigen::MatrixXd l_inv = Eigen::MatrixXd::Identity(w, w);
   llt.matrixL().solveInPlace(l_inv);
   return static_cast<double>(w) - alpha * l_inv.squaredNorm();
+}
+
+bool reestimate_hyperparameters(BayesianHyperparameters& h, const Eigen::MatrixXd& jtj_lower,
+                                double sse, double ssw, double n) {
+  const double w = static_cast<double>(jtj_lower.rows());
+  const double gamma = effective_parameters(jtj_lower, h.alpha, h.beta);
+  if (!std::isfinite(gamma)) return true;  // keep alpha, beta: factorisation failed
+  h.gamma = std::min(std::max(gamma, 0.0), w);
+  h.alpha = ssw == 0 ? 1.0 : h.gamma / (2.0 * ssw);
+  if (sse == 0) {
+    h.beta = 1.0;
+  } else if (n - h.gamma > 0) {
+    h.beta = (n - h.gamma) / (2.0 * sse);
+  } else {
+    return false;  // beta guard: keep the previous beta
+  }
+  return true;
 }
 
 Summary train_lm(ResidualObjective& objective, Eigen::VectorXd& params, const LmOptions& options,

@@ -20,12 +20,12 @@
 namespace cnclab {
 
 struct LmOptions {
-  std::size_t epochs = 1000;   // maximum number of accepted steps (trainlm: 1000)
-  double goal = 0;             // stop when F <= goal; lm: F = E_D (sum of squares) (trainlm: 0)
-  double mu = 1e-3;            // initial damping mu (trainlm: 0.001)
-  double mu_dec = 0.1;         // mu <- mu * mu_dec after a successful step, in (0, 1) (trainlm: 0.1)
-  double mu_inc = 10;          // mu <- mu * mu_inc after a failed step, > 1 (trainlm: 10)
-  double mu_max = 1e10;        // stop when mu exceeds this (trainlm: 1e10)
+  std::size_t epochs = 1000;  // maximum number of accepted steps (trainlm: 1000)
+  double goal = 0;            // stop when F <= goal; lm: F = E_D (sum of squares) (trainlm: 0)
+  double mu = 1e-3;           // initial damping mu (trainlm: 0.001)
+  double mu_dec = 0.1;        // mu <- mu * mu_dec after a successful step, in (0, 1) (trainlm: 0.1)
+  double mu_inc = 10;         // mu <- mu * mu_inc after a failed step, > 1 (trainlm: 10)
+  double mu_max = 1e10;       // stop when mu exceeds this (trainlm: 1e10)
   double min_gradient = 1e-7;  // stop when 2 ||J^T e|| < min_gradient (trainlm: 1e-7)
   // Rows of J per symmetric rank update; 0 = automatic (about 8 MB of J).
   std::size_t block_rows = 0;

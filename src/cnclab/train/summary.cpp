@@ -23,10 +23,9 @@ std::string to_string(Termination t) {
 }
 
 bool parse_termination(const std::string& text, Termination& t) {
-  for (auto candidate :
-       {Termination::max_epochs, Termination::early_stop, Termination::diverged,
-        Termination::stopped_by_callback, Termination::goal, Termination::min_gradient,
-        Termination::mu_max}) {
+  for (auto candidate : {Termination::max_epochs, Termination::early_stop, Termination::diverged,
+                         Termination::stopped_by_callback, Termination::goal,
+                         Termination::min_gradient, Termination::mu_max}) {
     if (to_string(candidate) == text) {
       t = candidate;
       return true;

@@ -35,4 +35,17 @@ Summary train_trainbr(ResidualObjective& objective, Eigen::VectorXd& params,
 // J^T J; NaN if beta J^T J + alpha I is not positive definite.
 double effective_parameters(const Eigen::MatrixXd& jtj_lower, double alpha, double beta);
 
+struct BayesianHyperparameters {
+  double alpha = 0;  // weight-decay coefficient
+  double beta = 1;   // data coefficient
+  double gamma = 0;  // effective number of parameters
+};
+
+// One re-estimation (the update rules above) from J^T J (lower triangle),
+// E_D = sse, E_W = ssw and N = n at the current weights. gamma is clamped to
+// [0, N_w]; if the factorisation fails, h is left unchanged. Returns false
+// when the beta guard triggered (N - gamma <= 0: the previous beta is kept).
+bool reestimate_hyperparameters(BayesianHyperparameters& h, const Eigen::MatrixXd& jtj_lower,
+                                double sse, double ssw, double n);
+
 }  // namespace cnclab
