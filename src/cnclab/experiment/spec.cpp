@@ -7,27 +7,15 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/metrics.hpp"
+#include "cnclab/experiment/spec_text.hpp"
 
 namespace cnclab {
 namespace {
 
-std::string one_of(const std::vector<std::string>& names) {
-  std::string s = "must be one of: ";
-  for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];
-  return s;
-}
-
-std::string choice(const ConfigReader& r, const std::string& key, const std::string& fallback,
-                   const std::vector<std::string>& allowed) {
-  const auto value = r.get<std::string>(key, fallback);
-  if (std::find(allowed.begin(), allowed.end(), value) == allowed.end()) {
-    r.fail(key, one_of(allowed));
-  }
-  return value;
-}
-
 Scaling read_scaling(const ConfigReader& r, const std::string& key) {
-  return choice(r, key, "zscore", {"zscore", "none"}) == "zscore" ? Scaling::zscore : Scaling::none;
+  Scaling s = Scaling::zscore;
+  parse_scaling(choice(r, key, to_string(s), {"zscore", "minmax", "none"}), s);
+  return s;
 }
 
 Activation read_activation(const ConfigReader& r, const std::string& key, Activation fallback) {
@@ -123,19 +111,6 @@ MlpOptions read_model(const ConfigReader& r) {
   return m;
 }
 
-SgdmOptions read_trainer(const ConfigReader& r) {
-  SgdmOptions t;
-  choice(r, "type", "sgdm", {"sgdm"});
-  t.learning_rate = r.get<double>("learning_rate", t.learning_rate);
-  t.momentum = r.get<double>("momentum", t.momentum);
-  t.batch_size = r.get<std::size_t>("batch_size", t.batch_size);
-  t.epochs = r.get<std::size_t>("epochs", t.epochs);
-  t.shuffle = r.get<bool>("shuffle", t.shuffle);
-  t.early_stop_patience = r.get<std::size_t>("early_stop_patience", t.early_stop_patience);
-  r.validate([&] { t.validate(); });
-  return t;
-}
-
 LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::string>& overrides,
                                  std::optional<std::uint64_t> seed_override) {
   for (const auto& text : overrides) doc.apply(parse_override(text));
@@ -160,6 +135,11 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::str
   spec.normalisation.targets = read_scaling(norm, "targets");
   spec.model = read_model(root.section("model"));
   spec.trainer = read_trainer(root.section("trainer"));
+  if (is_levenberg_marquardt(spec.trainer) && spec.model.dropout_keep_probability < 1.0) {
+    root.section("model").section("dropout").fail(
+        "keep_probability", "must be 1 with trainer " + trainer_name(spec.trainer) +
+                                " (Levenberg-Marquardt needs a deterministic network)");
+  }
   spec.metrics = root.get<std::vector<std::string>>("metrics", spec.metrics);
   for (const auto& m : spec.metrics) {
     const auto& known = known_metrics();
@@ -171,26 +151,14 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::str
   return {spec, to_yaml(spec)};
 }
 
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  // Shortest text that reads back to the same double.
-  for (int precision = 1; precision < 17; ++precision) {
-    char shorter[32];
-    std::snprintf(shorter, sizeof shorter, "%.*g", precision, x);
-    if (std::strtod(shorter, nullptr) == x) return shorter;
-  }
-  return buf;
-}
-
 void emit_initializer(YAML::Emitter& out, const Initializer& init) {
   out << YAML::BeginMap << YAML::Key << "type" << YAML::Value << to_string(init.kind);
   if (init.kind == Initializer::Kind::normal) {
-    out << YAML::Key << "mean" << YAML::Value << number(init.mean);
-    out << YAML::Key << "std" << YAML::Value << number(init.std);
+    out << YAML::Key << "mean" << YAML::Value << yaml_number(init.mean);
+    out << YAML::Key << "std" << YAML::Value << yaml_number(init.std);
   } else if (init.kind == Initializer::Kind::uniform) {
-    out << YAML::Key << "low" << YAML::Value << number(init.low);
-    out << YAML::Key << "high" << YAML::Value << number(init.high);
+    out << YAML::Key << "low" << YAML::Value << yaml_number(init.low);
+    out << YAML::Key << "high" << YAML::Value << yaml_number(init.high);
   }
   out << YAML::EndMap;
 }
@@ -227,18 +195,17 @@ std::string to_yaml(const ExperimentSpec& spec) {
   out << Key << "options" << Value << BeginMap;
   out << Key << "samples" << Value << f.samples;
   out << Key << "inputs" << Value << f.inputs;
-  out << Key << "noise_std" << Value << number(f.noise_std);
+  out << Key << "noise_std" << Value << yaml_number(f.noise_std);
   out << EndMap << EndMap;
 
   out << Key << "split" << Value << BeginMap;
-  out << Key << "train" << Value << number(spec.split.train_fraction);
-  out << Key << "validation" << Value << number(spec.split.validation_fraction);
+  out << Key << "train" << Value << yaml_number(spec.split.train_fraction);
+  out << Key << "validation" << Value << yaml_number(spec.split.validation_fraction);
   out << EndMap;
 
-  const auto scaling = [](Scaling s) { return s == Scaling::zscore ? "zscore" : "none"; };
   out << Key << "normalisation" << Value << BeginMap;
-  out << Key << "inputs" << Value << scaling(spec.normalisation.inputs);
-  out << Key << "targets" << Value << scaling(spec.normalisation.targets);
+  out << Key << "inputs" << Value << to_string(spec.normalisation.inputs);
+  out << Key << "targets" << Value << to_string(spec.normalisation.targets);
   out << EndMap;
 
   const MlpOptions& m = spec.model;
@@ -248,7 +215,7 @@ std::string to_yaml(const ExperimentSpec& spec) {
   out << Key << "hidden_activation" << Value << to_string(m.hidden_activation);
   out << Key << "output_activation" << Value << to_string(m.output_activation);
   out << Key << "dropout" << Value << BeginMap;
-  out << Key << "keep_probability" << Value << number(m.dropout_keep_probability);
+  out << Key << "keep_probability" << Value << yaml_number(m.dropout_keep_probability);
   out << Key << "placement" << Value << to_string(m.dropout_placement);
   out << EndMap;
   out << Key << "init" << Value << BeginMap;
@@ -258,16 +225,8 @@ std::string to_yaml(const ExperimentSpec& spec) {
   emit_initializer(out, m.biases);
   out << EndMap << EndMap;
 
-  const SgdmOptions& t = spec.trainer;
-  out << Key << "trainer" << Value << BeginMap;
-  out << Key << "type" << Value << "sgdm";
-  out << Key << "learning_rate" << Value << number(t.learning_rate);
-  out << Key << "momentum" << Value << number(t.momentum);
-  out << Key << "batch_size" << Value << t.batch_size;
-  out << Key << "epochs" << Value << t.epochs;
-  out << Key << "shuffle" << Value << t.shuffle;
-  out << Key << "early_stop_patience" << Value << t.early_stop_patience;
-  out << EndMap;
+  out << Key << "trainer" << Value;
+  emit_trainer(out, spec.trainer);
 
   out << Key << "metrics" << Value << YAML::Flow << spec.metrics;
   out << EndMap;
