@@ -1,12 +1,16 @@
 #include "cnclab/train/normal_equations.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
 #include "cnclab/core/error.hpp"
 
 namespace cnclab {
+namespace {
+using Clock = std::chrono::steady_clock;
+}  // namespace
 
 NormalEquationBuilder::NormalEquationBuilder(ResidualObjective& objective, Eigen::Index block_rows)
     : objective_(objective) {
@@ -35,11 +39,15 @@ bool NormalEquationBuilder::build(const Eigen::VectorXd& params, NormalEquations
     const Eigen::Index count = std::min(block_rows_, n - first);
     if (count != jacobian_.rows()) jacobian_.resize(count, w);
     auto e = residuals_.head(count);
+    const auto t0 = Clock::now();
     objective_.evaluate(params, first, count, e, &jacobian_);
+    const auto t1 = Clock::now();
     if (!e.allFinite() || !jacobian_.allFinite()) return false;
     out.jtj.selfadjointView<Eigen::Lower>().rankUpdate(jacobian_.transpose());
     out.jte.noalias() += jacobian_.transpose() * e;
     out.sse += e.squaredNorm();
+    timing_.evaluate_seconds += std::chrono::duration<double>(t1 - t0).count();
+    timing_.product_seconds += std::chrono::duration<double>(Clock::now() - t1).count();
   }
   if (jacobian_.rows() != block_rows_) jacobian_.resize(block_rows_, w);
   return std::isfinite(out.sse);

@@ -15,6 +15,13 @@ struct NormalEquations {
   double sse = 0;       // e^T e
 };
 
+// Wall time spent in build() since construction (benchmarks report the
+// J^T J step separately from the model's Jacobian evaluation).
+struct NormalEquationTiming {
+  double evaluate_seconds = 0;  // objective.evaluate (residuals and Jacobian blocks)
+  double product_seconds = 0;   // rank updates J^T J and products J^T e
+};
+
 class NormalEquationBuilder {
  public:
   // block_rows: rows of J per rank update; 0 = about 8 MB of J per block.
@@ -27,12 +34,14 @@ class NormalEquationBuilder {
   double sum_of_squares(const Eigen::VectorXd& params);
 
   Eigen::Index block_rows() const { return block_rows_; }
+  const NormalEquationTiming& timing() const { return timing_; }
 
  private:
   ResidualObjective& objective_;
   Eigen::Index block_rows_;
   Eigen::MatrixXd jacobian_;
   Eigen::VectorXd residuals_;
+  NormalEquationTiming timing_;
 };
 
 }  // namespace cnclab
