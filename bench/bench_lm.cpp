@@ -81,8 +81,7 @@ struct IterationTimes {
 
 // The work of one LM iteration: normal equations at w, one Cholesky solve of
 // (J^T J + mu I) dw = -J^T e, the sum of squares at w + dw.
-IterationTimes time_iteration(ResidualObjective& objective, const Eigen::VectorXd& w,
-                              int repeats) {
+IterationTimes time_iteration(ResidualObjective& objective, const Eigen::VectorXd& w, int repeats) {
   NormalEquationBuilder builder(objective);
   NormalEquations ne;
   std::vector<double> evaluate, product, solve, trial;
@@ -114,8 +113,9 @@ void report(const char* name, Eigen::Index n, Eigen::Index w, const IterationTim
       "trial SSE %.3f)\n",
       name, static_cast<long>(n), static_cast<long>(w), t.evaluate + t.product + t.solve + t.trial,
       t.evaluate, t.product, t.solve, t.trial);
-  std::printf("%s: J^T J %.2f GFLOP/s, Eigen GEMM %.2f GFLOP/s, GEMM / J^T J = %.2fx (target <= 2x) %s\n",
-              name, rate, gemm, gemm / rate, gemm / rate <= 2.0 ? "PASS" : "FAIL");
+  std::printf(
+      "%s: J^T J %.2f GFLOP/s, Eigen GEMM %.2f GFLOP/s, GEMM / J^T J = %.2fx (target <= 2x) %s\n",
+      name, rate, gemm, gemm / rate, gemm / rate <= 2.0 ? "PASS" : "FAIL");
 }
 
 // Seed-000 network with a teacher of the same shape (+ noise 0.1) as targets.
@@ -181,8 +181,8 @@ int prepare(const std::filesystem::path& dir) {
   write_binary(dir / "x.bin", p.x.data(), p.x.size());
   write_binary(dir / "y.bin", p.y.data(), p.y.size());
   write_binary(dir / "w0.bin", p.w0.data(), p.w0.size());
-  std::printf("samples %ld inputs 73 hidden 28 20 parameters %ld\n",
-              static_cast<long>(p.x.cols()), static_cast<long>(p.w0.size()));
+  std::printf("samples %ld inputs 73 hidden 28 20 parameters %ld\n", static_cast<long>(p.x.cols()),
+              static_cast<long>(p.w0.size()));
   return 0;
 }
 

@@ -81,7 +81,7 @@ TEST(Spec, LevenbergMarquardtTrainersWithMatlabDefaults) {
   EXPECT_EQ(l.mu, 1e-3);  // trainlm
   EXPECT_EQ(l.epochs, 1000u);
   EXPECT_NE(lm.resolved_yaml.find("type: lm\n  epochs: 1000\n  goal: 0\n  mu: 0.001\n"
-                                  "  mu_dec: 0.1\n  mu_inc: 10\n  mu_max: 1e+10\n"
+                                  "  mu_dec: 0.1\n  mu_inc: 10\n  mu_max: 10000000000\n"
                                   "  min_gradient: 1e-07"),
             std::string::npos)
       << lm.resolved_yaml;

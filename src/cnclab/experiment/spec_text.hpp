@@ -12,8 +12,5 @@ std::string one_of(const std::vector<std::string>& names);
 // r[key] (default `fallback`), which must be one of `allowed`.
 std::string choice(const ConfigReader& r, const std::string& key, const std::string& fallback,
                    const std::vector<std::string>& allowed);
-// Shortest decimal text that reads back to the same double (integers below
-// 1e6 without exponent).
-std::string yaml_number(double x);
 
 }  // namespace cnclab

@@ -2,6 +2,7 @@
 
 #include <type_traits>
 
+#include "cnclab/core/format.hpp"
 #include "cnclab/experiment/spec_text.hpp"
 
 namespace cnclab {
@@ -62,20 +63,20 @@ void emit_trainer(YAML::Emitter& out, const TrainerSpec& trainer) {
       [&](const auto& t) {
         using T = std::decay_t<decltype(t)>;
         if constexpr (std::is_same_v<T, SgdmOptions>) {
-          out << Key << "learning_rate" << Value << yaml_number(t.learning_rate);
-          out << Key << "momentum" << Value << yaml_number(t.momentum);
+          out << Key << "learning_rate" << Value << shortest_double(t.learning_rate);
+          out << Key << "momentum" << Value << shortest_double(t.momentum);
           out << Key << "batch_size" << Value << t.batch_size;
           out << Key << "epochs" << Value << t.epochs;
           out << Key << "shuffle" << Value << t.shuffle;
           out << Key << "early_stop_patience" << Value << t.early_stop_patience;
         } else {
           out << Key << "epochs" << Value << t.epochs;
-          out << Key << "goal" << Value << yaml_number(t.goal);
-          out << Key << "mu" << Value << yaml_number(t.mu);
-          out << Key << "mu_dec" << Value << yaml_number(t.mu_dec);
-          out << Key << "mu_inc" << Value << yaml_number(t.mu_inc);
-          out << Key << "mu_max" << Value << yaml_number(t.mu_max);
-          out << Key << "min_gradient" << Value << yaml_number(t.min_gradient);
+          out << Key << "goal" << Value << shortest_double(t.goal);
+          out << Key << "mu" << Value << shortest_double(t.mu);
+          out << Key << "mu_dec" << Value << shortest_double(t.mu_dec);
+          out << Key << "mu_inc" << Value << shortest_double(t.mu_inc);
+          out << Key << "mu_max" << Value << shortest_double(t.mu_max);
+          out << Key << "min_gradient" << Value << shortest_double(t.min_gradient);
         }
       },
       trainer);
