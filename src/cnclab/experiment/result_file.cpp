@@ -6,6 +6,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/metrics.hpp"
+#include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
@@ -213,7 +214,7 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
     bad("/training: unknown termination '" + termination + "'");
   }
   r.trainer = f.attribute_string("/training", "trainer");
-  if (r.trainer != "sgdm" && r.trainer != "lm" && r.trainer != "trainbr") {
+  if (!is_trainer_name(r.trainer)) {
     bad("/training: unknown trainer '" + r.trainer + "'");
   }
   r.training.message = f.attribute_string("/training", "message");

@@ -1,5 +1,7 @@
 #include "cnclab/experiment/trainer_spec.hpp"
 
+#include <algorithm>
+#include <iterator>
 #include <type_traits>
 
 #include "cnclab/core/format.hpp"
@@ -7,6 +9,9 @@
 
 namespace cnclab {
 namespace {
+
+// In the order of TrainerSpec's alternatives.
+constexpr const char* kTrainerNames[] = {"sgdm", "lm", "trainbr"};
 
 SgdmOptions read_sgdm(const ConfigReader& r) {
   SgdmOptions t;
@@ -37,8 +42,12 @@ Options read_lm(const ConfigReader& r) {
 }  // namespace
 
 std::string trainer_name(const TrainerSpec& trainer) {
-  static const char* const kNames[] = {"sgdm", "lm", "trainbr"};
-  return kNames[trainer.index()];
+  return kTrainerNames[trainer.index()];
+}
+
+bool is_trainer_name(const std::string& name) {
+  return std::find(std::begin(kTrainerNames), std::end(kTrainerNames), name) !=
+         std::end(kTrainerNames);
 }
 
 std::size_t trainer_epochs(const TrainerSpec& trainer) {
@@ -50,7 +59,9 @@ bool is_levenberg_marquardt(const TrainerSpec& trainer) {
 }
 
 TrainerSpec read_trainer(const ConfigReader& r) {
-  const auto type = choice(r, "type", "sgdm", {"sgdm", "lm", "trainbr"});
+  const auto type =
+      choice(r, "type", "sgdm",
+             std::vector<std::string>(std::begin(kTrainerNames), std::end(kTrainerNames)));
   if (type == "lm") return read_lm<LmOptions>(r);
   if (type == "trainbr") return read_lm<TrainbrOptions>(r);
   return read_sgdm(r);

@@ -20,6 +20,7 @@ namespace cnclab {
 using TrainerSpec = std::variant<SgdmOptions, LmOptions, TrainbrOptions>;
 
 std::string trainer_name(const TrainerSpec& trainer);  // "sgdm", "lm" or "trainbr"
+bool is_trainer_name(const std::string& name);
 std::size_t trainer_epochs(const TrainerSpec& trainer);
 // lm and trainbr need a deterministic objective (no dropout).
 bool is_levenberg_marquardt(const TrainerSpec& trainer);
