@@ -248,6 +248,10 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 
 }  // namespace
 
+fs::path resolve_config_path(const fs::path& including_file, const std::string& name) {
+  return resolve_include(including_file, name);
+}
+
 std::string node_text(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "null";
   if (node.IsScalar()) return node.Scalar();
