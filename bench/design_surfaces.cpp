@@ -127,7 +127,8 @@ std::vector<Design> designs() {
        },
        [](double s, double t) { return 1.0 + 0.2 * std::sin(kPi * s) * std::sin(kPi * t); }},
       {"surface2", 135.0, 175.0, 68.28, 14.0,
-       "f = (1 + 0.4 y / 175) sin(2 pi x / lambda) + 1.2 (y / 175)^2 - 0.25 cos(2 pi (x - y) / 160)",
+       "f = (1 + 0.4 y / 175) sin(2 pi x / lambda) + 1.2 (y / 175)^2 - 0.25 cos(2 pi (x - y) / "
+       "160)",
        [](double x, double y, double l) {
          return (1.0 + 0.4 * y / 175.0) * std::sin(2 * kPi * x / l) +
                 1.2 * (y / 175.0) * (y / 175.0) - 0.25 * std::cos(2 * kPi * (x - y) / 160.0);
@@ -162,8 +163,7 @@ void write_yaml(const std::string& dir, const Design& d, double lambda, const Nu
       << shortest_double(d.height) << "]; weights 1 +- a smooth bump.\n"
       << "# The wave along x gives convex crests and concave troughs on every tool-path line.\n"
       << "# Bounding box (801 x 801 samples): " << shortest_double(r.box.size().x()) << " x "
-      << shortest_double(r.box.size().y()) << " x " << shortest_double(r.box.size().z())
-      << " mm.\n"
+      << shortest_double(r.box.size().y()) << " x " << shortest_double(r.box.size().z()) << " mm.\n"
       << "# Regenerate: build/bench/cnclab_design_surfaces configs/surfaces\n"
       << nurbs_surface_yaml(s, "");
   if (!out.flush()) {

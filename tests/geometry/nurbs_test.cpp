@@ -96,7 +96,8 @@ TEST(NurbsCurve, OneSpanEqualsBezierForm) {
     for (double u : {0.0, 0.13, 0.5, 0.77, 1.0}) {
       Eigen::Vector3d b = Eigen::Vector3d::Zero(), b1 = b, b2 = b;
       for (int i = 0; i <= p; ++i) b += bernstein(p, i, u) * c.points[i];
-      for (int i = 0; i < p; ++i) b1 += p * bernstein(p - 1, i, u) * (c.points[i + 1] - c.points[i]);
+      for (int i = 0; i < p; ++i)
+        b1 += p * bernstein(p - 1, i, u) * (c.points[i + 1] - c.points[i]);
       for (int i = 0; i + 1 < p; ++i) {
         b2 += p * (p - 1) * bernstein(p - 2, i, u) *
               (c.points[i + 2] - 2 * c.points[i + 1] + c.points[i]);
@@ -245,8 +246,9 @@ TEST(NurbsSurface, UndefinedOrHorizontalNormalIsAnError) {
   d.dv = Eigen::Vector3d(0, 0, 1);  // normal along -y: horizontal
   EXPECT_THROW(oriented_unit_normal(d, Eigen::Vector3d::UnitZ()), Error);
   d.dv = Eigen::Vector3d(0, 1, 0);
-  EXPECT_NEAR((oriented_unit_normal(d, -Eigen::Vector3d::UnitZ()) + Eigen::Vector3d::UnitZ()).norm(),
-              0.0, 1e-15);
+  EXPECT_NEAR(
+      (oriented_unit_normal(d, -Eigen::Vector3d::UnitZ()) + Eigen::Vector3d::UnitZ()).norm(), 0.0,
+      1e-15);
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ inline NurbsCurve full_circle(double rho) {
   NurbsCurve c;
   c.degree = 2;
   c.knots = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
-  const double xy[9][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0},
+  const double xy[9][2] = {{1, 0},   {1, 1},  {0, 1},  {-1, 1}, {-1, 0},
                            {-1, -1}, {0, -1}, {1, -1}, {1, 0}};
   for (int i = 0; i < 9; ++i) {
     c.points.emplace_back(rho * xy[i][0], rho * xy[i][1], 0.0);
@@ -67,8 +67,8 @@ inline NurbsSurface cylinder(double rho, double a0, double a1, double length) {
 inline NurbsSurface sphere_patch(double rho, double lat) {
   const NurbsCurve meridian =
       arc(rho, -lat, lat, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ());
-  const NurbsCurve quarter = arc(1.0, 0.0, std::numbers::pi / 2, Eigen::Vector3d::UnitX(),
-                                 Eigen::Vector3d::UnitY());
+  const NurbsCurve quarter =
+      arc(1.0, 0.0, std::numbers::pi / 2, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
   NurbsSurface s;
   s.degree_u = s.degree_v = 2;
   s.knots_u = s.knots_v = {0, 0, 0, 1, 1, 1};

@@ -18,7 +18,9 @@ namespace {
 constexpr double kClosedFormTol = 1e-9;  // mm
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-double angle_xz(const Eigen::Vector3d& p) { return std::atan2(p.z(), p.x()); }
+double angle_xz(const Eigen::Vector3d& p) {
+  return std::atan2(p.z(), p.x());
+}
 
 struct CylinderCase {
   double rho, tool_radius;
@@ -45,8 +47,8 @@ void check_cylinder(const CylinderCase& c) {
       EXPECT_NEAR(std::hypot(path.cl[i].x(), path.cl[i].z()), expected_cl_radius, 1e-12);
       const double theta = std::abs(angle_xz(path.cc[i + 1]) - angle_xz(path.cc[i]));
       const double expected = expected_cl_radius * (1.0 - std::cos(theta / 2));
-      const StepErrorSegment seg{&path.curve, path.u[i], path.u[i + 1], path.cl[i],
-                                 path.cl[i + 1], c.tool_radius};
+      const StepErrorSegment seg{&path.curve, path.u[i],      path.u[i + 1],
+                                 path.cl[i],  path.cl[i + 1], c.tool_radius};
       const StepError exact = exact_step_error(seg);
       EXPECT_NEAR(exact.error, expected, kClosedFormTol)
           << "rho " << c.rho << " R " << c.tool_radius << " segment " << i;
@@ -94,8 +96,8 @@ TEST(StepError, AgreesWithBruteForceScanOnTheTestSurfaces) {
       const ToolPathLine path = plan_line(s, o, rng.below(o.lines));
       for (int k = 0; k < 3; ++k) {
         const std::size_t i = rng.below(o.points_per_line - 1);
-        const StepErrorSegment seg{&path.curve, path.u[i], path.u[i + 1], path.cl[i],
-                                   path.cl[i + 1], o.tool_radius};
+        const StepErrorSegment seg{&path.curve, path.u[i],      path.u[i + 1],
+                                   path.cl[i],  path.cl[i + 1], o.tool_radius};
         const StepError exact = exact_step_error(seg);
         const double sense = exact.convex ? 1.0 : -1.0;
         double best = sense * INFINITY;
@@ -142,7 +144,8 @@ TEST(StepError, BadToolPathOptionsNameTheField) {
 }
 
 TEST(StepError, CoincidentClPointsAreAnError) {
-  const NurbsCurve c = testing::arc(10.0, 0.1, 1.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ());
+  const NurbsCurve c =
+      testing::arc(10.0, 0.1, 1.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ());
   const StepErrorSegment seg{&c, 0.0, 0.5, Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(1, 2, 3), 5.0};
   EXPECT_THROW(exact_step_error(seg), Error);
   ExactStepErrorOptions bad;

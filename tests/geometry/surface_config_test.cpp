@@ -50,7 +50,8 @@ TEST(SurfaceConfig, WeightsDefaultToOne) {
 }
 
 TEST(SurfaceConfig, BadSurfacesGiveLocatedErrors) {
-  EXPECT_NE(config_error(kBilinear + "weights: [[1, 1], [1, 0]]\n").find("weights must be finite and > 0"),
+  EXPECT_NE(config_error(kBilinear + "weights: [[1, 1], [1, 0]]\n")
+                .find("weights must be finite and > 0"),
             std::string::npos);
   EXPECT_NE(config_error(kBilinear + "weights: [[1, 1]]\n").find("one row per control-point row"),
             std::string::npos);

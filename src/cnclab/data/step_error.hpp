@@ -59,9 +59,7 @@ class StepErrorGenerator : public DatasetGenerator {
   explicit StepErrorGenerator(StepErrorDatasetOptions options);  // validates
   std::string name() const override { return "step_error"; }
   int version() const override { return 1; }
-  DatasetShape shape() const override {
-    return {options_.num_samples(), options_.num_inputs(), 1};
-  }
+  DatasetShape shape() const override { return {options_.num_samples(), options_.num_inputs(), 1}; }
   std::string options_yaml() const override;
   Dataset generate(Rng&) const override { return generate_step_error_dataset(options_); }
   const StepErrorDatasetOptions& options() const { return options_; }

@@ -177,6 +177,10 @@ void emit_initializer(YAML::Emitter& out, const Initializer& init) {
 
 }  // namespace
 
+DatasetSpec read_dataset_spec(const ConfigReader& dataset_section) {
+  return read_dataset(dataset_section);
+}
+
 LoadedExperiment load_experiment(const std::filesystem::path& file,
                                  const std::vector<std::string>& overrides,
                                  std::optional<std::uint64_t> seed_override) {

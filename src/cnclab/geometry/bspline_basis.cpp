@@ -27,7 +27,8 @@ void validate_knot_vector(const std::vector<double>& knots, int degree, std::siz
   }
   for (std::size_t i = 0; i < knots.size(); ++i) {
     if (!std::isfinite(knots[i])) {
-      throw OptionError(name + " knots", "[" + std::to_string(i) + "] = " + std::to_string(knots[i]),
+      throw OptionError(name + " knots",
+                        "[" + std::to_string(i) + "] = " + std::to_string(knots[i]),
                         "knots must be finite");
     }
     if (i > 0 && knots[i] < knots[i - 1]) {
@@ -45,8 +46,8 @@ void validate_knot_vector(const std::vector<double>& knots, int degree, std::siz
     }
   }
   if (!(knots.back() > knots.front())) {
-    throw OptionError(name + " knots", shortest_double(knots.front()) + ".." +
-                                           shortest_double(knots.back()),
+    throw OptionError(name + " knots",
+                      shortest_double(knots.front()) + ".." + shortest_double(knots.back()),
                       "the parameter range must be non-empty");
   }
   // Interior multiplicity <= degree keeps the curve continuous (C^(p-m)).
@@ -54,9 +55,9 @@ void validate_knot_vector(const std::vector<double>& knots, int degree, std::siz
   for (std::size_t i = p + 1; i + p + 1 < knots.size(); ++i) {
     run = (knots[i] == knots[i - 1] && i > p + 1) ? run + 1 : 1;
     if (run > p) {
-      throw OptionError(name + " knots", shortest_double(knots[i]),
-                        "an interior knot may repeat at most degree = " + std::to_string(degree) +
-                            " times");
+      throw OptionError(
+          name + " knots", shortest_double(knots[i]),
+          "an interior knot may repeat at most degree = " + std::to_string(degree) + " times");
     }
   }
 }

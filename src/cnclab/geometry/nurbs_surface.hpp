@@ -11,13 +11,13 @@
 namespace cnclab {
 
 struct NurbsSurface {
-  int degree_u = 3, degree_v = 3;      // p, q >= 1
-  std::vector<double> knots_u;         // clamped, count_u + degree_u + 1 values
-  std::vector<double> knots_v;         // clamped, count_v + degree_v + 1 values
-  std::size_t count_u = 0;             // control points along u
-  std::size_t count_v = 0;             // control points along v
-  std::vector<Eigen::Vector3d> points; // P_ij at [i * count_v + j] (i along u) [mm]
-  std::vector<double> weights;         // w_ij > 0, same layout
+  int degree_u = 3, degree_v = 3;       // p, q >= 1
+  std::vector<double> knots_u;          // clamped, count_u + degree_u + 1 values
+  std::vector<double> knots_v;          // clamped, count_v + degree_v + 1 values
+  std::size_t count_u = 0;              // control points along u
+  std::size_t count_v = 0;              // control points along v
+  std::vector<Eigen::Vector3d> points;  // P_ij at [i * count_v + j] (i along u) [mm]
+  std::vector<double> weights;          // w_ij > 0, same layout
 
   // Throws OptionError naming the rule (sizes, knots, weights > 0, finite).
   void validate() const;

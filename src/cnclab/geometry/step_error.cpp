@@ -77,7 +77,9 @@ double distance_to_cl_line(const StepErrorSegment& s, double u) {
   return std::sqrt(squared_distance(cl_line(s), curve_point(*s.curve, u)));
 }
 
-bool is_convex_segment(const StepErrorSegment& s) { return convex_against(s, cl_line(s)); }
+bool is_convex_segment(const StepErrorSegment& s) {
+  return convex_against(s, cl_line(s));
+}
 
 StepError exact_step_error(const StepErrorSegment& s, const ExactStepErrorOptions& o) {
   const Line line = cl_line(s);
@@ -107,15 +109,16 @@ StepError exact_step_error(const StepErrorSegment& s, const ExactStepErrorOption
     const Eigen::Vector3d d = c.point - line.origin;
     const double da = d.dot(line.direction), c1a = c.d1.dot(line.direction);
     const double g = 2.0 * (d.dot(c.d1) - da * c1a);
-    const double dg = 2.0 * (c.d1.squaredNorm() + d.dot(c.d2) - c1a * c1a -
-                             da * c.d2.dot(line.direction));
+    const double dg =
+        2.0 * (c.d1.squaredNorm() + d.dot(c.d2) - c1a * c1a - da * c.d2.dot(line.direction));
     return Slope{sense * g, sense * dg, std::max(0.0, d.squaredNorm() - da * da)};
   };
   double lo = grid_u(std::max(best - 1, 0)), hi = grid_u(std::min(best + 1, n));
   const Slope at_lo = slope(lo), at_hi = slope(hi);
   // An extreme inside [lo, hi] needs g(lo) < 0 < g(hi); otherwise the grid
   // extreme is a segment end where L keeps falling (rising) outward.
-  if (!(at_lo.g < 0.0 && at_hi.g > 0.0)) return finish(s, grid_u(best), best_f, convex, evaluations);
+  if (!(at_lo.g < 0.0 && at_hi.g > 0.0))
+    return finish(s, grid_u(best), best_f, convex, evaluations);
   double u = grid_u(best);
   double du_old = hi - lo, du = du_old;
   Slope at = slope(u);

@@ -27,11 +27,11 @@ struct StepErrorSegment {
 };
 
 struct StepError {
-  double error = 0.0;     // e_i = |R - L(p_e)| [mm]
-  double u_extreme = 0.0; // parameter of p_e
-  double distance = 0.0;  // L(p_e) [mm]
-  bool convex = true;     // the classification above
-  int evaluations = 0;    // CC-curve evaluations spent (cost measure)
+  double error = 0.0;      // e_i = |R - L(p_e)| [mm]
+  double u_extreme = 0.0;  // parameter of p_e
+  double distance = 0.0;   // L(p_e) [mm]
+  bool convex = true;      // the classification above
+  int evaluations = 0;     // CC-curve evaluations spent (cost measure)
 };
 
 struct ExactStepErrorOptions {
@@ -50,7 +50,8 @@ struct ExactStepErrorOptions {
 // safeguarded Newton (Newton with bisection fallback, Numerical Recipes
 // rtsafe) on g(u) = d L^2/du using the exact C' and C'' of the NURBS curve.
 // Throws Error if the CL points coincide.
-StepError exact_step_error(const StepErrorSegment& segment, const ExactStepErrorOptions& options = {});
+StepError exact_step_error(const StepErrorSegment& segment,
+                           const ExactStepErrorOptions& options = {});
 
 struct IterativeStepErrorOptions {
   // Discrete points per pass, ends included (the paper's geometric methods

@@ -72,10 +72,11 @@ std::string nurbs_surface_yaml(const NurbsSurface& s, const std::string& indent)
   }
   out += indent + "weights:\n";
   for (std::size_t i = 0; i < s.count_u; ++i) {
-    out += indent + "  - " +
-           flow_list(std::vector<double>(s.weights.begin() + static_cast<long>(i * s.count_v),
-                                         s.weights.begin() + static_cast<long>((i + 1) * s.count_v))) +
-           "\n";
+    out +=
+        indent + "  - " +
+        flow_list(std::vector<double>(s.weights.begin() + static_cast<long>(i * s.count_v),
+                                      s.weights.begin() + static_cast<long>((i + 1) * s.count_v))) +
+        "\n";
   }
   return out;
 }

@@ -31,10 +31,10 @@ struct ToolPathOptions {
 
 // One tool-path line: its CC curve and the CC/CL points along it.
 struct ToolPathLine {
-  double v = 0.0;                   // the constant parameter of the line
-  NurbsCurve curve;                 // exact CC curve u -> S(u, v)
-  std::vector<double> u;            // u_k, k = 0..M-1
-  std::vector<Eigen::Vector3d> cc;  // S(u_k, v) [mm]
+  double v = 0.0;                       // the constant parameter of the line
+  NurbsCurve curve;                     // exact CC curve u -> S(u, v)
+  std::vector<double> u;                // u_k, k = 0..M-1
+  std::vector<Eigen::Vector3d> cc;      // S(u_k, v) [mm]
   std::vector<Eigen::Vector3d> normal;  // unit normal at cc, toward the tool (+z)
   std::vector<Eigen::Vector3d> cl;      // cc + R normal [mm]
 };
