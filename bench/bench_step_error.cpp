@@ -129,8 +129,9 @@ int main(int argc, char** argv) {
   }
   // Seed 000 Table 8: its geometric method took 9.267 s (surface 2) and
   // 9.761 s (surface 3) for a test set of 16,830 samples (i7-12700KF).
-  std::printf("paper (Table 8, other hardware): geometric method %.0f samples/s (surface 2), "
-              "%.0f samples/s (surface 3)\n",
-              16830 / 9.267, 16830 / 9.761);
+  std::printf(
+      "paper (Table 8, other hardware): geometric method %.0f samples/s (surface 2), "
+      "%.0f samples/s (surface 3)\n",
+      16830 / 9.267, 16830 / 9.761);
   return 0;
 }

@@ -209,9 +209,9 @@ TEST_F(Cli, DatasetGenerateWritesAFileThatShowDescribes) {
       << g.out;
   const Result show = cnclab("dataset show out/s1.h5");
   ASSERT_EQ(show.code, 0) << show.err;
-  for (const char* text : {"samples    12", "inputs     73", "p20_z", "cl_i+1_x", "mm",
-                           "step_error", "µm", "histogram of step_error [µm]",
-                           "convex/concave split: convex", "u_i+1"}) {
+  for (const char* text :
+       {"samples    12", "inputs     73", "p20_z", "cl_i+1_x", "mm", "step_error", "µm",
+        "histogram of step_error [µm]", "convex/concave split: convex", "u_i+1"}) {
     EXPECT_NE(show.out.find(text), std::string::npos) << text << "\n" << show.out;
   }
   // h5dump (independent reader) sees the metadata beside the inputs, with units.

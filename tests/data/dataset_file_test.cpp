@@ -62,6 +62,21 @@ void edit_raw(const fs::path& path, F&& edit) {
   H5Fclose(file);
 }
 
+// Replaces element `index` (row-major) of the float64 dataset `name` of
+// `size` elements by change(element), through the raw C API.
+template <class F>
+void edit_value(const fs::path& path, const char* name, std::size_t size, std::size_t index,
+                F&& change) {
+  edit_raw(path, [&](hid_t file) {
+    const hid_t ds = H5Dopen2(file, name, H5P_DEFAULT);
+    std::vector<double> v(size);
+    H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    v[index] = change(v[index]);
+    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Dclose(ds);
+  });
+}
+
 std::string raw_string_attribute(hid_t object, const char* name) {
   const hid_t attr = H5Aopen(object, name, H5P_DEFAULT);
   if (attr < 0) return "<missing>";
@@ -134,14 +149,9 @@ TEST(DatasetFile, TamperedValueIsDetectedByHash) {
   TempDir dir;
   const auto path = dir / "d.h5";
   write_dataset(path, small());
-  edit_raw(path, [](hid_t file) {
-    const hid_t ds = H5Dopen2(file, "/inputs", H5P_DEFAULT);
-    std::vector<double> v(kSamples * kInputs);
-    H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    v[7 * kInputs + 2] = std::nextafter(v[7 * kInputs + 2], 2.0);  // one ulp of one value
-    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    H5Dclose(ds);
-  });
+  // One ulp of one value.
+  edit_value(path, "/inputs", kSamples * kInputs, 7 * kInputs + 2,
+             [](double x) { return std::nextafter(x, 2.0); });
   EXPECT_IO_ERROR(read_dataset(path), path.string() + ": content hash mismatch");
 }
 
@@ -266,12 +276,6 @@ TEST(Dataset, HashChangesWithAnyPartOfTheContent) {
   EXPECT_NE(a.content_hash(), b.content_hash());
 }
 
-}  // namespace
-}  // namespace cnclab
-
-namespace cnclab {
-namespace {
-
 TEST(DatasetFile, MetadataRoundTripsAndEntersTheHash) {
   TempDir dir;
   const Dataset d = with_metadata();
@@ -297,14 +301,7 @@ TEST(DatasetFile, TamperedMetadataIsDetectedByHash) {
   TempDir dir;
   const auto path = dir / "m.h5";
   write_dataset(path, with_metadata());
-  edit_raw(path, [](hid_t file) {
-    const hid_t ds = H5Dopen2(file, "/metadata", H5P_DEFAULT);
-    double v[3][2];
-    H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v);
-    v[2][0] = 7;
-    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v);
-    H5Dclose(ds);
-  });
+  edit_value(path, "/metadata", 6, 4, [](double) { return 7.0; });
   EXPECT_IO_ERROR(read_dataset(path), path.string() + ": content hash mismatch");
 }
 

@@ -11,6 +11,7 @@
 #include "cnclab/data/dataset_file.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/geometry/surface_config.hpp"
+#include "common/expect_error.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
@@ -149,12 +150,7 @@ TEST(StepErrorGenerator, SurfacePathResolvesLikeInclude) {
 
 std::string config_error(const std::string& text) {
   TempDir dir;
-  try {
-    load(write(dir, "bad.yaml", text));
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing::error_message<ConfigError>([&] { load(write(dir, "bad.yaml", text)); });
 }
 
 TEST(StepErrorGenerator, BadOptionsAreLocatedConfigErrors) {

@@ -6,6 +6,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/rng.hpp"
+#include "common/expect_error.hpp"
 
 namespace cnclab {
 namespace {
@@ -80,12 +81,8 @@ TEST(BsplineBasis, PartitionOfUnityAndFiniteDifferences) {
 }
 
 std::string option_error(const std::vector<double>& knots, int degree, std::size_t points) {
-  try {
-    validate_knot_vector(knots, degree, points, "surface u");
-  } catch (const OptionError& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing::error_message<OptionError>(
+      [&] { validate_knot_vector(knots, degree, points, "surface u"); });
 }
 
 TEST(BsplineBasis, KnotVectorValidationNamesTheRule) {

@@ -8,6 +8,7 @@
 #include "cnclab/core/rng.hpp"
 #include "cnclab/geometry/nurbs_curve.hpp"
 #include "cnclab/geometry/nurbs_surface.hpp"
+#include "common/expect_error.hpp"
 #include "geometry/shapes.hpp"
 
 namespace cnclab {
@@ -201,12 +202,7 @@ TEST(NurbsCurve, DerivativesMatchCentralDifferences) {
 }
 
 std::string validation_message(const NurbsSurface& s) {
-  try {
-    s.validate();
-  } catch (const OptionError& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing::error_message<OptionError>([&] { s.validate(); });
 }
 
 TEST(NurbsSurface, ValidationNamesTheProblem) {

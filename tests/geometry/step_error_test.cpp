@@ -10,6 +10,7 @@
 #include "cnclab/core/rng.hpp"
 #include "cnclab/geometry/surface_config.hpp"
 #include "cnclab/geometry/tool_path.hpp"
+#include "common/expect_error.hpp"
 #include "geometry/shapes.hpp"
 
 namespace cnclab {
@@ -117,12 +118,7 @@ TEST(StepError, AgreesWithBruteForceScanOnTheTestSurfaces) {
 }
 
 std::string option_message(const ToolPathOptions& o) {
-  try {
-    o.validate();
-  } catch (const OptionError& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing::error_message<OptionError>([&] { o.validate(); });
 }
 
 TEST(StepError, BadToolPathOptionsNameTheField) {

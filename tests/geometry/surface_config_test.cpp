@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "cnclab/core/error.hpp"
+#include "common/expect_error.hpp"
 #include "geometry/shapes.hpp"
 
 namespace cnclab {
@@ -16,12 +17,7 @@ NurbsSurface parse(const std::string& text) {
 }
 
 std::string config_error(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing::error_message<ConfigError>([&] { parse(text); });
 }
 
 TEST(SurfaceConfig, YamlRoundTripIsExact) {
