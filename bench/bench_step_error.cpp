@@ -85,8 +85,7 @@ int main(int argc, char** argv) {
     std::vector<StepErrorSegment> segments;
     for (const auto& line : lines) {
       for (std::size_t i = 0; i + 1 < line.u.size(); ++i) {
-        segments.push_back({&line.curve, line.u[i], line.u[i + 1], line.cl[i], line.cl[i + 1],
-                            o.tool_path.tool_radius});
+        segments.push_back(line.segment(i));
       }
     }
     const auto n = static_cast<double>(segments.size());

@@ -144,6 +144,18 @@ std::vector<Design> designs() {
   };
 }
 
+std::string fixed3(double x) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3f", x);
+  return text;
+}
+
+std::string sig3(double x) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
 void write_yaml(const std::string& dir, const Design& d, double lambda, const NurbsSurface& s,
                 const Report& r) {
   std::filesystem::create_directories(dir);
@@ -156,14 +168,15 @@ void write_yaml(const std::string& dir, const Design& d, double lambda, const Nu
       << "#   bicubic, 16 x 16 control points on uniform clamped knots; x, y at the\n"
       << "#   Greville abscissae times the box size; z from\n"
       << "#     " << d.formula << "\n"
-      << "#   with lambda = " << shortest_double(lambda)
+      << "#   with lambda = " << fixed3(lambda)
       << " mm (bisected so the largest step error of the\n"
       << "#   paper's tool path, 200 lines x 100 CC points along u = x, R = 5 mm, is the paper's\n"
       << "#   " << shortest_double(d.max_error_um) << " µm), then mapped affinely onto z in [0, "
       << shortest_double(d.height) << "]; weights 1 +- a smooth bump.\n"
       << "# The wave along x gives convex crests and concave troughs on every tool-path line.\n"
-      << "# Bounding box (801 x 801 samples): " << shortest_double(r.box.size().x()) << " x "
-      << shortest_double(r.box.size().y()) << " x " << shortest_double(r.box.size().z()) << " mm.\n"
+      << "# Bounding box (801 x 801 samples): " << fixed3(r.box.size().x()) << " x "
+      << fixed3(r.box.size().y()) << " x " << fixed3(r.box.size().z()) << " mm; step errors ["
+      << sig3(r.min_um) << ", " << sig3(r.max_um) << "] µm.\n"
       << "# Regenerate: build/bench/cnclab_design_surfaces configs/surfaces\n"
       << nurbs_surface_yaml(s, "");
   if (!out.flush()) {
@@ -182,7 +195,7 @@ int main(int argc, char** argv) {
     const double lambda = tune(d, 20.0, 2000.0);
     const NurbsSurface s = build(d, lambda);
     const Report r = evaluate(s);
-    std::printf("%-9s %8.3f %8.3f x %7.3f x %6.3f [%8.5f, %8.4f] [0.01, %g] %7.1f%%\n",
+    std::printf("%-9s %8.3f %8.3f x %7.3f x %6.3f [%9.3g, %8.4f] [0.01, %g] %7.1f%%\n",
                 d.name.c_str(), lambda, r.box.size().x(), r.box.size().y(), r.box.size().z(),
                 r.min_um, r.max_um, d.max_error_um,
                 100.0 * static_cast<double>(r.convex) / static_cast<double>(r.samples));

@@ -48,8 +48,7 @@ void check_cylinder(const CylinderCase& c) {
       EXPECT_NEAR(std::hypot(path.cl[i].x(), path.cl[i].z()), expected_cl_radius, 1e-12);
       const double theta = std::abs(angle_xz(path.cc[i + 1]) - angle_xz(path.cc[i]));
       const double expected = expected_cl_radius * (1.0 - std::cos(theta / 2));
-      const StepErrorSegment seg{&path.curve, path.u[i],      path.u[i + 1],
-                                 path.cl[i],  path.cl[i + 1], c.tool_radius};
+      const StepErrorSegment seg = path.segment(i);
       const StepError exact = exact_step_error(seg);
       EXPECT_NEAR(exact.error, expected, kClosedFormTol)
           << "rho " << c.rho << " R " << c.tool_radius << " segment " << i;
@@ -97,8 +96,7 @@ TEST(StepError, AgreesWithBruteForceScanOnTheTestSurfaces) {
       const ToolPathLine path = plan_line(s, o, rng.below(o.lines));
       for (int k = 0; k < 3; ++k) {
         const std::size_t i = rng.below(o.points_per_line - 1);
-        const StepErrorSegment seg{&path.curve, path.u[i],      path.u[i + 1],
-                                   path.cl[i],  path.cl[i + 1], o.tool_radius};
+        const StepErrorSegment seg = path.segment(i);
         const StepError exact = exact_step_error(seg);
         const double sense = exact.convex ? 1.0 : -1.0;
         double best = sense * INFINITY;

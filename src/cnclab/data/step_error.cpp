@@ -35,9 +35,7 @@ Dataset generate_step_error_dataset(const StepErrorDatasetOptions& o) {
   for (std::size_t line = 0; line < o.tool_path.lines; ++line) {
     const ToolPathLine path = plan_line(o.surface, o.tool_path, line);
     for (std::size_t i = 0; i + 1 < path.u.size(); ++i, ++col) {
-      const StepErrorSegment segment{&path.curve, path.u[i],      path.u[i + 1],
-                                     path.cl[i],  path.cl[i + 1], o.tool_path.tool_radius};
-      const StepError e = exact_step_error(segment, o.exact);
+      const StepError e = exact_step_error(path.segment(i), o.exact);
       auto x = d.inputs.col(col);
       const double du = (path.u[i + 1] - path.u[i]) / static_cast<double>(k + 1);
       for (std::size_t j = 0; j < k; ++j) {

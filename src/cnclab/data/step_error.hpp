@@ -10,9 +10,13 @@
 // Metadata (not inputs): line index, point index i, u_i, u_i+1, v, convex
 // (1 convex, 0 concave).
 //
-// Default K = 20: seed 000's network has 73 inputs (Table 1 lists {p_j},
-// the two CC points, the two CL points and R; patent claim 3 the same), and
-// 3K + 3*2 + 3*2 + 1 = 73 gives K = 20 points on the local CC curve.
+// Default K = 20: seed 000's network has 73 inputs (the text copy does not
+// print the number; its Table 1 lists {p_j}, the two CC points, the two CL
+// points and R, patent claim 3 the same), and 3K + 3*2 + 3*2 + 1 = 73 gives
+// K = 20 points on the local CC curve, consistent with the layout. Not
+// consistent: the paper's Eq. 8, n1 = sqrt(n + m) + a with a in [1, 10],
+// gives 9.6..18.6 neurons for n = 73, m = 1, not its 28 (28 would need
+// n >= 323, i.e. K >= 104); we keep 73 inputs and the 28/20 network.
 #include <cstddef>
 #include <memory>
 #include <string>

@@ -1,6 +1,5 @@
 #include "cnclab/geometry/step_error.hpp"
 
-#include <Eigen/Geometry>
 #include <cmath>
 
 #include "cnclab/core/error.hpp"
@@ -82,6 +81,7 @@ bool is_convex_segment(const StepErrorSegment& s) {
 }
 
 StepError exact_step_error(const StepErrorSegment& s, const ExactStepErrorOptions& o) {
+  o.validate();
   const Line line = cl_line(s);
   const bool convex = convex_against(s, line);
   // Minimise sense * L^2: +1 for the minimum (convex), -1 for the maximum.
@@ -116,7 +116,8 @@ StepError exact_step_error(const StepErrorSegment& s, const ExactStepErrorOption
   double lo = grid_u(std::max(best - 1, 0)), hi = grid_u(std::min(best + 1, n));
   const Slope at_lo = slope(lo), at_hi = slope(hi);
   // An extreme inside [lo, hi] needs g(lo) < 0 < g(hi); otherwise the grid
-  // extreme is a segment end where L keeps falling (rising) outward.
+  // extreme is a segment end where L keeps falling (rising) outward, or L is
+  // flat to rounding there: the grid value is then the answer.
   if (!(at_lo.g < 0.0 && at_hi.g > 0.0))
     return finish(s, grid_u(best), best_f, convex, evaluations);
   double u = grid_u(best);
@@ -147,6 +148,7 @@ StepError exact_step_error(const StepErrorSegment& s, const ExactStepErrorOption
 }
 
 StepError iterative_step_error(const StepErrorSegment& s, const IterativeStepErrorOptions& o) {
+  o.validate();
   const Line line = cl_line(s);
   const bool convex = convex_against(s, line);
   const double sense = convex ? 1.0 : -1.0;

@@ -27,6 +27,7 @@ ToolPathLine plan_line(const NurbsSurface& s, const ToolPathOptions& o, std::siz
   ToolPathLine t;
   t.v = v0 + (v1 - v0) * static_cast<double>(line) / static_cast<double>(o.lines - 1);
   t.curve = iso_curve_u(s, t.v);
+  t.tool_radius = o.tool_radius;
   const std::size_t m = o.points_per_line;
   t.u.resize(m);
   t.cc.resize(m);

@@ -9,6 +9,7 @@
 
 #include "cnclab/geometry/nurbs_curve.hpp"
 #include "cnclab/geometry/nurbs_surface.hpp"
+#include "cnclab/geometry/step_error.hpp"
 
 namespace cnclab {
 
@@ -37,6 +38,12 @@ struct ToolPathLine {
   std::vector<Eigen::Vector3d> cc;      // S(u_k, v) [mm]
   std::vector<Eigen::Vector3d> normal;  // unit normal at cc, toward the tool (+z)
   std::vector<Eigen::Vector3d> cl;      // cc + R normal [mm]
+  double tool_radius = 0.0;             // R [mm]
+
+  // Segment i (CC points i and i + 1, i < u.size() - 1); refers to `curve`.
+  StepErrorSegment segment(std::size_t i) const {
+    return {&curve, u[i], u[i + 1], cl[i], cl[i + 1], tool_radius};
+  }
 };
 
 // Line `line` (0-based, < options.lines) of the tool path on `surface`.
