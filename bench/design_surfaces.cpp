@@ -19,6 +19,7 @@
 //   Prints the report; with OUT_DIR writes OUT_DIR/surface{1,2,3}.yaml
 //   (the committed configs/surfaces/*.yaml were made by
 //   `build/bench/cnclab_design_surfaces configs/surfaces`).
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -85,17 +86,30 @@ NurbsSurface build(const Design& d, double lambda) {
 
 struct Report {
   BoundingBox box;
+  double min_concave_radius = 0;  // smallest concave radius of curvature along u [mm]
   double min_um = 0, max_um = 0;
   std::size_t convex = 0, samples = 0;
 };
 
-Report evaluate(const NurbsSurface& s) {
+Report evaluate(const NurbsSurface& s, bool with_curvature = false) {
   StepErrorDatasetOptions o;
   o.surface = s;
   o.curve_points = 1;  // the inputs do not matter here
   const Dataset d = generate_step_error_dataset(o);
   Report r;
   r.box = sampled_bounding_box(s, kBoxSamples);
+  // Radius of curvature of the CC curves |C'|^3 / |C' x C''|, concave where
+  // C'' points to the tool side; the ball fits (no gouging along the feed)
+  // while it stays above R.
+  r.min_concave_radius = INFINITY;
+  for (int a = 0; with_curvature && a <= 200; ++a) {
+    for (int b = 0; b <= 1000; ++b) {
+      const SurfaceDerivatives sd = surface_derivatives(s, b / 1000.0, a / 200.0);
+      if (sd.duu.dot(oriented_unit_normal(sd, kToolAxis)) <= 0) continue;
+      r.min_concave_radius =
+          std::min(r.min_concave_radius, std::pow(sd.du.norm(), 3) / sd.du.cross(sd.duu).norm());
+    }
+  }
   r.min_um = d.targets.minCoeff();
   r.max_um = d.targets.maxCoeff();
   r.samples = d.num_samples();
@@ -173,7 +187,9 @@ void write_yaml(const std::string& dir, const Design& d, double lambda, const Nu
       << "#   paper's tool path, 200 lines x 100 CC points along u = x, R = 5 mm, is the paper's\n"
       << "#   " << shortest_double(d.max_error_um) << " µm), then mapped affinely onto z in [0, "
       << shortest_double(d.height) << "]; weights 1 +- a smooth bump.\n"
-      << "# The wave along x gives convex crests and concave troughs on every tool-path line.\n"
+      << "# The wave along x gives convex crests and concave troughs on every tool-path line;\n"
+      << "# the smallest concave radius of curvature along u is " << fixed3(r.min_concave_radius)
+      << " mm (> R: no gouging along the feed).\n"
       << "# Bounding box (801 x 801 samples): " << fixed3(r.box.size().x()) << " x "
       << fixed3(r.box.size().y()) << " x " << fixed3(r.box.size().z()) << " mm; step errors ["
       << sig3(r.min_um) << ", " << sig3(r.max_um) << "] µm.\n"
@@ -189,16 +205,17 @@ void write_yaml(const std::string& dir, const Design& d, double lambda, const Nu
 
 int main(int argc, char** argv) {
   const std::string out_dir = argc > 1 ? argv[1] : "";
-  std::printf("%-9s %8s %26s %22s %10s %8s\n", "surface", "lambda", "bounding box [mm]",
-              "step error [µm]", "paper", "convex");
+  std::printf("%-9s %8s %26s %22s %10s %8s %s\n", "surface", "lambda", "bounding box [mm]",
+              "step error [µm]", "paper", "convex", "min concave radius [mm]");
   for (const Design& d : designs()) {
     const double lambda = tune(d, 20.0, 2000.0);
     const NurbsSurface s = build(d, lambda);
-    const Report r = evaluate(s);
-    std::printf("%-9s %8.3f %8.3f x %7.3f x %6.3f [%9.3g, %8.4f] [0.01, %g] %7.1f%%\n",
+    const Report r = evaluate(s, true);
+    std::printf("%-9s %8.3f %8.3f x %7.3f x %6.3f [%9.3g, %8.4f] [0.01, %g] %7.1f%% %8.2f\n",
                 d.name.c_str(), lambda, r.box.size().x(), r.box.size().y(), r.box.size().z(),
                 r.min_um, r.max_um, d.max_error_um,
-                100.0 * static_cast<double>(r.convex) / static_cast<double>(r.samples));
+                100.0 * static_cast<double>(r.convex) / static_cast<double>(r.samples),
+                r.min_concave_radius);
     if (!out_dir.empty()) write_yaml(out_dir, d, lambda, s, r);
   }
   return 0;
