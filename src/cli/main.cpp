@@ -75,6 +75,9 @@ int main(int argc, char** argv) {
 
   auto* dataset = app.add_subcommand("dataset", "Generate or inspect a dataset file");
   dataset->require_subcommand(1);
+  dataset->footer(
+      "Example:\n  cnclab dataset generate configs/datasets/step_error_surface1.yaml\n  cnclab "
+      "dataset show datasets/step_error_surface1.h5");
   std::optional<std::string> dataset_out;
   auto* generate = dataset->add_subcommand(
       "generate",

@@ -239,7 +239,7 @@ TEST_F(Cli, DatasetGenerateRejectsBadConfigsAndWritesNothing) {
   EXPECT_TRUE(outputs().empty());
   const auto corrupt = write("corrupt.h5bad", "not HDF5\n");
   expect_one_line_error(cnclab("dataset show " + corrupt.string()), 1, corrupt.string());
-  for (const char* sub : {"dataset generate", "dataset show"}) {
+  for (const char* sub : {"dataset", "dataset generate", "dataset show"}) {
     const Result r = cnclab(std::string(sub) + " --help");
     EXPECT_EQ(r.code, 0) << sub;
     EXPECT_NE(r.out.find("Example"), std::string::npos) << sub << r.out;

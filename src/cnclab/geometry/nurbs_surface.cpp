@@ -128,6 +128,7 @@ NurbsCurve iso_curve_u(const NurbsSurface& s, double v) {
 }
 
 BoundingBox sampled_bounding_box(const NurbsSurface& s, int samples) {
+  samples = std::max(samples, 2);  // the grid includes both boundaries
   BoundingBox box{Eigen::Vector3d::Constant(INFINITY), Eigen::Vector3d::Constant(-INFINITY)};
   const double u0 = s.knots_u.front(), u1 = s.knots_u.back();
   const double v0 = s.knots_v.front(), v1 = s.knots_v.back();

@@ -49,8 +49,8 @@ Eigen::Vector3d oriented_unit_normal(const SurfaceDerivatives& d, const Eigen::V
 NurbsCurve iso_curve_u(const NurbsSurface& surface, double v);
 
 // Axis-aligned bounding box of S over its parameter rectangle, from a grid of
-// samples x samples points (exact in x and y for the designed surfaces whose
-// boundary control points span the box; accurate to the sampling in z).
+// samples x samples points (>= 2, boundaries included; exact in x and y for the designed surfaces
+// whose boundary control points span the box; accurate to the sampling in z).
 struct BoundingBox {
   Eigen::Vector3d min, max;
   Eigen::Vector3d size() const { return max - min; }
