@@ -148,6 +148,34 @@ TEST(StepErrorGenerator, SurfacePathResolvesLikeInclude) {
   EXPECT_EQ(load(config).generator->shape().samples, 20u);
 }
 
+// Seed 000's three surfaces with its tool path (200 x 100, R = 5 mm): the
+// paper's bounding boxes within 0.5 %, largest step error within 25 % of the
+// paper's, smallest below 0.05 µm, convex and concave segments on each.
+TEST(StepErrorGenerator, TheThreeSurfacesMatchThePapersBoxesAndRanges) {
+  struct Paper {
+    const char* file;
+    double box[3], max_um;
+  };
+  for (const Paper& p :
+       {Paper{"/surface1.yaml", {120, 140, 38}, 13}, Paper{"/surface2.yaml", {135, 175, 68.28}, 14},
+        Paper{"/surface3.yaml", {150, 150, 54.02}, 9}}) {
+    const ConfigDocument doc =
+        ConfigDocument::load(std::string(CNCLAB_SOURCE_DIR "/configs/surfaces") + p.file);
+    StepErrorDatasetOptions o;
+    o.surface = read_nurbs_surface(doc.root());
+    o.curve_points = 1;  // inputs do not matter here
+    const Dataset d = generate_step_error_dataset(o);
+    EXPECT_EQ(d.num_samples(), 19'800u);
+    const Eigen::Vector3d size = sampled_bounding_box(o.surface, 401).size();
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(size(a), p.box[a], 0.005 * p.box[a]) << p.file;
+    EXPECT_NEAR(d.targets.maxCoeff(), p.max_um, 0.25 * p.max_um) << p.file;
+    EXPECT_LT(d.targets.minCoeff(), 0.05) << p.file;
+    const double convex_share = d.metadata.row(d.metadata_row("convex")).mean();
+    EXPECT_GT(convex_share, 0.1) << p.file;
+    EXPECT_LT(convex_share, 0.9) << p.file;
+  }
+}
+
 std::string config_error(const std::string& text) {
   TempDir dir;
   return testing::error_message<ConfigError>([&] { load(write(dir, "bad.yaml", text)); });
