@@ -26,6 +26,9 @@ struct DatasetSpec {
   std::optional<std::uint64_t> seed;
 };
 
+// Reads a `dataset` section (strict; `cnclab dataset generate` and experiments).
+DatasetSpec read_dataset_spec(const ConfigReader& dataset_section);
+
 // normalisation: {inputs: zscore|minmax|none, targets: zscore|minmax|none},
 // fitted on the training split only: zscore = seed 000 Eq. 7 (n-1 sample
 // std), minmax = MATLAB mapminmax to [-1, 1] (seed 002, trainbr's usual
