@@ -1,0 +1,272 @@
+#include "cnclab/motion/feedrate_planner.hpp"
+
+#include <IpIpoptApplication.hpp>
+#include <IpSolveStatistics.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/motion/feedrate_nlp.hpp"
+#include "cnclab/motion/path_grid.hpp"
+
+namespace cnclab {
+namespace {
+
+using feedrate_detail::FeedrateNlp;
+using feedrate_detail::NodeCoefficients;
+using feedrate_detail::WindowState;
+
+const char* status_name(Ipopt::ApplicationReturnStatus s) {
+  switch (s) {
+    case Ipopt::Solve_Succeeded: return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level: return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected: return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small: return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates: return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop: return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found: return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded: return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed: return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation: return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded: return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition: return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option: return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected: return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception: return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown: return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory: return "Insufficient_Memory";
+    case Ipopt::Internal_Error: return "Internal_Error";
+  }
+  return "unknown status";
+}
+
+// Scaled units (feedrate_nlp.hpp): T0 = A/J [s], L0 = A T0^2 [mm], and the
+// map u -> w = (u - u_begin) * lambda / L0.
+struct Scaling {
+  double T0 = 1.0, L0 = 1.0, lambda = 1.0, u_begin = 0.0;
+  double du_dw() const { return L0 / lambda; }
+};
+
+NodeCoefficients node_coefficients(const PathPoint& p, double u, const Scaling& s,
+                                   const PlanarLimits& limits) {
+  const double g = s.du_dw();
+  const Vec2 q1 = p.d1 * g, q2 = p.d2 * g * g, q3 = p.d3 * g * g * g;
+  const double T0 = s.T0;
+  NodeCoefficients c;
+  for (int i = 0; i < 2; ++i) {
+    const AxisLimits& L = limits.axes[i];
+    c.vel[i] = q1[i] / (L.velocity * T0);
+    c.acc1[i] = q1[i] / (L.acceleration * T0 * T0);
+    c.acc2[i] = q2[i] / (L.acceleration * T0 * T0);
+    c.jerk1[i] = q1[i] / (L.jerk * T0 * T0 * T0);
+    c.jerk2[i] = q2[i] / (L.jerk * T0 * T0 * T0);
+    c.jerk3[i] = q3[i] / (L.jerk * T0 * T0 * T0);
+  }
+  c.w = (u - s.u_begin) / g;
+  return c;
+}
+
+double max_abs(const std::array<double, 2>& v) { return std::max(std::abs(v[0]), std::abs(v[1])); }
+
+// Heuristic starting point from a state: a speed that ramps up from the
+// start state and down to rest with a modest path acceleration and jerk,
+// capped at half of what velocity, centripetal acceleration and jerk allow
+// at each node; durations, node accelerations and interval jerks follow from
+// it by differences.
+std::vector<double> heuristic_guess(const std::vector<NodeCoefficients>& nodes,
+                                    WindowState start) {
+  const int N = static_cast<int>(nodes.size()) - 1;
+  double acc1_max = 0.0, jerk1_max = 0.0;
+  for (const auto& c : nodes) {
+    acc1_max = std::max(acc1_max, max_abs(c.acc1));
+    jerk1_max = std::max(jerk1_max, max_abs(c.jerk1));
+  }
+  const double a_guess = 0.2 / acc1_max, j_guess = 0.2 / jerk1_max;
+  // Speed after a distance d from rest with path jerk j and acceleration a:
+  // jerk phase v = (j/2)(6d/j)^(2/3), then v = sqrt(2 a d).
+  auto ramp = [&](double d) {
+    return std::min(std::sqrt(2 * a_guess * d), 0.5 * j_guess * std::pow(6 * d / j_guess, 2.0 / 3));
+  };
+  std::vector<double> v(N + 1), x(4 * N + 2);
+  for (int k = 0; k <= N; ++k) {
+    const NodeCoefficients& c = nodes[k];
+    double cap = 1e19;
+    if (max_abs(c.vel) > 0) cap = std::min(cap, 1.0 / max_abs(c.vel));
+    if (max_abs(c.acc2) > 0) cap = std::min(cap, 1.0 / std::sqrt(max_abs(c.acc2)));
+    if (max_abs(c.jerk3) > 0) cap = std::min(cap, std::cbrt(1.0 / max_abs(c.jerk3)));
+    const double up = start.v + ramp(c.w - nodes.front().w);
+    v[k] = std::min({0.5 * cap, up, ramp(nodes.back().w - c.w)});
+  }
+  v.front() = start.v;
+  v.back() = 0.0;
+  std::vector<double> interval_acc(N);
+  for (int k = 0; k < N; ++k) {
+    const double dw = nodes[k + 1].w - nodes[k].w;
+    x[4 * k + 2] = 2 * dw / (v[k] + v[k + 1]);
+    interval_acc[k] = (v[k + 1] * v[k + 1] - v[k] * v[k]) / (2 * dw);
+  }
+  for (int k = 0; k <= N; ++k) {
+    x[4 * k] = v[k];
+    x[4 * k + 1] = k == 0 ? start.a : k == N ? 0.0 : 0.5 * (interval_acc[k - 1] + interval_acc[k]);
+  }
+  for (int k = 0; k < N; ++k) x[4 * k + 3] = (x[4 * k + 5] - x[4 * k + 1]) / x[4 * k + 2];
+  return x;
+}
+
+// Starting point of a window: the previous window's solution over the
+// overlap (feasible, it ends at rest at the previous window's last node),
+// then the heuristic from rest over the rest of the window.
+std::vector<double> initial_guess(const std::vector<NodeCoefficients>& nodes, WindowState start,
+                                  const std::vector<double>& overlap) {
+  if (overlap.empty()) return heuristic_guess(nodes, start);
+  const std::size_t p = (overlap.size() - 2) / 4;  // nodes 0..p from the previous window
+  std::vector<double> x(overlap.begin(), overlap.end() - 2);
+  const std::vector<NodeCoefficients> rest(nodes.begin() + p, nodes.end());
+  const std::vector<double> tail = heuristic_guess(rest, {0.0, 0.0});
+  x.insert(x.end(), tail.begin(), tail.end());
+  return x;
+}
+
+}  // namespace
+
+void FeedratePlannerOptions::validate() const {
+  limits.validate();
+  regularity.validate();
+  if (!(grid_spacing > 0.0 && std::isfinite(grid_spacing))) {
+    throw OptionError("grid_spacing", std::to_string(grid_spacing), "must be > 0 and finite");
+  }
+  if (window_intervals < 2) {
+    throw OptionError("window_intervals", std::to_string(window_intervals), "must be >= 2");
+  }
+  if (commit_intervals < 1 || commit_intervals >= window_intervals) {
+    throw OptionError("commit_intervals", std::to_string(commit_intervals),
+                      "must be in [1, window_intervals - 1]");
+  }
+  // The overlap must hold a full stop from the largest path speed (S-curve
+  // stopping distance v^2/(2a) + v a/(2j) with v = |(V_x, V_y)|, a and j the
+  // smallest axis limits: a conservative bound), else the rest condition at
+  // a window's end slows the part that is kept.
+  double v = std::hypot(limits.axes[0].velocity, limits.axes[1].velocity);
+  double a = std::min(limits.axes[0].acceleration, limits.axes[1].acceleration);
+  double j = std::min(limits.axes[0].jerk, limits.axes[1].jerk);
+  const double braking = v * v / (2 * a) + v * a / (2 * j);
+  const double overlap = static_cast<double>(window_intervals - commit_intervals) * grid_spacing;
+  if (overlap < braking) {
+    std::ostringstream m;
+    m << "overlap (window_intervals - commit_intervals) * grid_spacing = " << overlap
+      << " mm must be >= the stopping distance " << braking << " mm at these limits";
+    throw OptionError("commit_intervals", std::to_string(commit_intervals), m.str());
+  }
+  if (!(tolerance > 0.0)) throw OptionError("tolerance", std::to_string(tolerance), "must be > 0");
+  if (max_iterations < 1) {
+    throw OptionError("max_iterations", std::to_string(max_iterations), "must be >= 1");
+  }
+}
+
+FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptions& options) {
+  options.validate();
+  check_regular_path(path, options.regularity);
+  const PlanarLimits& limits = options.limits;
+
+  Scaling scaling;
+  double a_ref = limits.axes[0].acceleration, j_ref = limits.axes[0].jerk;
+  for (const auto& L : limits.axes) {
+    a_ref = std::min(a_ref, L.acceleration);
+    j_ref = std::min(j_ref, L.jerk);
+  }
+  scaling.T0 = a_ref / j_ref;
+  scaling.L0 = a_ref * scaling.T0 * scaling.T0;
+  scaling.u_begin = path.u_begin();
+  scaling.lambda = arc_length(path) / (path.u_end() - path.u_begin());
+
+  const std::vector<double> grid = arc_length_grid(path, options.grid_spacing, 2);
+  const std::size_t n_nodes = grid.size();
+  std::vector<NodeCoefficients> coefficients(n_nodes);
+  for (std::size_t k = 0; k < n_nodes; ++k) {
+    coefficients[k] = node_coefficients(path.evaluate(grid[k]), grid[k], scaling, limits);
+  }
+
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  app->Options()->SetStringValue("sb", "yes");  // no banner
+  app->Options()->SetIntegerValue("print_level", 0);
+  app->Options()->SetNumericValue("tol", options.tolerance);
+  app->Options()->SetIntegerValue("max_iter", options.max_iterations);
+  app->Options()->SetStringValue("hessian_approximation", "exact");
+  app->Options()->SetStringValue("mu_strategy", "adaptive");
+  if (app->Initialize() != Ipopt::Solve_Succeeded) throw Error("feedrate planner: Ipopt failed to initialise");
+
+  // Profile in scaled units first: w-velocity etc. per node, jerk and
+  // duration per interval.
+  FeedrateProfile profile;
+  std::vector<double> v_s{0.0}, a_s{0.0}, h_s, j_s;
+  const std::size_t N = n_nodes - 1;
+  const std::size_t n_windows_estimate =
+      N <= options.window_intervals
+          ? 1
+          : 1 + (N - options.window_intervals + options.commit_intervals - 1) /
+                    options.commit_intervals;
+  WindowState state;
+  std::vector<double> overlap;  // previous solution from the new window's start on
+  std::size_t first = 0;
+  for (std::size_t window = 0;; ++window) {
+    const std::size_t last = std::min(first + options.window_intervals, N);
+    const bool final_window = last == N;
+    std::vector<NodeCoefficients> nodes(coefficients.begin() + first,
+                                        coefficients.begin() + last + 1);
+    Ipopt::SmartPtr<FeedrateNlp> nlp =
+        new FeedrateNlp(nodes, state, initial_guess(nodes, state, overlap));
+    const auto t0 = std::chrono::steady_clock::now();
+    const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(nlp));
+    const auto t1 = std::chrono::steady_clock::now();
+    if (status != Ipopt::Solve_Succeeded && status != Ipopt::Solved_To_Acceptable_Level) {
+      std::ostringstream m;
+      m << "feedrate planning failed in window " << window + 1 << " of about "
+        << n_windows_estimate << " (grid nodes " << first << ".." << last << ", path parameter u in ["
+        << grid[first] << ", " << grid[last] << "]): Ipopt returned " << status_name(status)
+        << " (" << static_cast<int>(status) << ")";
+      throw Error(m.str());
+    }
+    const std::vector<double>& x = nlp->solution();
+    const std::size_t keep = final_window ? last - first : options.commit_intervals;
+    for (std::size_t k = 0; k < keep; ++k) {
+      h_s.push_back(x[4 * k + 2]);
+      j_s.push_back(x[4 * k + 3]);
+      v_s.push_back(x[4 * (k + 1)]);
+      a_s.push_back(x[4 * (k + 1) + 1]);
+    }
+    WindowRecord record;
+    record.first_node = first;
+    record.last_node = last;
+    record.committed_nodes = keep;
+    const Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = app->Statistics();
+    record.iterations = Ipopt::IsValid(stats) ? stats->IterationCount() : -1;
+    record.seconds = std::chrono::duration<double>(t1 - t0).count();
+    profile.windows.push_back(record);
+    if (final_window) break;
+    state = {x[4 * keep], x[4 * keep + 1]};
+    overlap.assign(x.begin() + 4 * keep, x.end());
+    first += keep;
+  }
+
+  // Back to physical units: u = u_begin + w du/dw, t = T0 t~.
+  const double g = scaling.du_dw(), T0 = scaling.T0;
+  profile.u = grid;
+  profile.t.assign(n_nodes, 0.0);
+  profile.ud.resize(n_nodes);
+  profile.udd.resize(n_nodes);
+  profile.uddd.resize(N);
+  for (std::size_t k = 0; k < n_nodes; ++k) {
+    profile.ud[k] = g * v_s[k] / T0;
+    profile.udd[k] = g * a_s[k] / (T0 * T0);
+    if (k < N) {
+      profile.uddd[k] = g * j_s[k] / (T0 * T0 * T0);
+      profile.t[k + 1] = profile.t[k] + T0 * h_s[k];
+    }
+  }
+  return profile;
+}
+
+}  // namespace cnclab

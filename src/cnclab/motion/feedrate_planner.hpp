@@ -1,0 +1,49 @@
+#pragma once
+// Minimum-time feedrate along a planar path under per-axis velocity,
+// acceleration and jerk limits, as a nonlinear program over the path
+// parameter solved with Ipopt (C++ TNLP interface, exact sparse Jacobian and
+// exact Hessian of the Lagrangian; formulation in feedrate_nlp.hpp).
+//
+// Why exact second derivatives, not limited-memory quasi-Newton: every
+// constraint is a polynomial of degree <= 4 in at most four variables, so
+// the Hessian is a few entries per node, cheap and exact; with it Ipopt
+// converges in tens of iterations, where L-BFGS needs hundreds on these
+// strongly curved jerk constraints.
+//
+// Long paths are solved in overlapping windows: a window of
+// `window_intervals` grid intervals starts from the state (du/dt, d2u/dt2)
+// matched to the previous window at that node and ends at rest (so every
+// committed prefix can still stop: the plan is feasible whatever follows);
+// its first `commit_intervals` intervals are kept and the next window starts
+// at the last kept node. The overlap must exceed the braking distance
+// (about v^2/(2A) + vA/(2J) = 29 mm at seed 002's limits) for the rest
+// condition at a window's end not to slow the kept part.
+#include <cstddef>
+
+#include "cnclab/motion/axis_limits.hpp"
+#include "cnclab/motion/feedrate_profile.hpp"
+#include "cnclab/motion/planar_path.hpp"
+
+namespace cnclab {
+
+struct FeedratePlannerOptions {
+  PlanarLimits limits;  // per-axis v, a, j (seed 002: 300, 2000, 50000)
+  // Arc length between grid nodes [mm]. Limits are imposed at the nodes;
+  // between nodes the exact cubic motion follows the path geometry, so a
+  // finer grid tightens the limits there (see the interpolator test).
+  double grid_spacing = 0.5;
+  std::size_t window_intervals = 240;  // intervals per NLP window
+  std::size_t commit_intervals = 120;  // intervals kept per window (< window_intervals)
+  double tolerance = 1e-8;             // Ipopt `tol` (scaled NLP, see feedrate_nlp.hpp)
+  int max_iterations = 500;            // Ipopt `max_iter` per window
+  RegularityOptions regularity;        // cusp check before planning
+
+  void validate() const;
+};
+
+// Throws OptionError for bad options, cnclab::Error for a path with a cusp,
+// and cnclab::Error naming the window, its nodes, its parameter range and
+// Ipopt's status when a window's solve fails.
+FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptions& options = {});
+
+}  // namespace cnclab
