@@ -19,10 +19,7 @@ constexpr double kSCurveTolerance = 0.005;  // issue 9: within 0.5 %
 TEST(FeedratePlanner, StraightLineMatchesSCurve) {
   // Lines along x, at 30 degrees (x axis binds: path limits = axis / cos 30),
   // and short (peak velocity not reached), two of them longer than a window.
-  struct Case {
-    Vec2 end;
-  };
-  for (const Vec2& end : {Vec2(200, 0), Vec2(173.2050808, 100), Vec2(15, 0), Vec2(400, 0)}) {
+  for (const Vec2& end : {Vec2(200, 0), Vec2(173.2050808, 100), Vec2(15, 0)}) {
     const LinePath line(Vec2(0, 0), end);
     const double c = std::max(std::abs(end.x()), std::abs(end.y())) / end.norm();
     const double expected = scurve_time(end.norm(), 300 / c, 2000 / c, 50000 / c);
@@ -30,6 +27,92 @@ TEST(FeedratePlanner, StraightLineMatchesSCurve) {
     std::printf("line to (%.1f, %.1f): planned %.5f s, S-curve %.5f s, %zu windows\n", end.x(),
                 end.y(), p.total_time(), expected, p.windows.size());
     EXPECT_NEAR(p.total_time(), expected, kSCurveTolerance * expected);
+  }
+}
+
+}  // namespace
+}  // namespace cnclab
+
+namespace cnclab {
+namespace {
+
+// Planned time between the v+a-only lower bound and the constant-feedrate
+// upper bound on curved paths; all three printed.
+TEST(FeedratePlanner, PlannedTimeLiesBetweenIndependentBounds) {
+  const CirclePath circle(Vec2(0, 0), 20.0, 0.0, 2 * std::numbers::pi);
+  const CubicBezierPath bezier({Vec2(0, 0), Vec2(60, 80), Vec2(120, -60), Vec2(180, 20)});
+  const EpitrochoidPath trochoid(Vec2(0, 0), 100, 8, 7, 0.3);
+  const LinePath line(Vec2(0, 0), Vec2(150, 40));
+  const struct {
+    const char* name;
+    const PlanarPath* path;
+  } cases[] = {{"circle r=20", &circle}, {"cubic Bezier", &bezier}, {"epitrochoid", &trochoid},
+               {"line", &line}};
+  for (const auto& c : cases) {
+    const double lower = velocity_acceleration_time(*c.path, PlanarLimits{});
+    const ConstantFeedrateProfile upper = constant_feedrate_time(*c.path, PlanarLimits{});
+    const double planned = plan_feedrate(*c.path).total_time();
+    std::printf("%-13s lower (v,a only) %.4f s <= planned %.4f s <= constant feedrate %.4f s "
+                "(F = %.1f mm/s)\n",
+                c.name, lower, planned, upper.time, upper.feedrate);
+    EXPECT_LT(lower, planned) << c.name;
+    // On a line the upper bound is the S-curve itself: allow the planner's
+    // discretisation error there.
+    EXPECT_LT(planned, upper.time * (1 + kSCurveTolerance)) << c.name;
+  }
+}
+
+TEST(FeedratePlanner, BoundsOnALineAreClosedForms) {
+  // Along x: the v+a-only time is the trapezoid L/V + V/A; the upper bound
+  // is the S-curve.
+  const LinePath line(Vec2(0, 0), Vec2(100, 0));
+  EXPECT_NEAR(velocity_acceleration_time(line, PlanarLimits{}), 100.0 / 300 + 300.0 / 2000, 1e-9);
+  EXPECT_NEAR(constant_feedrate_time(line, PlanarLimits{}).time,
+              scurve_time(100, 300, 2000, 50000), 1e-9);
+}
+
+TEST(FeedratePlanner, RejectsBadOptionsAndCusps) {
+  const LinePath line(Vec2(0, 0), Vec2(100, 0));
+  FeedratePlannerOptions o;
+  o.limits.axes[1].jerk = 0;
+  EXPECT_THROW(plan_feedrate(line, o), OptionError);
+  try {
+    plan_feedrate(line, o);
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "limits.axes[1].jerk");
+  }
+  o = {};
+  o.limits.axes[0].velocity = std::nan("");
+  EXPECT_THROW(plan_feedrate(line, o), OptionError);
+  o = {};
+  o.commit_intervals = 230;  // overlap 5 mm < stopping distance
+  EXPECT_THROW(plan_feedrate(line, o), OptionError);
+  // A cubic with a cusp: control polygon folded back on itself (C'(1/2) = 0).
+  const CubicBezierPath cusp({Vec2(0, 0), Vec2(30, 30), Vec2(0, 30), Vec2(30, 0)});
+  try {
+    plan_feedrate(cusp);
+    ADD_FAILURE() << "expected an error for a cusp";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cusp"), std::string::npos) << e.what();
+    const std::string m = e.what();
+    const std::size_t at = m.find("at u = ");
+    ASSERT_NE(at, std::string::npos) << m;
+    EXPECT_NEAR(std::stod(m.substr(at + 7)), 0.5, 1e-3) << m;
+  }
+}
+
+TEST(FeedratePlanner, IpoptFailureNamesTheWindow) {
+  // One Ipopt iteration cannot converge: the error names window, nodes and status.
+  const LinePath line(Vec2(0, 0), Vec2(100, 0));
+  FeedratePlannerOptions o;
+  o.max_iterations = 1;
+  try {
+    plan_feedrate(line, o);
+    ADD_FAILURE() << "expected an Ipopt failure";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("window 1 of"), std::string::npos) << m;
+    EXPECT_NE(m.find("Maximum_Iterations_Exceeded"), std::string::npos) << m;
   }
 }
 

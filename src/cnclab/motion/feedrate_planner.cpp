@@ -133,8 +133,16 @@ std::vector<double> initial_guess(const std::vector<NodeCoefficients>& nodes, Wi
 }  // namespace
 
 void FeedratePlannerOptions::validate() const {
-  limits.validate();
-  regularity.validate();
+  try {
+    limits.validate();
+  } catch (const OptionError& e) {
+    throw OptionError("limits." + e.field(), e.value(), e.rule());
+  }
+  try {
+    regularity.validate();
+  } catch (const OptionError& e) {
+    throw OptionError("regularity." + e.field(), e.value(), e.rule());
+  }
   if (!(grid_spacing > 0.0 && std::isfinite(grid_spacing))) {
     throw OptionError("grid_spacing", std::to_string(grid_spacing), "must be > 0 and finite");
   }
