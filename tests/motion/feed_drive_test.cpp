@@ -93,10 +93,8 @@ TEST(FeedDrive, StepResponseMatchesTheContinuousLoop) {
 // 10 ms change of e_r over windows that hold a reversal or start within
 // 15 degrees after one, and the
 // largest elsewhere, over the middle one of three turns.
-std::pair<double, double> glitch_peaks(const MachineOptions& machine) {
-  const double radius = 10.0;
-  const CirclePath circle(Vec2(0, 0), radius, 0.0, 3 * 2 * std::numbers::pi);
-  const ReferenceTrajectory ref = interpolate(circle, plan_feedrate(circle), 1e-3);
+std::pair<double, double> glitch_peaks(const MachineOptions& machine,
+                                       const ReferenceTrajectory& ref) {
   const MachineResponse res = simulate_machine(machine, ref, 7);
   constexpr int kWindow = 10;  // samples (ms)
   double near = 0.0, away = 0.0;
@@ -116,11 +114,15 @@ std::pair<double, double> glitch_peaks(const MachineOptions& machine) {
 TEST(FeedDrive, QuadrantGlitchesAppearOnlyWithTheNonlinearities) {
   // Friction and backlash on; the lead error is off here because it is
   // periodic in position (one period per screw turn), not tied to reversals.
+  // Three turns of r = 10 mm at the planned feedrate (about 140 mm/s,
+  // acceleration-limited); the middle turn is measured.
+  const CirclePath circle(Vec2(0, 0), 10.0, 0.0, 3 * 2 * std::numbers::pi);
+  const ReferenceTrajectory ref = interpolate(circle, plan_feedrate(circle), 1e-3);
   MachineOptions machine;
   for (auto& a : machine.axes) a.lead_error_amplitude = 0.0;
-  auto [near_on, away_on] = glitch_peaks(machine);
+  auto [near_on, away_on] = glitch_peaks(machine, ref);
   for (auto& a : machine.axes) a = linear_axis();
-  auto [near_off, away_off] = glitch_peaks(machine);
+  auto [near_off, away_off] = glitch_peaks(machine, ref);
   std::printf("largest 10 ms radial error change [um]: nonlinear: after reversals %.2f, "
               "elsewhere %.2f; linear: %.2f, %.2f\n",
               near_on * 1e3, away_on * 1e3, near_off * 1e3, away_off * 1e3);

@@ -10,6 +10,7 @@
 #include "cnclab/motion/analytic_paths.hpp"
 #include "cnclab/motion/feedrate_bounds.hpp"
 #include "cnclab/motion/scurve.hpp"
+#include "planned_paths.hpp"
 
 namespace cnclab {
 namespace {
@@ -39,26 +40,18 @@ namespace {
 // Planned time between the v+a-only lower bound and the constant-feedrate
 // upper bound on curved paths; all three printed.
 TEST(FeedratePlanner, PlannedTimeLiesBetweenIndependentBounds) {
-  const CirclePath circle(Vec2(0, 0), 20.0, 0.0, 2 * std::numbers::pi);
-  const CubicBezierPath bezier({Vec2(0, 0), Vec2(60, 80), Vec2(120, -60), Vec2(180, 20)});
-  const EpitrochoidPath trochoid(Vec2(0, 0), 100, 8, 7, 0.3);
-  const LinePath line(Vec2(0, 0), Vec2(150, 40));
-  const struct {
-    const char* name;
-    const PlanarPath* path;
-  } cases[] = {{"circle r=20", &circle}, {"cubic Bezier", &bezier}, {"epitrochoid", &trochoid},
-               {"line", &line}};
-  for (const auto& c : cases) {
-    const double lower = velocity_acceleration_time(*c.path, PlanarLimits{});
-    const ConstantFeedrateProfile upper = constant_feedrate_time(*c.path, PlanarLimits{});
-    const double planned = plan_feedrate(*c.path).total_time();
-    std::printf("%-13s lower (v,a only) %.4f s <= planned %.4f s <= constant feedrate %.4f s "
+  for (const char* name : testing::kPlannedPathNames) {
+    const testing::PlannedPath& p = testing::planned_path(name);
+    const double lower = velocity_acceleration_time(*p.path, PlanarLimits{});
+    const ConstantFeedrateProfile upper = constant_feedrate_time(*p.path, PlanarLimits{});
+    const double planned = p.profile.total_time();
+    std::printf("%-12s lower (v,a only) %.4f s <= planned %.4f s <= constant feedrate %.4f s "
                 "(F = %.1f mm/s)\n",
-                c.name, lower, planned, upper.time, upper.feedrate);
-    EXPECT_LT(lower, planned) << c.name;
+                name, lower, planned, upper.time, upper.feedrate);
+    EXPECT_LT(lower, planned) << name;
     // On a line the upper bound is the S-curve itself: allow the planner's
     // discretisation error there.
-    EXPECT_LT(planned, upper.time * (1 + kSCurveTolerance)) << c.name;
+    EXPECT_LT(planned, upper.time * (1 + kSCurveTolerance)) << name;
   }
 }
 

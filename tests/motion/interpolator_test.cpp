@@ -10,6 +10,7 @@
 
 #include "cnclab/motion/analytic_paths.hpp"
 #include "cnclab/motion/feedrate_planner.hpp"
+#include "planned_paths.hpp"
 
 namespace cnclab {
 namespace {
@@ -41,19 +42,14 @@ Peaks numerical_peaks(const ReferenceTrajectory& r) {
 }
 
 TEST(Interpolator, NumericalDerivativesRespectEveryLimit) {
-  const CirclePath circle(Vec2(0, 0), 20.0, 0.0, 2 * std::numbers::pi);
-  const CubicBezierPath bezier({Vec2(0, 0), Vec2(60, 80), Vec2(120, -60), Vec2(180, 20)});
-  const EpitrochoidPath trochoid(Vec2(0, 0), 100, 8, 7, 0.3);
-  const LinePath line(Vec2(0, 0), Vec2(150, 40));
   const PlanarLimits limits;
-  for (const PlanarPath* path : {static_cast<const PlanarPath*>(&circle),
-                                 static_cast<const PlanarPath*>(&bezier),
-                                 static_cast<const PlanarPath*>(&trochoid),
-                                 static_cast<const PlanarPath*>(&line)}) {
-    const ReferenceTrajectory r = interpolate(*path, plan_feedrate(*path), 1e-3);
+  for (const char* name : testing::kPlannedPathNames) {
+    const testing::PlannedPath& planned = testing::planned_path(name);
+    const PlanarPath* path = planned.path.get();
+    const ReferenceTrajectory r = interpolate(*path, planned.profile, 1e-3);
     const Peaks peaks = numerical_peaks(r);
-    std::printf("peak |v| %6.1f %6.1f  |a| %7.1f %7.1f  |j| %8.0f %8.0f  (%ld samples)\n",
-                peaks.v.x(), peaks.v.y(), peaks.a.x(), peaks.a.y(), peaks.j.x(), peaks.j.y(),
+    std::printf("%-12s peak |v| %6.1f %6.1f  |a| %7.1f %7.1f  |j| %8.0f %8.0f  (%ld samples)\n",
+                name, peaks.v.x(), peaks.v.y(), peaks.a.x(), peaks.a.y(), peaks.j.x(), peaks.j.y(),
                 static_cast<long>(r.samples()));
     for (int i = 0; i < 2; ++i) {
       EXPECT_LE(peaks.v[i], limits.axes[i].velocity * (1 + kLimitTolerance));
@@ -69,8 +65,8 @@ TEST(Interpolator, NumericalDerivativesRespectEveryLimit) {
 }
 
 TEST(Interpolator, AnalyticDerivativesMatchDifferences) {
-  const CubicBezierPath bezier({Vec2(0, 0), Vec2(60, 80), Vec2(120, -60), Vec2(180, 20)});
-  const ReferenceTrajectory r = interpolate(bezier, plan_feedrate(bezier), 1e-3);
+  const testing::PlannedPath& bezier = testing::planned_path("bezier");
+  const ReferenceTrajectory r = interpolate(*bezier.path, bezier.profile, 1e-3);
   const double h = r.period;
   double v_err = 0, a_err = 0;
   for (Eigen::Index k = 1; k + 1 < r.samples(); ++k) {

@@ -130,6 +130,26 @@ std::vector<double> initial_guess(const std::vector<NodeCoefficients>& nodes, Wi
   return x;
 }
 
+// Splits the grid intervals that start or end within `length` mm of arc from
+// a path end into `parts` equal parameter steps.
+std::vector<double> refine_ends(const PlanarPath& path, const std::vector<double>& grid,
+                                double length, std::size_t parts) {
+  if (parts <= 1 || length <= 0.0) return grid;
+  const double total = arc_length(path, grid.front(), grid.back(), 256);
+  std::vector<double> out{grid.front()};
+  double s = 0.0;
+  for (std::size_t k = 0; k + 1 < grid.size(); ++k) {
+    const double s_next = s + arc_length(path, grid[k], grid[k + 1], 1);
+    const bool near_end = s < length || s_next > total - length;
+    const std::size_t n = near_end ? parts : 1;
+    for (std::size_t i = 1; i <= n; ++i) {
+      out.push_back(i == n ? grid[k + 1] : grid[k] + (grid[k + 1] - grid[k]) * i / n);
+    }
+    s = s_next;
+  }
+  return out;
+}
+
 }  // namespace
 
 void FeedratePlannerOptions::validate() const {
@@ -145,6 +165,22 @@ void FeedratePlannerOptions::validate() const {
   }
   if (!(grid_spacing > 0.0 && std::isfinite(grid_spacing))) {
     throw OptionError("grid_spacing", std::to_string(grid_spacing), "must be > 0 and finite");
+  }
+  if (!(end_refinement_length >= 0.0 && std::isfinite(end_refinement_length))) {
+    throw OptionError("end_refinement_length", std::to_string(end_refinement_length),
+                      "must be >= 0 and finite");
+  }
+  if (end_refinement < 1) {
+    throw OptionError("end_refinement", std::to_string(end_refinement), "must be >= 1");
+  }
+  // The refined start must lie inside the first window's committed part, so
+  // that every overlap consists of full-length intervals (checked below).
+  const double refined_intervals =
+      static_cast<double>(end_refinement) * std::ceil(end_refinement_length / grid_spacing);
+  if (end_refinement > 1 && refined_intervals > static_cast<double>(commit_intervals)) {
+    throw OptionError("end_refinement", std::to_string(end_refinement),
+                      "end_refinement * ceil(end_refinement_length / grid_spacing) must be <= "
+                      "commit_intervals");
   }
   if (window_intervals < 2) {
     throw OptionError("window_intervals", std::to_string(window_intervals), "must be >= 2");
@@ -190,7 +226,9 @@ FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptio
   scaling.u_begin = path.u_begin();
   scaling.lambda = arc_length(path) / (path.u_end() - path.u_begin());
 
-  const std::vector<double> grid = arc_length_grid(path, options.grid_spacing, 2);
+  const std::vector<double> grid =
+      refine_ends(path, arc_length_grid(path, options.grid_spacing, 2),
+                  options.end_refinement_length, options.end_refinement);
   const std::size_t n_nodes = grid.size();
   std::vector<NodeCoefficients> coefficients(n_nodes);
   for (std::size_t k = 0; k < n_nodes; ++k) {
@@ -204,7 +242,10 @@ FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptio
   app->Options()->SetIntegerValue("max_iter", options.max_iterations);
   app->Options()->SetStringValue("hessian_approximation", "exact");
   app->Options()->SetStringValue("mu_strategy", "adaptive");
-  if (app->Initialize() != Ipopt::Solve_Succeeded) throw Error("feedrate planner: Ipopt failed to initialise");
+  // "" = read no ipopt.opt: the plan must not depend on the working directory.
+  if (app->Initialize("") != Ipopt::Solve_Succeeded) {
+    throw Error("feedrate planner: Ipopt failed to initialise");
+  }
 
   // Profile in scaled units first: w-velocity etc. per node, jerk and
   // duration per interval.
