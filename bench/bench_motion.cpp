@@ -34,11 +34,12 @@ int main(int argc, char** argv) {
   const FeedratePlannerOptions options;
   std::printf("path: epitrochoid R1 = 100 mm, R2 = 8 mm, k = 7, %.0f turns, %.0f mm\n", turns,
               arc_length(path, 200000));
-  std::printf("limits per axis: v %.0f mm/s, a %.0f mm/s^2, j %.0f mm/s^3; grid %.2f mm, "
-              "windows of %zu intervals, %zu kept\n",
-              options.limits.axes[0].velocity, options.limits.axes[0].acceleration,
-              options.limits.axes[0].jerk, options.grid_spacing, options.window_intervals,
-              options.commit_intervals);
+  std::printf(
+      "limits per axis: v %.0f mm/s, a %.0f mm/s^2, j %.0f mm/s^3; grid %.2f mm, "
+      "windows of %zu intervals, %zu kept\n",
+      options.limits.axes[0].velocity, options.limits.axes[0].acceleration,
+      options.limits.axes[0].jerk, options.grid_spacing, options.window_intervals,
+      options.commit_intervals);
 
   auto t0 = std::chrono::steady_clock::now();
   const FeedrateProfile profile = plan_feedrate(path, options);
@@ -84,9 +85,10 @@ int main(int argc, char** argv) {
   std::printf("  Ipopt iterations per window %10.1f     (min %d, median %d, max %d)\n",
               mean_iterations, iterations.front(), iterations[iterations.size() / 2],
               iterations.back());
-  std::printf("  bounds without Ipopt: v+a lower %.2f s (%.2f s to compute), constant feedrate "
-              "upper %.2f s at %.1f mm/s (%.2f s)\n",
-              lower, lower_seconds, upper.time, upper.feedrate, upper_seconds);
+  std::printf(
+      "  bounds without Ipopt: v+a lower %.2f s (%.2f s to compute), constant feedrate "
+      "upper %.2f s at %.1f mm/s (%.2f s)\n",
+      lower, lower_seconds, upper.time, upper.feedrate, upper_seconds);
   std::printf("  planned / lower bound       %10.4f\n", profile.total_time() / lower);
   std::printf("\n1 ms interpolation            %10.3f s wall\n", interpolation_seconds);
   std::printf("\nfeed-drive simulator (%s, %.0f us integration step)\n", machine.name.c_str(),

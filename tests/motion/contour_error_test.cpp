@@ -101,17 +101,20 @@ TEST(ContourError, EstimatesOnCircles) {
       const double exact = exact_on_circle(circle, s.actual);
       const double e = (ref.position - s.actual).norm();
       const double taylor = std::abs(taylor_contour_error(ref, s.actual));
-      EXPECT_LE(std::abs(taylor - exact), e * e * e / (r * r - e * e) + e * e * e * e / (r * r * r) + 1e-13)
+      EXPECT_LE(std::abs(taylor - exact),
+                e * e * e / (r * r - e * e) + e * e * e * e / (r * r * r) + 1e-13)
           << "r " << r << " i " << i;
       EXPECT_NEAR(osculating_circle_contour_error(ref, s.actual), exact, 1e-11);
       taylor_max = std::max(taylor_max, std::abs(taylor - exact));
-      tangent_max = std::max(tangent_max, std::abs(tangent_line_contour_error(ref, s.actual) - exact));
-      osculating_max =
-          std::max(osculating_max, std::abs(osculating_circle_contour_error(ref, s.actual) - exact));
+      tangent_max =
+          std::max(tangent_max, std::abs(tangent_line_contour_error(ref, s.actual) - exact));
+      osculating_max = std::max(osculating_max,
+                                std::abs(osculating_circle_contour_error(ref, s.actual) - exact));
     }
-    std::printf("r = %5.1f mm, |e| <= 0.22 mm: max error vs exact [um]: Taylor %.4f, tangent line "
-                "%.4f, osculating circle %.1e\n",
-                r, taylor_max * 1e3, tangent_max * 1e3, osculating_max * 1e3);
+    std::printf(
+        "r = %5.1f mm, |e| <= 0.22 mm: max error vs exact [um]: Taylor %.4f, tangent line "
+        "%.4f, osculating circle %.1e\n",
+        r, taylor_max * 1e3, tangent_max * 1e3, osculating_max * 1e3);
     EXPECT_LT(taylor_max, 0.2 * tangent_max);
   }
 }
@@ -124,7 +127,8 @@ TEST(ContourError, TaylorSignAndOnTangentLine) {
   const PathPoint ref = circle.evaluate(0.0);  // R = (10, 0), t = (0, 1)
   EXPECT_NEAR(taylor_contour_error(ref, Vec2(9.9, 0.0)), -0.1, 1e-15);
   const Vec2 on_tangent(10.0, -0.2);
-  EXPECT_NEAR(std::abs(taylor_contour_error(ref, on_tangent)), std::hypot(10.0, 0.2) - 10.0, 1e-6);  // s^4 / 8r^3 = 2e-7
+  EXPECT_NEAR(std::abs(taylor_contour_error(ref, on_tangent)), std::hypot(10.0, 0.2) - 10.0,
+              1e-6);  // s^4 / 8r^3 = 2e-7
   EXPECT_NEAR(tangent_line_contour_error(ref, on_tangent), 0.0, 1e-15);
 }
 

@@ -64,7 +64,7 @@ TEST(FeedDrive, StepResponseMatchesTheContinuousLoop) {
   const double J = a.total_inertia(), Kv = a.velocity_gain, Ti = a.velocity_integral_time;
   const double b = a.viscous_friction, Kp = a.position_gain;
   Eigen::Matrix3d A;
-  A << 0, 1, 0,                                  //
+  A << 0, 1, 0,                                    //
       -Kv / J * Kp, -(Kv + b) / J, Kv / (J * Ti),  //
       -Kp, -1, 0;
   const Eigen::Vector3d B(0, Kv / J * Kp, Kp);
@@ -78,7 +78,8 @@ TEST(FeedDrive, StepResponseMatchesTheContinuousLoop) {
   for (int k = 1; k < n; k += 50) {
     // Sample k is the position at t_k; the step was applied at t_1.
     const double t = (k - 1) * timing.controller_period;
-    const Eigen::Vector3d x = ((A * t).exp() - Eigen::Matrix3d::Identity()) * A.inverse() * B * step;
+    const Eigen::Vector3d x =
+        ((A * t).exp() - Eigen::Matrix3d::Identity()) * A.inverse() * B * step;
     worst = std::max(worst, std::abs(out.actual[k] - x[0]));
     overshoot = std::max(overshoot, x[0] - step);
   }
@@ -123,9 +124,10 @@ TEST(FeedDrive, QuadrantGlitchesAppearOnlyWithTheNonlinearities) {
   auto [near_on, away_on] = glitch_peaks(machine, ref);
   for (auto& a : machine.axes) a = linear_axis();
   auto [near_off, away_off] = glitch_peaks(machine, ref);
-  std::printf("largest 10 ms radial error change [um]: nonlinear: after reversals %.2f, "
-              "elsewhere %.2f; linear: %.2f, %.2f\n",
-              near_on * 1e3, away_on * 1e3, near_off * 1e3, away_off * 1e3);
+  std::printf(
+      "largest 10 ms radial error change [um]: nonlinear: after reversals %.2f, "
+      "elsewhere %.2f; linear: %.2f, %.2f\n",
+      near_on * 1e3, away_on * 1e3, near_off * 1e3, away_off * 1e3);
   EXPECT_GT(near_on, 3.0 * away_on);
   EXPECT_GT(near_on, 0.005);           // a glitch of several um (friction 0.15 N m, backlash 5 um)
   EXPECT_LT(near_off, 0.1 * near_on);  // the linear loop's radial error stays smooth

@@ -45,9 +45,10 @@ TEST(FeedratePlanner, PlannedTimeLiesBetweenIndependentBounds) {
     const double lower = velocity_acceleration_time(*p.path, PlanarLimits{});
     const ConstantFeedrateProfile upper = constant_feedrate_time(*p.path, PlanarLimits{});
     const double planned = p.profile.total_time();
-    std::printf("%-12s lower (v,a only) %.4f s <= planned %.4f s <= constant feedrate %.4f s "
-                "(F = %.1f mm/s)\n",
-                name, lower, planned, upper.time, upper.feedrate);
+    std::printf(
+        "%-12s lower (v,a only) %.4f s <= planned %.4f s <= constant feedrate %.4f s "
+        "(F = %.1f mm/s)\n",
+        name, lower, planned, upper.time, upper.feedrate);
     EXPECT_LT(lower, planned) << name;
     // On a line the upper bound is the S-curve itself: allow the planner's
     // discretisation error there.
@@ -60,8 +61,8 @@ TEST(FeedratePlanner, BoundsOnALineAreClosedForms) {
   // is the S-curve.
   const LinePath line(Vec2(0, 0), Vec2(100, 0));
   EXPECT_NEAR(velocity_acceleration_time(line, PlanarLimits{}), 100.0 / 300 + 300.0 / 2000, 1e-9);
-  EXPECT_NEAR(constant_feedrate_time(line, PlanarLimits{}).time,
-              scurve_time(100, 300, 2000, 50000), 1e-9);
+  EXPECT_NEAR(constant_feedrate_time(line, PlanarLimits{}).time, scurve_time(100, 300, 2000, 50000),
+              1e-9);
 }
 
 TEST(FeedratePlanner, RejectsBadOptionsAndCusps) {

@@ -31,9 +31,8 @@ Peaks numerical_peaks(const ReferenceTrajectory& r) {
   for (Eigen::Index k = 2; k + 2 < r.samples(); ++k) {
     const Vec2 v = (p.row(k + 1) - p.row(k - 1)).transpose() / (2 * h);
     const Vec2 a = (p.row(k + 1) - 2 * p.row(k) + p.row(k - 1)).transpose() / (h * h);
-    const Vec2 j =
-        (p.row(k + 2) - 2 * p.row(k + 1) + 2 * p.row(k - 1) - p.row(k - 2)).transpose() /
-        (2 * h * h * h);
+    const Vec2 j = (p.row(k + 2) - 2 * p.row(k + 1) + 2 * p.row(k - 1) - p.row(k - 2)).transpose() /
+                   (2 * h * h * h);
     peaks.v = peaks.v.cwiseMax(v.cwiseAbs());
     peaks.a = peaks.a.cwiseMax(a.cwiseAbs());
     peaks.j = peaks.j.cwiseMax(j.cwiseAbs());
@@ -57,7 +56,8 @@ TEST(Interpolator, NumericalDerivativesRespectEveryLimit) {
       EXPECT_LE(peaks.j[i], limits.axes[i].jerk * (1 + kLimitTolerance));
     }
     // Ends: starts and stops at the path's ends.
-    EXPECT_LT((r.position.row(0).transpose() - path->evaluate(path->u_begin()).position).norm(), 1e-9);
+    EXPECT_LT((r.position.row(0).transpose() - path->evaluate(path->u_begin()).position).norm(),
+              1e-9);
     EXPECT_LT((r.position.row(r.samples() - 1).transpose() - path->evaluate(path->u_end()).position)
                   .norm(),
               1e-6);

@@ -24,8 +24,8 @@ std::string config_error(const std::string& yaml) {
 }
 
 TEST(Machine, ShippedRouterFileLoadsAndDocumentsTheDefaults) {
-  const MachineOptions m =
-      load_machine(std::filesystem::path(CNCLAB_SOURCE_DIR) / "configs/machines/biaxial_router.yaml");
+  const MachineOptions m = load_machine(std::filesystem::path(CNCLAB_SOURCE_DIR) /
+                                        "configs/machines/biaxial_router.yaml");
   EXPECT_EQ(m.name, "biaxial_router");
   const FeedDriveOptions defaults;
   const FeedDriveOptions& x = m.axes[0];

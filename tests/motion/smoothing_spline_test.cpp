@@ -63,7 +63,8 @@ TEST(SmoothingSpline, PEqualOneIsTheNaturalCubicInterpolant) {
     for (int i = 0; i + 1 < d.x.size(); ++i) {
       for (const double f : {0.0, 0.3, 0.77}) {
         const double t = f * (d.x[i + 1] - d.x[i]);
-        const double expected = c[4 * i] + t * (c[4 * i + 1] + t * (c[4 * i + 2] + t * c[4 * i + 3]));
+        const double expected =
+            c[4 * i] + t * (c[4 * i + 1] + t * (c[4 * i + 2] + t * c[4 * i + 3]));
         EXPECT_NEAR(s(d.x[i] + t), expected, 1e-9) << "p " << p << " piece " << i;
       }
     }

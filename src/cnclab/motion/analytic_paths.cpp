@@ -15,7 +15,10 @@ PathPoint LinePath::evaluate(double u) const {
 }
 
 CirclePath::CirclePath(const Vec2& centre, double radius, double angle_begin, double angle_end)
-    : centre_(centre), radius_(radius), angle_begin_(angle_begin), sweep_(angle_end - angle_begin) {}
+    : centre_(centre),
+      radius_(radius),
+      angle_begin_(angle_begin),
+      sweep_(angle_end - angle_begin) {}
 
 PathPoint CirclePath::evaluate(double u) const {
   // theta = angle_begin + sweep u; each u-derivative brings a factor sweep.
@@ -36,7 +39,8 @@ CubicBezierPath::CubicBezierPath(const std::array<Vec2, 4>& control_points) : p_
 PathPoint CubicBezierPath::evaluate(double u) const {
   const double v = 1.0 - u;
   PathPoint p;
-  p.position = v * v * v * p_[0] + 3 * v * v * u * p_[1] + 3 * v * u * u * p_[2] + u * u * u * p_[3];
+  p.position =
+      v * v * v * p_[0] + 3 * v * v * u * p_[1] + 3 * v * u * u * p_[2] + u * u * u * p_[3];
   // Derivatives of a Bezier curve are Bezier curves of the forward differences.
   const Vec2 d0 = p_[1] - p_[0], d1 = p_[2] - p_[1], d2 = p_[3] - p_[2];
   p.d1 = 3 * (v * v * d0 + 2 * v * u * d1 + u * u * d2);

@@ -6,9 +6,9 @@
 namespace cnclab {
 
 struct AxisLimits {
-  double velocity = 300.0;      // max |axis velocity| [mm/s], > 0
-  double acceleration = 2000.0; // max |axis acceleration| [mm/s^2], > 0
-  double jerk = 50000.0;        // max |axis jerk| [mm/s^3], > 0
+  double velocity = 300.0;       // max |axis velocity| [mm/s], > 0
+  double acceleration = 2000.0;  // max |axis acceleration| [mm/s^2], > 0
+  double jerk = 50000.0;         // max |axis jerk| [mm/s^3], > 0
 
   void validate() const;
 };

@@ -9,8 +9,12 @@
 namespace cnclab {
 namespace {
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-Vec2 left_normal(const Vec2& t) { return Vec2(-t.y(), t.x()); }
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+Vec2 left_normal(const Vec2& t) {
+  return Vec2(-t.y(), t.x());
+}
 
 // g(u) = C'(u).(C(u) - P) = (1/2) d/du |C(u) - P|^2 and its derivative.
 struct DistanceSlope {
@@ -28,8 +32,8 @@ double distance_at(const PlanarPath& path, const Vec2& p, double u) {
 
 // Root of g in [lo, hi] with g(lo) < 0 < g(hi): Newton from `start`,
 // bisection whenever Newton leaves the bracket or stalls.
-double safeguarded_newton(const PlanarPath& path, const Vec2& p, double lo, double hi,
-                          double start, const ProjectionOptions& o) {
+double safeguarded_newton(const PlanarPath& path, const Vec2& p, double lo, double hi, double start,
+                          const ProjectionOptions& o) {
   double u = std::clamp(start, lo, hi);
   const double tol = o.tolerance * (hi - lo);
   for (int it = 0; it < o.max_iterations; ++it) {
@@ -119,7 +123,7 @@ double taylor_contour_error(const PathPoint& reference, const Vec2& actual) {
   const PathFrame f = path_frame(reference);
   const Vec2 e = reference.position - actual;  // following error R - P
   const double et = e.dot(f.tangent);
-  const Vec2 c = e - et * f.tangent;  // Eq. 4 numerator
+  const Vec2 c = e - et * f.tangent;                                          // Eq. 4 numerator
   const double c_norm = std::sqrt(std::max(e.squaredNorm() - et * et, 0.0));  // Eq. 4, corrected
   const Vec2 c_hat = c_norm > 0 ? Vec2(c / c_norm) : f.normal;
   const double k = f.curvature;

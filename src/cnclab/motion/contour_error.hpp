@@ -30,7 +30,7 @@ struct ProjectionOptions {
   double window_factor = 3.0;
   double min_window = 0.5;
   double max_window = 50.0;
-  int samples = 32;        // bracketing samples of d/du |C(u) - P|^2 in the window
+  int samples = 32;          // bracketing samples of d/du |C(u) - P|^2 in the window
   double tolerance = 1e-12;  // on u, relative to the window width
   int max_iterations = 100;  // safeguarded Newton steps
 
@@ -38,7 +38,7 @@ struct ProjectionOptions {
 };
 
 struct Projection {
-  double u = 0.0;         // parameter of the foot point
+  double u = 0.0;  // parameter of the foot point
   Vec2 foot = Vec2::Zero();
   double distance = 0.0;  // |P - C(u)| [mm], the exact contour error
 };

@@ -50,8 +50,7 @@ class Drive {
 
   double nut() const { return theta_ / rad_per_mm_; }
   double tool() const {
-    return table_ + o_.lead_error_amplitude *
-                        std::sin(rad_per_mm_ * nut() + o_.lead_error_phase);
+    return table_ + o_.lead_error_amplitude * std::sin(rad_per_mm_ * nut() + o_.lead_error_phase);
   }
 
   // One controller period with velocity command v_cmd [mm/s].
@@ -62,7 +61,8 @@ class Drive {
       const double w_meas = (theta_m - theta_measured_) / t_velocity_;
       theta_measured_ = theta_m;
       const double e = w_cmd - w_meas;
-      double tau = o_.velocity_gain * (e + (integral_ + e * t_velocity_) / o_.velocity_integral_time);
+      double tau =
+          o_.velocity_gain * (e + (integral_ + e * t_velocity_) / o_.velocity_integral_time);
       if (std::abs(tau) > o_.torque_limit) {
         tau = std::copysign(o_.torque_limit, tau);  // saturated: integrator held
       } else {
@@ -86,10 +86,8 @@ class Drive {
       }
     } else {
       const double x = w_ / o_.stribeck_velocity;
-      const double friction =
-          std::copysign(o_.coulomb_friction +
-                            (o_.static_friction - o_.coulomb_friction) * std::exp(-x * x),
-                        w_);
+      const double friction = std::copysign(
+          o_.coulomb_friction + (o_.static_friction - o_.coulomb_friction) * std::exp(-x * x), w_);
       w_new = w_ + dt_ / inertia_ * (drive - friction);
       // A sign change within the step means the axis stopped: stick (only
       // with friction; without it the linear dynamics run through zero).
@@ -169,8 +167,8 @@ AxisResponse simulate_axis(const FeedDriveOptions& axis, const DriveTiming& timi
   timing.validate();
   if (reference_position.size() != reference_velocity.size() || reference_position.empty()) {
     std::ostringstream m;
-    m << "simulate_axis: reference positions (" << reference_position.size()
-      << ") and velocities (" << reference_velocity.size() << ") must be non-empty and equal in length";
+    m << "simulate_axis: reference positions (" << reference_position.size() << ") and velocities ("
+      << reference_velocity.size() << ") must be non-empty and equal in length";
     throw Error(m.str());
   }
   const std::size_t n = reference_position.size();

@@ -29,13 +29,13 @@ namespace cnclab {
 // Loop rates and the integration step; each period must be an integer
 // multiple of the next finer one.
 struct DriveTiming {
-  double controller_period = 1e-3;      // position loop = interpolator period [s] (seed 002: 1 ms)
-  double velocity_loop_period = 125e-6; // drive velocity loop [s] (8 kHz, a common drive rate)
-  double integration_step = 25e-6;      // mechanics integration step [s]
+  double controller_period = 1e-3;       // position loop = interpolator period [s] (seed 002: 1 ms)
+  double velocity_loop_period = 125e-6;  // drive velocity loop [s] (8 kHz, a common drive rate)
+  double integration_step = 25e-6;       // mechanics integration step [s]
 
   void validate() const;
-  int velocity_ticks_per_control() const;    // controller_period / velocity_loop_period
-  int substeps_per_velocity_tick() const;    // velocity_loop_period / integration_step
+  int velocity_ticks_per_control() const;  // controller_period / velocity_loop_period
+  int substeps_per_velocity_tick() const;  // velocity_loop_period / integration_step
 };
 
 struct FeedDriveOptions {
@@ -51,17 +51,17 @@ struct FeedDriveOptions {
   double static_friction = 0.20;     // tau_s [N m] (breakaway, >= tau_c); 0 = off
   double stribeck_velocity = 0.5;    // w_s [rad/s] (0.8 mm/s at 10 mm lead)
   // Transmission errors.
-  double backlash = 0.005;             // g, total gap [mm]; 0 = off
-  double lead_error_amplitude = 0.003; // A_lead [mm]; 0 = off
-  double lead_error_phase = 0.0;       // phi [rad]
+  double backlash = 0.005;              // g, total gap [mm]; 0 = off
+  double lead_error_amplitude = 0.003;  // A_lead [mm]; 0 = off
+  double lead_error_phase = 0.0;        // phi [rad]
   // Control.
   double position_gain = 40.0;         // Kp [1/s] (the "Kv factor" of CNC tuning)
   double velocity_feedforward = 0.95;  // k_ff [-], in [0, 1]
-  double velocity_gain = 0.146;  // Kv [N m s/rad]: Kv / J = 600 rad/s with the defaults above
+  double velocity_gain = 0.146;        // Kv [N m s/rad]: Kv / J = 600 rad/s with the defaults above
   double velocity_integral_time = 8e-3;  // Ti [s]
   // Measurement.
-  double scale_resolution = 1e-4;    // linear scale quantum [mm] (0.1 um); 0 = ideal
-  double scale_noise = 2e-4;         // linear scale noise standard deviation [mm]; 0 = off
+  double scale_resolution = 1e-4;  // linear scale quantum [mm] (0.1 um); 0 = ideal
+  double scale_noise = 2e-4;       // linear scale noise standard deviation [mm]; 0 = off
   std::uint64_t motor_encoder_counts = 131072;  // counts per motor turn (17 bit); 0 = ideal
 
   void validate() const;

@@ -136,7 +136,8 @@ ConstantFeedrateProfile constant_feedrate_time(const PlanarPath& path, const Pla
       double j_t = kInf;
       for (int i = 0; i < 2; ++i) {
         if (m0[i] > 0) {
-          j_t = std::min(j_t, (limits.axes[i].jerk - 3 * F * a_t * m1[i] - F * F * F * m2[i]) / m0[i]);
+          j_t = std::min(j_t,
+                         (limits.axes[i].jerk - 3 * F * a_t * m1[i] - F * F * F * m2[i]) / m0[i]);
         }
       }
       if (!(j_t > 0)) continue;

@@ -11,10 +11,18 @@ constexpr double kInfinity = 1e19;  // Ipopt's default "no bound"
 // kinematic equalities degenerate. Real durations are ~1e-2 and larger.
 constexpr double kMinDuration = 1e-9;
 
-int v_index(int node) { return 4 * node; }
-int a_index(int node) { return 4 * node + 1; }
-int h_index(int interval) { return 4 * interval + 2; }
-int j_index(int interval) { return 4 * interval + 3; }
+int v_index(int node) {
+  return 4 * node;
+}
+int a_index(int node) {
+  return 4 * node + 1;
+}
+int h_index(int interval) {
+  return 4 * interval + 2;
+}
+int j_index(int interval) {
+  return 4 * interval + 3;
+}
 
 // Largest v meeting the velocity ratios |vel_i| v <= 1.
 double velocity_bound(const NodeCoefficients& c) {
@@ -73,8 +81,8 @@ bool FeedrateNlp::get_bounds_info(Ipopt::Index n, Ipopt::Number* x_l, Ipopt::Num
 }
 
 bool FeedrateNlp::get_starting_point(Ipopt::Index n, bool init_x, Ipopt::Number* x, bool init_z,
-                                     Ipopt::Number*, Ipopt::Number*, Ipopt::Index,
-                                     bool init_lambda, Ipopt::Number*) {
+                                     Ipopt::Number*, Ipopt::Number*, Ipopt::Index, bool init_lambda,
+                                     Ipopt::Number*) {
   if (!init_x || init_z || init_lambda) return false;
   std::copy(guess_.begin(), guess_.begin() + n, x);
   return true;
@@ -120,9 +128,8 @@ bool FeedrateNlp::eval_g(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Inde
   return true;
 }
 
-bool FeedrateNlp::eval_jac_g(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Index,
-                             Ipopt::Index, Ipopt::Index* iRow, Ipopt::Index* jCol,
-                             Ipopt::Number* values) {
+bool FeedrateNlp::eval_jac_g(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Index, Ipopt::Index,
+                             Ipopt::Index* iRow, Ipopt::Index* jCol, Ipopt::Number* values) {
   // One pass emits the entries in a fixed order: the structure on the first
   // call (values == nullptr), the values afterwards.
   int e = 0;
@@ -176,9 +183,9 @@ bool FeedrateNlp::eval_jac_g(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::
   return true;
 }
 
-bool FeedrateNlp::eval_h(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Number,
-                         Ipopt::Index, const Ipopt::Number* lambda, bool, Ipopt::Index,
-                         Ipopt::Index* iRow, Ipopt::Index* jCol, Ipopt::Number* values) {
+bool FeedrateNlp::eval_h(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Number, Ipopt::Index,
+                         const Ipopt::Number* lambda, bool, Ipopt::Index, Ipopt::Index* iRow,
+                         Ipopt::Index* jCol, Ipopt::Number* values) {
   // Lower triangle. Node m: (v_m, v_m) at 2m, (a_m, v_m) at 2m+1; interval k:
   // (h, v_k), (h, a_k), (h, h), (j, h) at 2(N+1) + 4k + 0..3. The objective
   // is linear and contributes nothing.
@@ -204,10 +211,10 @@ bool FeedrateNlp::eval_h(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Numb
     const double a = x[a_index(k)], h = x[h_index(k)], j = x[j_index(k)];
     const double l1 = lambda[3 * k], l2 = lambda[3 * k + 1], l3 = lambda[3 * k + 2];
     const int p = base + 4 * k;
-    values[p] += l1;                                 // d2 E1 / dh dv
-    values[p + 1] += l1 * h - l2;                    // d2 / dh da
-    values[p + 2] += l1 * (a + j * h) - l2 * j;      // d2 / dh2
-    values[p + 3] += l1 * h * h / 2 - l2 * h - l3;   // d2 / dj dh
+    values[p] += l1;                                // d2 E1 / dh dv
+    values[p + 1] += l1 * h - l2;                   // d2 / dh da
+    values[p + 2] += l1 * (a + j * h) - l2 * j;     // d2 / dh2
+    values[p + 3] += l1 * h * h / 2 - l2 * h - l3;  // d2 / dj dh
   }
   for (int m = 1; m < N; ++m) {
     for (int i = 0; i < 2; ++i) values[2 * m] += lambda[acc_row(m, i)] * 2 * nodes_[m].acc2[i];

@@ -20,25 +20,44 @@ using feedrate_detail::WindowState;
 
 const char* status_name(Ipopt::ApplicationReturnStatus s) {
   switch (s) {
-    case Ipopt::Solve_Succeeded: return "Solve_Succeeded";
-    case Ipopt::Solved_To_Acceptable_Level: return "Solved_To_Acceptable_Level";
-    case Ipopt::Infeasible_Problem_Detected: return "Infeasible_Problem_Detected";
-    case Ipopt::Search_Direction_Becomes_Too_Small: return "Search_Direction_Becomes_Too_Small";
-    case Ipopt::Diverging_Iterates: return "Diverging_Iterates";
-    case Ipopt::User_Requested_Stop: return "User_Requested_Stop";
-    case Ipopt::Feasible_Point_Found: return "Feasible_Point_Found";
-    case Ipopt::Maximum_Iterations_Exceeded: return "Maximum_Iterations_Exceeded";
-    case Ipopt::Restoration_Failed: return "Restoration_Failed";
-    case Ipopt::Error_In_Step_Computation: return "Error_In_Step_Computation";
-    case Ipopt::Maximum_CpuTime_Exceeded: return "Maximum_CpuTime_Exceeded";
-    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "Not_Enough_Degrees_Of_Freedom";
-    case Ipopt::Invalid_Problem_Definition: return "Invalid_Problem_Definition";
-    case Ipopt::Invalid_Option: return "Invalid_Option";
-    case Ipopt::Invalid_Number_Detected: return "Invalid_Number_Detected";
-    case Ipopt::Unrecoverable_Exception: return "Unrecoverable_Exception";
-    case Ipopt::NonIpopt_Exception_Thrown: return "NonIpopt_Exception_Thrown";
-    case Ipopt::Insufficient_Memory: return "Insufficient_Memory";
-    case Ipopt::Internal_Error: return "Internal_Error";
+    case Ipopt::Solve_Succeeded:
+      return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level:
+      return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected:
+      return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+      return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates:
+      return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop:
+      return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found:
+      return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded:
+      return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed:
+      return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation:
+      return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom:
+      return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition:
+      return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option:
+      return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected:
+      return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception:
+      return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown:
+      return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory:
+      return "Insufficient_Memory";
+    case Ipopt::Internal_Error:
+      return "Internal_Error";
   }
   return "unknown status";
 }
@@ -69,15 +88,16 @@ NodeCoefficients node_coefficients(const PathPoint& p, double u, const Scaling& 
   return c;
 }
 
-double max_abs(const std::array<double, 2>& v) { return std::max(std::abs(v[0]), std::abs(v[1])); }
+double max_abs(const std::array<double, 2>& v) {
+  return std::max(std::abs(v[0]), std::abs(v[1]));
+}
 
 // Heuristic starting point from a state: a speed that ramps up from the
 // start state and down to rest with a modest path acceleration and jerk,
 // capped at half of what velocity, centripetal acceleration and jerk allow
 // at each node; durations, node accelerations and interval jerks follow from
 // it by differences.
-std::vector<double> heuristic_guess(const std::vector<NodeCoefficients>& nodes,
-                                    WindowState start) {
+std::vector<double> heuristic_guess(const std::vector<NodeCoefficients>& nodes, WindowState start) {
   const int N = static_cast<int>(nodes.size()) - 1;
   double acc1_max = 0.0, jerk1_max = 0.0;
   for (const auto& c : nodes) {
@@ -268,14 +288,15 @@ FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptio
     Ipopt::SmartPtr<FeedrateNlp> nlp =
         new FeedrateNlp(nodes, state, initial_guess(nodes, state, overlap));
     const auto t0 = std::chrono::steady_clock::now();
-    const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(nlp));
+    const Ipopt::ApplicationReturnStatus status =
+        app->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(nlp));
     const auto t1 = std::chrono::steady_clock::now();
     if (status != Ipopt::Solve_Succeeded && status != Ipopt::Solved_To_Acceptable_Level) {
       std::ostringstream m;
-      m << "feedrate planning failed in window " << window + 1 << " of about "
-        << n_windows_estimate << " (grid nodes " << first << ".." << last << ", path parameter u in ["
-        << grid[first] << ", " << grid[last] << "]): Ipopt returned " << status_name(status)
-        << " (" << static_cast<int>(status) << ")";
+      m << "feedrate planning failed in window " << window + 1 << " of about " << n_windows_estimate
+        << " (grid nodes " << first << ".." << last << ", path parameter u in [" << grid[first]
+        << ", " << grid[last] << "]): Ipopt returned " << status_name(status) << " ("
+        << static_cast<int>(status) << ")";
       throw Error(m.str());
     }
     const std::vector<double>& x = nlp->solution();

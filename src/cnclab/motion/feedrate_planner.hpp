@@ -40,15 +40,15 @@ struct FeedratePlannerOptions {
   // (on a line the planned time then stays within 0.5 % of the S-curve with
   // grid_spacing = 1 mm; without it the first interval alone costs ~1 %).
   double end_refinement_length = 4.0;
-  std::size_t end_refinement = 8;  // >= 1; 1 = off
+  std::size_t end_refinement = 8;      // >= 1; 1 = off
   std::size_t window_intervals = 240;  // intervals per NLP window
   // Intervals kept per window (< window_intervals); the other 60 mm are the
   // overlap. Cost per path length ~ window / commit: 240/180 costs 0.7x of
   // 120/60 at the same result (measured on the epitrochoid test path).
   std::size_t commit_intervals = 180;
-  double tolerance = 1e-8;             // Ipopt `tol` (scaled NLP, see feedrate_nlp.hpp)
-  int max_iterations = 500;            // Ipopt `max_iter` per window
-  RegularityOptions regularity;        // cusp check before planning
+  double tolerance = 1e-8;       // Ipopt `tol` (scaled NLP, see feedrate_nlp.hpp)
+  int max_iterations = 500;      // Ipopt `max_iter` per window
+  RegularityOptions regularity;  // cusp check before planning
 
   void validate() const;
 };

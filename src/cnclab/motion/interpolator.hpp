@@ -13,13 +13,13 @@
 namespace cnclab {
 
 struct ReferenceTrajectory {
-  double period = 1e-3;         // sample period [s]
-  std::vector<double> time;     // k * period [s]
-  std::vector<double> u;        // path parameter at each sample
-  Eigen::MatrixX2d position;    // [mm], one row per sample, columns x, y
-  Eigen::MatrixX2d velocity;    // [mm/s]
-  Eigen::MatrixX2d acceleration;// [mm/s^2]
-  Eigen::MatrixX2d jerk;        // [mm/s^3]
+  double period = 1e-3;           // sample period [s]
+  std::vector<double> time;       // k * period [s]
+  std::vector<double> u;          // path parameter at each sample
+  Eigen::MatrixX2d position;      // [mm], one row per sample, columns x, y
+  Eigen::MatrixX2d velocity;      // [mm/s]
+  Eigen::MatrixX2d acceleration;  // [mm/s^2]
+  Eigen::MatrixX2d jerk;          // [mm/s^3]
 
   Eigen::Index samples() const { return position.rows(); }
 };

@@ -15,9 +15,9 @@
 namespace cnclab {
 
 struct MachineOptions {
-  std::string name = "biaxial_router";    // stated in results
-  DriveTiming timing;                     // shared loop rates
-  std::array<FeedDriveOptions, 2> axes{}; // [0] = x, [1] = y
+  std::string name = "biaxial_router";     // stated in results
+  DriveTiming timing;                      // shared loop rates
+  std::array<FeedDriveOptions, 2> axes{};  // [0] = x, [1] = y
 
   // Field names carry the section: "axes.y.backlash", "timing.integration_step".
   void validate() const;

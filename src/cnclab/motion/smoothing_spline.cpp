@@ -12,7 +12,9 @@
 namespace cnclab {
 namespace {
 
-[[noreturn]] void fail(const std::string& what) { throw Error("smoothing spline: " + what); }
+[[noreturn]] void fail(const std::string& what) {
+  throw Error("smoothing spline: " + what);
+}
 
 void check_inputs(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double p,
                   const Eigen::VectorXd& w) {
@@ -61,8 +63,8 @@ SmoothingSpline SmoothingSpline::fit(const Eigen::VectorXd& x, const Eigen::Vect
     const double sw = w.sum();
     const double mx = w.dot(x) / sw, my = w.dot(y) / sw;
     const Eigen::VectorXd dx = x.array() - mx;
-    const double slope = w.dot((dx.array() * (y.array() - my)).matrix()) /
-                         w.dot((dx.array() * dx.array()).matrix());
+    const double slope =
+        w.dot((dx.array() * (y.array() - my)).matrix()) / w.dot((dx.array() * dx.array()).matrix());
     s.values_ = (my + slope * dx.array()).matrix();
     return s;
   }
@@ -94,7 +96,8 @@ SmoothingSpline SmoothingSpline::fit(const Eigen::VectorXd& x, const Eigen::Vect
   Eigen::SparseMatrix<double> M(m, m);
   M.setFromTriplets(t.begin(), t.end());
   Eigen::VectorXd qty(m);
-  for (Eigen::Index j = 0; j < m; ++j) qty[j] = q(j, j) * y[j] + q(j + 1, j) * y[j + 1] + q(j + 2, j) * y[j + 2];
+  for (Eigen::Index j = 0; j < m; ++j)
+    qty[j] = q(j, j) * y[j] + q(j + 1, j) * y[j + 1] + q(j + 2, j) * y[j + 2];
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(M);
   if (solver.info() != Eigen::Success) fail("the Reinsch system could not be factorised");
   const Eigen::VectorXd gamma = solver.solve(qty);
@@ -125,9 +128,12 @@ double SmoothingSpline::evaluate(double x, int order) const {
   const double a = (x_[i + 1] - x) / h, b = 1.0 - a;
   const double gi = values_[i], gj = values_[i + 1], si = second_[i], sj = second_[i + 1];
   switch (order) {
-    case 0: return a * gi + b * gj + ((a * a * a - a) * si + (b * b * b - b) * sj) * h * h / 6.0;
-    case 1: return (gj - gi) / h - (3 * a * a - 1) / 6.0 * h * si + (3 * b * b - 1) / 6.0 * h * sj;
-    default: return a * si + b * sj;
+    case 0:
+      return a * gi + b * gj + ((a * a * a - a) * si + (b * b * b - b) * sj) * h * h / 6.0;
+    case 1:
+      return (gj - gi) / h - (3 * a * a - 1) / 6.0 * h * si + (3 * b * b - 1) / 6.0 * h * sj;
+    default:
+      return a * si + b * sj;
   }
 }
 
