@@ -112,3 +112,35 @@ TEST(FeedratePlanner, IpoptFailureNamesTheWindow) {
 
 }  // namespace
 }  // namespace cnclab
+
+namespace cnclab {
+namespace {
+
+TEST(FeedratePlanner, WindowsMatchOneWindowAndJoinContinuously) {
+  const testing::PlannedPath& p = testing::planned_path("bezier");
+  ASSERT_GE(p.profile.windows.size(), 2u);
+  FeedratePlannerOptions one;
+  one.window_intervals = 2000;
+  one.commit_intervals = 1000;
+  const FeedrateProfile single = plan_feedrate(*p.path, one);
+  ASSERT_EQ(single.windows.size(), 1u);
+  std::printf("bezier: %zu windows %.5f s, one window %.5f s\n", p.profile.windows.size(),
+              p.profile.total_time(), single.total_time());
+  EXPECT_NEAR(p.profile.total_time(), single.total_time(), 1e-3 * single.total_time());
+  // At each window junction the state (u, du/dt, d2u/dt2) reached by the
+  // left interval's cubic is the right interval's start state.
+  const FeedrateProfile& f = p.profile;
+  for (std::size_t w = 1; w < f.windows.size(); ++w) {
+    const std::size_t k = f.windows[w].first_node;
+    const double h = f.t[k] - f.t[k - 1], j = f.uddd[k - 1];
+    const double u = f.u[k - 1] + f.ud[k - 1] * h + f.udd[k - 1] * h * h / 2 + j * h * h * h / 6;
+    const double ud = f.ud[k - 1] + f.udd[k - 1] * h + j * h * h / 2;
+    const double udd = f.udd[k - 1] + j * h;
+    EXPECT_NEAR(u, f.u[k], 1e-9);
+    EXPECT_NEAR(ud, f.ud[k], 1e-7 * std::abs(f.ud[k]));
+    EXPECT_NEAR(udd, f.udd[k], 1e-6 * std::max(1.0, std::abs(f.udd[k])));
+  }
+}
+
+}  // namespace
+}  // namespace cnclab
