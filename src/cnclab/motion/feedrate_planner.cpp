@@ -155,17 +155,18 @@ std::vector<double> initial_guess(const std::vector<NodeCoefficients>& nodes, Wi
 std::vector<double> refine_ends(const PlanarPath& path, const std::vector<double>& grid,
                                 double length, std::size_t parts) {
   if (parts <= 1 || length <= 0.0) return grid;
-  const double total = arc_length(path, grid.front(), grid.back(), 256);
-  std::vector<double> out{grid.front()};
-  double s = 0.0;
+  std::vector<double> s(grid.size(), 0.0);  // arc length at each node
   for (std::size_t k = 0; k + 1 < grid.size(); ++k) {
-    const double s_next = s + arc_length(path, grid[k], grid[k + 1], 1);
-    const bool near_end = s < length || s_next > total - length;
+    s[k + 1] = s[k] + arc_length(path, grid[k], grid[k + 1], 1);
+  }
+  const double total = s.back();
+  std::vector<double> out{grid.front()};
+  for (std::size_t k = 0; k + 1 < grid.size(); ++k) {
+    const bool near_end = s[k] < length || s[k + 1] > total - length;
     const std::size_t n = near_end ? parts : 1;
     for (std::size_t i = 1; i <= n; ++i) {
       out.push_back(i == n ? grid[k + 1] : grid[k] + (grid[k + 1] - grid[k]) * i / n);
     }
-    s = s_next;
   }
   return out;
 }
