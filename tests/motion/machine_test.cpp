@@ -52,7 +52,9 @@ TEST(Machine, StrictReading) {
   m = config_error("machine:\n  timing:\n    integration_step: fast\n");
   EXPECT_NE(m.find("machine.timing.integration_step"), std::string::npos) << m;
   m = config_error("machine:\n  timing:\n    integration_step: 3.0e-5\n");
-  EXPECT_NE(m.find("integer multiple"), std::string::npos) << m;
+  EXPECT_NE(m.find("machine.timing.integration_step = 3.0e-5: must divide velocity_loop_period"),
+            std::string::npos)
+      << m;
   m = config_error("machine:\n  axes:\n    x:\n      velocity_feedforward: .nan\n");
   EXPECT_NE(m.find("velocity_feedforward"), std::string::npos) << m;
   m = config_error("name: x\n");

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 #include "cnclab/core/error.hpp"
 
@@ -17,12 +18,14 @@ void require(bool ok, const char* field, double value, const char* rule) {
   }
 }
 
-// coarse / fine as an integer; the periods must nest exactly.
-int ratio(double coarse, double fine, const char* field) {
+// coarse / fine as an integer; the periods must nest exactly. The error
+// names the finer period's field.
+int ratio(double coarse, double fine, const char* fine_field, const char* coarse_field) {
   const double r = coarse / fine;
   const double n = std::round(r);
-  require(n >= 1 && std::abs(r - n) <= 1e-9 * n, field, coarse,
-          "must be an integer multiple (>= 1) of the next finer period");
+  const std::string rule =
+      std::string("must divide ") + coarse_field + " into a whole number (>= 1) of steps";
+  require(n >= 1 && std::abs(r - n) <= 1e-9 * n, fine_field, fine, rule.c_str());
   return static_cast<int>(n);
 }
 
@@ -122,11 +125,12 @@ void DriveTiming::validate() const {
 }
 
 int DriveTiming::velocity_ticks_per_control() const {
-  return ratio(controller_period, velocity_loop_period, "controller_period");
+  return ratio(controller_period, velocity_loop_period, "velocity_loop_period",
+               "controller_period");
 }
 
 int DriveTiming::substeps_per_velocity_tick() const {
-  return ratio(velocity_loop_period, integration_step, "velocity_loop_period");
+  return ratio(velocity_loop_period, integration_step, "integration_step", "velocity_loop_period");
 }
 
 double FeedDriveOptions::total_inertia() const {
