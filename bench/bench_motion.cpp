@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cnclab/motion/analytic_paths.hpp"
+#include "cnclab/motion/contour_error.hpp"
 #include "cnclab/motion/feedrate_bounds.hpp"
 #include "cnclab/motion/feedrate_planner.hpp"
 #include "cnclab/motion/interpolator.hpp"
@@ -107,5 +108,23 @@ int main(int argc, char** argv) {
   std::printf("                              %10.1f axis-seconds per CPU second\n",
               axis_seconds / simulation_cpu_seconds);
   std::printf("  max |following error|       %10.1f um\n", fe_max * 1e3);
+
+  t0 = std::chrono::steady_clock::now();
+  const ContourErrorComparison contour =
+      compare_contour_estimates(path, reference, response.actual);
+  const double contour_seconds = seconds_since(t0);
+  const double exact_max = *std::max_element(contour.exact.begin(), contour.exact.end());
+  std::printf(
+      "\ncontour error on the simulated run (%ld samples, %.2f s wall incl. exact projection)\n",
+      static_cast<long>(reference.samples()), contour_seconds);
+  std::printf("  exact (projection)          max %8.3f um\n", exact_max * 1e3);
+  std::printf("  |estimate - exact| [um]     %10s %10s\n", "mean", "max");
+  const std::pair<const char*, const EstimateDiscrepancy*> rows[] = {
+      {"Taylor (Eqs. 3-6)", &contour.taylor},
+      {"tangent line", &contour.tangent_line},
+      {"osculating circle", &contour.osculating_circle}};
+  for (const auto& [label, d] : rows) {
+    std::printf("  %-27s %10.4f %10.4f\n", label, d->mean * 1e3, d->max * 1e3);
+  }
   return 0;
 }

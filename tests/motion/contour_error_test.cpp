@@ -9,6 +9,8 @@
 
 #include "cnclab/core/rng.hpp"
 #include "cnclab/motion/analytic_paths.hpp"
+#include "cnclab/motion/machine.hpp"
+#include "planned_paths.hpp"
 
 namespace cnclab {
 namespace {
@@ -130,6 +132,31 @@ TEST(ContourError, TaylorSignAndOnTangentLine) {
   EXPECT_NEAR(std::abs(taylor_contour_error(ref, on_tangent)), std::hypot(10.0, 0.2) - 10.0,
               1e-6);  // s^4 / 8r^3 = 2e-7
   EXPECT_NEAR(tangent_line_contour_error(ref, on_tangent), 0.0, 1e-15);
+}
+
+TEST(ContourError, EstimatesOnSimulatedRuns) {
+  // The simulated router on planned paths: the exact contour error never
+  // exceeds the distance to the reference point (R lies on the path), and
+  // the second-order Taylor estimate beats the tangent line.
+  for (const char* name : {"circle", "epitrochoid"}) {
+    const testing::PlannedPath& planned = testing::planned_path(name);
+    const ReferenceTrajectory ref = interpolate(*planned.path, planned.profile, 1e-3);
+    const MachineResponse run = simulate_machine(MachineOptions{}, ref, 3);
+    const ContourErrorComparison c = compare_contour_estimates(*planned.path, ref, run.actual);
+    double exact_max = 0.0;
+    for (Eigen::Index k = 0; k < ref.samples(); ++k) {
+      const double to_reference = (ref.position.row(k) - run.actual.row(k)).norm();
+      EXPECT_LE(c.exact[k], to_reference + 1e-12) << name << " sample " << k;
+      exact_max = std::max(exact_max, c.exact[k]);
+    }
+    std::printf(
+        "%-12s exact max %.2f um; |estimate - exact| mean/max [um]: Taylor %.4f/%.4f, "
+        "tangent %.4f/%.4f, osculating %.4f/%.4f\n",
+        name, exact_max * 1e3, c.taylor.mean * 1e3, c.taylor.max * 1e3, c.tangent_line.mean * 1e3,
+        c.tangent_line.max * 1e3, c.osculating_circle.mean * 1e3, c.osculating_circle.max * 1e3);
+    EXPECT_LT(c.taylor.mean, c.tangent_line.mean) << name;
+    EXPECT_LT(c.taylor.max, c.tangent_line.max) << name;
+  }
 }
 
 }  // namespace

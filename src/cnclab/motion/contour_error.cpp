@@ -144,4 +144,37 @@ double osculating_circle_contour_error(const PathPoint& reference, const Vec2& a
   return std::abs((actual - centre).norm() - radius);
 }
 
+ContourErrorComparison compare_contour_estimates(const PlanarPath& path,
+                                                 const ReferenceTrajectory& reference,
+                                                 const Eigen::MatrixX2d& actual,
+                                                 const ProjectionOptions& options) {
+  const Eigen::Index n = reference.samples();
+  if (actual.rows() != n) {
+    std::ostringstream m;
+    m << "compare_contour_estimates: " << actual.rows() << " actual positions for " << n
+      << " reference samples";
+    throw Error(m.str());
+  }
+  ContourErrorComparison out;
+  out.exact.resize(static_cast<std::size_t>(n));
+  auto add = [](EstimateDiscrepancy& d, double estimate, double exact) {
+    const double diff = std::abs(estimate - exact);
+    d.mean += diff;
+    d.max = std::max(d.max, diff);
+  };
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Vec2 p = actual.row(k).transpose();
+    const double exact = project_to_path(path, p, reference.u[k], options).distance;
+    const PathPoint ref = path.evaluate(reference.u[k]);
+    out.exact[k] = exact;
+    add(out.taylor, std::abs(taylor_contour_error(ref, p)), exact);
+    add(out.tangent_line, tangent_line_contour_error(ref, p), exact);
+    add(out.osculating_circle, osculating_circle_contour_error(ref, p), exact);
+  }
+  for (EstimateDiscrepancy* d : {&out.taylor, &out.tangent_line, &out.osculating_circle}) {
+    d->mean /= std::max<Eigen::Index>(n, 1);
+  }
+  return out;
+}
+
 }  // namespace cnclab

@@ -4,6 +4,9 @@
 // closed-form estimates that need only the interpolator's data at the
 // reference point R = C(u_ref): the Taylor estimate of seed 002 Eqs. 3-6,
 // the tangent line and the osculating circle.
+#include <vector>
+
+#include "cnclab/motion/interpolator.hpp"
 #include "cnclab/motion/planar_path.hpp"
 
 namespace cnclab {
@@ -79,5 +82,21 @@ double tangent_line_contour_error(const PathPoint& reference, const Vec2& actual
 // Distance from P to the osculating circle at R (centre R + n / kappa,
 // radius 1 / kappa); the tangent-line value where kappa = 0. Exact on circles.
 double osculating_circle_contour_error(const PathPoint& reference, const Vec2& actual);
+
+// Exact contour error along a run and the three estimates' discrepancies
+// from it (seed 002's comparison of estimation methods), over the samples of
+// `reference` (1 ms) and the matching rows of `actual` (tool positions, mm).
+struct EstimateDiscrepancy {
+  double mean = 0.0;  // mean |estimate - exact| [mm]
+  double max = 0.0;   // max |estimate - exact| [mm]
+};
+struct ContourErrorComparison {
+  std::vector<double> exact;  // per sample [mm]
+  EstimateDiscrepancy taylor, tangent_line, osculating_circle;
+};
+ContourErrorComparison compare_contour_estimates(const PlanarPath& path,
+                                                 const ReferenceTrajectory& reference,
+                                                 const Eigen::MatrixX2d& actual,
+                                                 const ProjectionOptions& options = {});
 
 }  // namespace cnclab
