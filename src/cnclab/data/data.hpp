@@ -3,4 +3,5 @@
 #include "cnclab/data/dataset.hpp"
 #include "cnclab/data/dataset_file.hpp"
 #include "cnclab/data/friedman1.hpp"
+#include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"

@@ -1,10 +1,10 @@
 #include "cnclab/data/friedman1.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
 #include "cnclab/core/resources.hpp"
 
 namespace cnclab {
@@ -48,15 +48,26 @@ Dataset generate_friedman1(const Friedman1Options& options, Rng& rng) {
   d.target_names = {"y"};
   d.target_units = {"1"};
   d.generator = "friedman1";
-  d.generator_config = generator_config_yaml(options);
   return d;
 }
 
-std::string generator_config_yaml(const Friedman1Options& o) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "samples: %zu\ninputs: %zu\nnoise_std: %.17g\n", o.samples,
-                o.inputs, o.noise_std);
-  return buf;
+Friedman1Generator::Friedman1Generator(Friedman1Options options) : options_(options) {
+  options_.validate();
+}
+
+std::string Friedman1Generator::options_yaml() const {
+  return "samples: " + std::to_string(options_.samples) +
+         "\ninputs: " + std::to_string(options_.inputs) +
+         "\nnoise_std: " + shortest_double(options_.noise_std) + "\n";
+}
+
+std::shared_ptr<const DatasetGenerator> read_friedman1(const ConfigReader& r) {
+  Friedman1Options f;
+  f.samples = r.get<std::size_t>("samples", f.samples);
+  f.inputs = r.get<std::size_t>("inputs", f.inputs);
+  f.noise_std = r.get<double>("noise_std", f.noise_std);
+  r.validate([&] { f.validate(); });
+  return std::make_shared<Friedman1Generator>(f);
 }
 
 }  // namespace cnclab

@@ -8,6 +8,7 @@
 
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset.hpp"
+#include "cnclab/data/generator.hpp"
 
 namespace cnclab {
 
@@ -23,8 +24,20 @@ double friedman1_function(const double* x);
 
 Dataset generate_friedman1(const Friedman1Options& options, Rng& rng);
 
-// YAML text of the options (stored as the dataset's generator_config and
-// used in cache keys; numbers round-trip exactly).
-std::string generator_config_yaml(const Friedman1Options& options);
+// The registered generator `friedman1`: options {samples, inputs, noise_std}.
+class Friedman1Generator : public DatasetGenerator {
+ public:
+  explicit Friedman1Generator(Friedman1Options options);  // validates
+  std::string name() const override { return "friedman1"; }
+  int version() const override { return 1; }
+  DatasetShape shape() const override { return {options_.samples, options_.inputs, 1}; }
+  std::string options_yaml() const override;
+  Dataset generate(Rng& rng) const override { return generate_friedman1(options_, rng); }
+
+ private:
+  Friedman1Options options_;
+};
+
+std::shared_ptr<const DatasetGenerator> read_friedman1(const ConfigReader& options);
 
 }  // namespace cnclab

@@ -8,36 +8,30 @@
 namespace cnclab {
 namespace fs = std::filesystem;
 
-DatasetShape dataset_shape(const DatasetSpec& spec) {
-  const auto& f = std::get<Friedman1Options>(spec.options);
-  return {f.samples, f.inputs, 1};
-}
-
 Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed) {
   Rng rng(seed);
-  return std::visit([&](const auto& options) { return generate_friedman1(options, rng); },
-                    spec.options);
+  return spec.generator->generate(rng);
 }
 
 CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed, const fs::path& dir,
                              std::ostream* log) {
-  // The key must not require generating: use the generator's config text,
-  // which generate_* also stores in the dataset.
-  // The generator's options and its seed: stored in the dataset file, so the
-  // file says how to make it again.
-  const std::string config_text =
-      std::visit([](const auto& o) { return generator_config_yaml(o); }, spec.options) +
-      "seed: " + std::to_string(seed) + "\n";
+  // The key must not require generating. The generator's options, version
+  // and seed are also stored in the dataset file, so the file says how to
+  // make it again.
+  const DatasetGenerator& generator = *spec.generator;
+  const std::string config_text = generator.options_yaml() +
+                                  "generator_version: " + std::to_string(generator.version()) +
+                                  "\nseed: " + std::to_string(seed) + "\n";
   const std::string key =
-      Hasher().add(spec.generator).add(std::string_view("\n")).add(config_text).add(seed).hex();
+      Hasher().add(generator.name()).add(std::string_view("\n")).add(config_text).hex();
   CachedDataset out;
-  out.path = dir / (spec.generator + "-" + key + ".h5");
+  out.path = dir / (generator.name() + "-" + key + ".h5");
 
   std::error_code ec;
   if (fs::exists(out.path, ec)) {
     try {
       Dataset cached = read_dataset(out.path);
-      if (cached.generator == spec.generator && cached.generator_config == config_text) {
+      if (cached.generator == generator.name() && cached.generator_config == config_text) {
         out.dataset = std::move(cached);
         out.content_hash = out.dataset.content_hash();
         out.reused = true;

@@ -19,17 +19,11 @@ struct CachedDataset {
   bool reused = false;
 };
 
-struct DatasetShape {
-  std::size_t samples = 0, inputs = 0, outputs = 0;
-};
-// The shape the generator will produce, known without generating.
-DatasetShape dataset_shape(const DatasetSpec& spec);
-
 // Generates the dataset `spec` describes with generator seed `seed`.
 Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed);
 
 // <dir>/<generator>-<16 hex digits>.h5, the hash covering generator name,
-// options and seed. A cached file that fails to read (corrupt, partial,
+// version, options and seed. A cached file that fails to read (corrupt, partial,
 // tampered) or was made by another generator config is regenerated.
 CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed,
                              const std::filesystem::path& dir, std::ostream* log);

@@ -36,7 +36,7 @@ Eigen::MatrixXd columns(const Eigen::MatrixXd& m, const std::vector<std::size_t>
 // the network's parameters four times (parameters, velocity, gradient, best),
 // and one activation per unit and evaluated sample.
 void check_run_memory(const ExperimentSpec& spec) {
-  const auto [samples, inputs, outputs] = dataset_shape(spec.dataset);
+  const auto [samples, inputs, outputs] = spec.dataset.generator->shape();
   const double n = static_cast<double>(samples);
   const double values = static_cast<double>(inputs + outputs);
   double parameters = 0, units = static_cast<double>(inputs + outputs);

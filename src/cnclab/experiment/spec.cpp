@@ -2,10 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <cstdio>
-
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
 #include "cnclab/experiment/metrics.hpp"
 
 namespace cnclab {
@@ -60,15 +59,8 @@ Initializer read_initializer(const ConfigReader& r, const Initializer& fallback)
 
 DatasetSpec read_dataset(const ConfigReader& r) {
   DatasetSpec spec;
-  spec.generator = choice(r, "generator", spec.generator, {"friedman1"});
+  spec.generator = read_generator(r);
   spec.seed = r.optional<std::uint64_t>("seed");
-  const ConfigReader o = r.section("options");
-  Friedman1Options f;
-  f.samples = o.get<std::size_t>("samples", f.samples);
-  f.inputs = o.get<std::size_t>("inputs", f.inputs);
-  f.noise_std = o.get<double>("noise_std", f.noise_std);
-  o.validate([&] { f.validate(); });
-  spec.options = f;
   return spec;
 }
 
@@ -171,26 +163,14 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::str
   return {spec, to_yaml(spec)};
 }
 
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  // Shortest text that reads back to the same double.
-  for (int precision = 1; precision < 17; ++precision) {
-    char shorter[32];
-    std::snprintf(shorter, sizeof shorter, "%.*g", precision, x);
-    if (std::strtod(shorter, nullptr) == x) return shorter;
-  }
-  return buf;
-}
-
 void emit_initializer(YAML::Emitter& out, const Initializer& init) {
   out << YAML::BeginMap << YAML::Key << "type" << YAML::Value << to_string(init.kind);
   if (init.kind == Initializer::Kind::normal) {
-    out << YAML::Key << "mean" << YAML::Value << number(init.mean);
-    out << YAML::Key << "std" << YAML::Value << number(init.std);
+    out << YAML::Key << "mean" << YAML::Value << shortest_double(init.mean);
+    out << YAML::Key << "std" << YAML::Value << shortest_double(init.std);
   } else if (init.kind == Initializer::Kind::uniform) {
-    out << YAML::Key << "low" << YAML::Value << number(init.low);
-    out << YAML::Key << "high" << YAML::Value << number(init.high);
+    out << YAML::Key << "low" << YAML::Value << shortest_double(init.low);
+    out << YAML::Key << "high" << YAML::Value << shortest_double(init.high);
   }
   out << YAML::EndMap;
 }
@@ -221,18 +201,14 @@ std::string to_yaml(const ExperimentSpec& spec) {
   out << Key << "seed" << Value << spec.seed;
 
   out << Key << "dataset" << Value << BeginMap;
-  out << Key << "generator" << Value << spec.dataset.generator;
+  out << Key << "generator" << Value << spec.dataset.generator->name();
   if (spec.dataset.seed) out << Key << "seed" << Value << *spec.dataset.seed;
-  const auto& f = std::get<Friedman1Options>(spec.dataset.options);
-  out << Key << "options" << Value << BeginMap;
-  out << Key << "samples" << Value << f.samples;
-  out << Key << "inputs" << Value << f.inputs;
-  out << Key << "noise_std" << Value << number(f.noise_std);
-  out << EndMap << EndMap;
+  out << Key << "options" << Value << YAML::Load(spec.dataset.generator->options_yaml());
+  out << EndMap;
 
   out << Key << "split" << Value << BeginMap;
-  out << Key << "train" << Value << number(spec.split.train_fraction);
-  out << Key << "validation" << Value << number(spec.split.validation_fraction);
+  out << Key << "train" << Value << shortest_double(spec.split.train_fraction);
+  out << Key << "validation" << Value << shortest_double(spec.split.validation_fraction);
   out << EndMap;
 
   const auto scaling = [](Scaling s) { return s == Scaling::zscore ? "zscore" : "none"; };
@@ -248,7 +224,7 @@ std::string to_yaml(const ExperimentSpec& spec) {
   out << Key << "hidden_activation" << Value << to_string(m.hidden_activation);
   out << Key << "output_activation" << Value << to_string(m.output_activation);
   out << Key << "dropout" << Value << BeginMap;
-  out << Key << "keep_probability" << Value << number(m.dropout_keep_probability);
+  out << Key << "keep_probability" << Value << shortest_double(m.dropout_keep_probability);
   out << Key << "placement" << Value << to_string(m.dropout_placement);
   out << EndMap;
   out << Key << "init" << Value << BeginMap;
@@ -261,8 +237,8 @@ std::string to_yaml(const ExperimentSpec& spec) {
   const SgdmOptions& t = spec.trainer;
   out << Key << "trainer" << Value << BeginMap;
   out << Key << "type" << Value << "sgdm";
-  out << Key << "learning_rate" << Value << number(t.learning_rate);
-  out << Key << "momentum" << Value << number(t.momentum);
+  out << Key << "learning_rate" << Value << shortest_double(t.learning_rate);
+  out << Key << "momentum" << Value << shortest_double(t.momentum);
   out << Key << "batch_size" << Value << t.batch_size;
   out << Key << "epochs" << Value << t.epochs;
   out << Key << "shuffle" << Value << t.shuffle;

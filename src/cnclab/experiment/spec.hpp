@@ -4,12 +4,12 @@
 // core/config.hpp) and validate() of each struct runs with the YAML location.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
-#include <variant>
 #include <vector>
 
-#include "cnclab/data/friedman1.hpp"
+#include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"
 #include "cnclab/nn/mlp.hpp"
 #include "cnclab/train/sgdm.hpp"
@@ -18,10 +18,11 @@ namespace cnclab {
 
 // dataset: {generator, seed?, options: {...generator options...}}
 struct DatasetSpec {
-  std::string generator = "friedman1";
+  // The named generator with its options read and validated
+  // (data/generator.hpp); never null in a loaded experiment.
+  std::shared_ptr<const DatasetGenerator> generator;
   // Generator seed; absent = derived from the experiment seed ("generator").
   std::optional<std::uint64_t> seed;
-  std::variant<Friedman1Options> options;
 };
 
 enum class Scaling { zscore, none };

@@ -1,0 +1,12 @@
+#pragma once
+// Text forms of numbers that configs, dataset files and messages share.
+#include <string>
+
+namespace cnclab {
+
+// The shortest decimal text (printf %g, 1 to 17 significant digits) that
+// reads back to exactly `x`: 0.1 -> "0.1", 1e-05 -> "1e-05"; whole numbers
+// below 1e15 keep their digits: 2000 -> "2000".
+std::string shortest_double(double x);
+
+}  // namespace cnclab

@@ -1,0 +1,23 @@
+#include "cnclab/data/generator.hpp"
+
+#include "cnclab/data/friedman1.hpp"
+
+namespace cnclab {
+
+std::vector<GeneratorEntry> builtin_generators() {
+  return {
+      {"friedman1", "Friedman #1 regression benchmark (noisy, d >= 5 inputs)", read_friedman1},
+  };
+}
+
+std::shared_ptr<const DatasetGenerator> read_generator(const ConfigReader& dataset_section) {
+  const auto name = dataset_section.get<std::string>("generator", "friedman1");
+  std::string known;
+  for (const auto& entry : builtin_generators()) {
+    if (entry.name == name) return entry.read(dataset_section.section("options"));
+    known += (known.empty() ? "" : ", ") + entry.name;
+  }
+  dataset_section.fail("generator", "must be one of: " + known);
+}
+
+}  // namespace cnclab
