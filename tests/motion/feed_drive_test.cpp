@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <numbers>
 #include <unsupported/Eigen/MatrixFunctions>
@@ -86,6 +87,51 @@ TEST(FeedDrive, StepResponseMatchesTheContinuousLoop) {
   std::printf("step %.1f mm: max |simulated - closed form| = %.2e mm (overshoot %.3f mm)\n", step,
               worst, overshoot);
   EXPECT_LT(worst, 1e-3 * step);
+}
+
+TEST(FeedDrive, LeadErrorResidualIsTheLoopSensitivity) {
+  // Only the lead error on: at constant velocity v it is an output
+  // disturbance d = A sin(2 pi v t / p) that the linear scale sees, so the
+  // logged following error oscillates with amplitude A |S(jw)|,
+  // S = 1 / (1 + Kp G), G(s) = x_n / v_cmd of the closed velocity loop
+  //   x' = v,  v' = (Kv/J)(v_cmd - v + z/Ti) - (b/J) v,  z' = v_cmd - v.
+  // Loops at 10 us approximate the continuous cascade.
+  FeedDriveOptions a = linear_axis();
+  a.lead_error_amplitude = 0.003;
+  DriveTiming timing;
+  timing.controller_period = timing.velocity_loop_period = timing.integration_step = 1e-5;
+  const double J = a.total_inertia(), Kv = a.velocity_gain, Ti = a.velocity_integral_time;
+  const double b = a.viscous_friction, Kp = a.position_gain;
+  Eigen::Matrix3d Av;
+  Av << 0, 1, 0,                        //
+      0, -(Kv + b) / J, Kv / (J * Ti),  //
+      0, -1, 0;
+  const Eigen::Vector3d Bv(0, Kv / J, 1);
+  for (const double v : {50.0, 100.0, 200.0}) {
+    const double w = 2 * std::numbers::pi * v / a.screw_lead;
+    const Eigen::Matrix3cd M =
+        std::complex<double>(0, w) * Eigen::Matrix3cd::Identity() - Av.cast<std::complex<double>>();
+    const std::complex<double> G = (M.inverse() * Bv.cast<std::complex<double>>())(0);
+    const double expected = a.lead_error_amplitude / std::abs(1.0 + Kp * G);
+    const int n = 150000;  // 1.5 s
+    std::vector<double> r(n), vr(n, v);
+    for (int k = 0; k < n; ++k) r[k] = v * k * timing.controller_period;
+    Rng rng(1);
+    const AxisResponse out = simulate_axis(a, timing, r, vr, rng);
+    // Least-squares fit c0 + c1 sin(wt) + c2 cos(wt) over the last 1 s.
+    Eigen::MatrixXd X(100000, 3);
+    Eigen::VectorXd y(100000);
+    for (int i = 0; i < 100000; ++i) {
+      const double t = (n - 100000 + i) * timing.controller_period;
+      X.row(i) << 1.0, std::sin(w * t), std::cos(w * t);
+      y[i] = out.following_error[n - 100000 + i];
+    }
+    const Eigen::Vector3d c = X.colPivHouseholderQr().solve(y);
+    const double amplitude = std::hypot(c[1], c[2]);
+    std::printf("v %5.1f mm/s (%4.1f Hz): lead-error residual %.4f um, A |S(jw)| = %.4f um\n", v,
+                w / (2 * std::numbers::pi), amplitude * 1e3, expected * 1e3);
+    EXPECT_NEAR(amplitude, expected, 0.01 * expected) << "v " << v;
+  }
 }
 
 // Radial error e_r = |P - c| - r around a circle. A quadrant glitch is a
