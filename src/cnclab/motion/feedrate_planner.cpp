@@ -8,59 +8,18 @@
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/motion/feedrate_guess.hpp"
 #include "cnclab/motion/feedrate_nlp.hpp"
+#include "cnclab/motion/ipopt_status.hpp"
 #include "cnclab/motion/path_grid.hpp"
 
 namespace cnclab {
 namespace {
 
 using feedrate_detail::FeedrateNlp;
+using feedrate_detail::initial_guess;
 using feedrate_detail::NodeCoefficients;
 using feedrate_detail::WindowState;
-
-const char* status_name(Ipopt::ApplicationReturnStatus s) {
-  switch (s) {
-    case Ipopt::Solve_Succeeded:
-      return "Solve_Succeeded";
-    case Ipopt::Solved_To_Acceptable_Level:
-      return "Solved_To_Acceptable_Level";
-    case Ipopt::Infeasible_Problem_Detected:
-      return "Infeasible_Problem_Detected";
-    case Ipopt::Search_Direction_Becomes_Too_Small:
-      return "Search_Direction_Becomes_Too_Small";
-    case Ipopt::Diverging_Iterates:
-      return "Diverging_Iterates";
-    case Ipopt::User_Requested_Stop:
-      return "User_Requested_Stop";
-    case Ipopt::Feasible_Point_Found:
-      return "Feasible_Point_Found";
-    case Ipopt::Maximum_Iterations_Exceeded:
-      return "Maximum_Iterations_Exceeded";
-    case Ipopt::Restoration_Failed:
-      return "Restoration_Failed";
-    case Ipopt::Error_In_Step_Computation:
-      return "Error_In_Step_Computation";
-    case Ipopt::Maximum_CpuTime_Exceeded:
-      return "Maximum_CpuTime_Exceeded";
-    case Ipopt::Not_Enough_Degrees_Of_Freedom:
-      return "Not_Enough_Degrees_Of_Freedom";
-    case Ipopt::Invalid_Problem_Definition:
-      return "Invalid_Problem_Definition";
-    case Ipopt::Invalid_Option:
-      return "Invalid_Option";
-    case Ipopt::Invalid_Number_Detected:
-      return "Invalid_Number_Detected";
-    case Ipopt::Unrecoverable_Exception:
-      return "Unrecoverable_Exception";
-    case Ipopt::NonIpopt_Exception_Thrown:
-      return "NonIpopt_Exception_Thrown";
-    case Ipopt::Insufficient_Memory:
-      return "Insufficient_Memory";
-    case Ipopt::Internal_Error:
-      return "Internal_Error";
-  }
-  return "unknown status";
-}
 
 // Scaled units (feedrate_nlp.hpp): T0 = A/J [s], L0 = A T0^2 [mm], and the
 // map u -> w = (u - u_begin) * lambda / L0.
@@ -86,68 +45,6 @@ NodeCoefficients node_coefficients(const PathPoint& p, double u, const Scaling& 
   }
   c.w = (u - s.u_begin) / g;
   return c;
-}
-
-double max_abs(const std::array<double, 2>& v) {
-  return std::max(std::abs(v[0]), std::abs(v[1]));
-}
-
-// Heuristic starting point from a state: a speed that ramps up from the
-// start state and down to rest with a modest path acceleration and jerk,
-// capped at half of what velocity, centripetal acceleration and jerk allow
-// at each node; durations, node accelerations and interval jerks follow from
-// it by differences.
-std::vector<double> heuristic_guess(const std::vector<NodeCoefficients>& nodes, WindowState start) {
-  const int N = static_cast<int>(nodes.size()) - 1;
-  double acc1_max = 0.0, jerk1_max = 0.0;
-  for (const auto& c : nodes) {
-    acc1_max = std::max(acc1_max, max_abs(c.acc1));
-    jerk1_max = std::max(jerk1_max, max_abs(c.jerk1));
-  }
-  const double a_guess = 0.2 / acc1_max, j_guess = 0.2 / jerk1_max;
-  // Speed after a distance d from rest with path jerk j and acceleration a:
-  // jerk phase v = (j/2)(6d/j)^(2/3), then v = sqrt(2 a d).
-  auto ramp = [&](double d) {
-    return std::min(std::sqrt(2 * a_guess * d), 0.5 * j_guess * std::pow(6 * d / j_guess, 2.0 / 3));
-  };
-  std::vector<double> v(N + 1), x(4 * N + 2);
-  for (int k = 0; k <= N; ++k) {
-    const NodeCoefficients& c = nodes[k];
-    double cap = 1e19;
-    if (max_abs(c.vel) > 0) cap = std::min(cap, 1.0 / max_abs(c.vel));
-    if (max_abs(c.acc2) > 0) cap = std::min(cap, 1.0 / std::sqrt(max_abs(c.acc2)));
-    if (max_abs(c.jerk3) > 0) cap = std::min(cap, std::cbrt(1.0 / max_abs(c.jerk3)));
-    const double up = start.v + ramp(c.w - nodes.front().w);
-    v[k] = std::min({0.5 * cap, up, ramp(nodes.back().w - c.w)});
-  }
-  v.front() = start.v;
-  v.back() = 0.0;
-  std::vector<double> interval_acc(N);
-  for (int k = 0; k < N; ++k) {
-    const double dw = nodes[k + 1].w - nodes[k].w;
-    x[4 * k + 2] = 2 * dw / (v[k] + v[k + 1]);
-    interval_acc[k] = (v[k + 1] * v[k + 1] - v[k] * v[k]) / (2 * dw);
-  }
-  for (int k = 0; k <= N; ++k) {
-    x[4 * k] = v[k];
-    x[4 * k + 1] = k == 0 ? start.a : k == N ? 0.0 : 0.5 * (interval_acc[k - 1] + interval_acc[k]);
-  }
-  for (int k = 0; k < N; ++k) x[4 * k + 3] = (x[4 * k + 5] - x[4 * k + 1]) / x[4 * k + 2];
-  return x;
-}
-
-// Starting point of a window: the previous window's solution over the
-// overlap (feasible, it ends at rest at the previous window's last node),
-// then the heuristic from rest over the rest of the window.
-std::vector<double> initial_guess(const std::vector<NodeCoefficients>& nodes, WindowState start,
-                                  const std::vector<double>& overlap) {
-  if (overlap.empty()) return heuristic_guess(nodes, start);
-  const std::size_t p = (overlap.size() - 2) / 4;  // nodes 0..p from the previous window
-  std::vector<double> x(overlap.begin(), overlap.end() - 2);
-  const std::vector<NodeCoefficients> rest(nodes.begin() + p, nodes.end());
-  const std::vector<double> tail = heuristic_guess(rest, {0.0, 0.0});
-  x.insert(x.end(), tail.begin(), tail.end());
-  return x;
 }
 
 // Splits the grid intervals that start or end within `length` mm of arc from
@@ -300,7 +197,7 @@ FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptio
       std::ostringstream m;
       m << "feedrate planning failed in window " << window + 1 << " of " << n_windows
         << " (grid nodes " << first << ".." << last << ", path parameter u in [" << grid[first]
-        << ", " << grid[last] << "]): Ipopt returned " << status_name(status) << " ("
+        << ", " << grid[last] << "]): Ipopt returned " << ipopt_status_name(status) << " ("
         << static_cast<int>(status) << ")";
       throw Error(m.str());
     }
