@@ -79,7 +79,7 @@ TEST(FeedratePlanner, RejectsBadOptionsAndCusps) {
   o.limits.axes[0].velocity = std::nan("");
   EXPECT_THROW(plan_feedrate(line, o), OptionError);
   o = {};
-  o.commit_intervals = 230;  // overlap 5 mm < stopping distance
+  o.commit_intervals = 205;  // overlap 35 mm < stopping distance 40 mm
   EXPECT_THROW(plan_feedrate(line, o), OptionError);
   // A cubic with a cusp: control polygon folded back on itself (C'(1/2) = 0).
   const CubicBezierPath cusp({Vec2(0, 0), Vec2(30, 30), Vec2(0, 30), Vec2(30, 0)});

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <numbers>
 
@@ -79,6 +80,26 @@ TEST(Interpolator, AnalyticDerivativesMatchDifferences) {
   // for the acceleration h^2 |q''''|/6 plus the jerk steps: a few mm/s^2.
   EXPECT_LT(v_err, 0.05);
   EXPECT_LT(a_err, 50.0);
+}
+
+TEST(Interpolator, DifferentLimitsPerAxis) {
+  // A slower y axis (half the x limits): each axis keeps its own limits.
+  const testing::PlannedPath& bezier = testing::planned_path("bezier");
+  FeedratePlannerOptions options;
+  options.limits.axes[1] = {150.0, 1000.0, 25000.0};
+  const ReferenceTrajectory r =
+      interpolate(*bezier.path, plan_feedrate(*bezier.path, options), 1e-3);
+  const Peaks peaks = numerical_peaks(r);
+  std::printf("y at half limits: peak |v| %.1f %.1f  |a| %.0f %.0f  |j| %.0f %.0f\n", peaks.v.x(),
+              peaks.v.y(), peaks.a.x(), peaks.a.y(), peaks.j.x(), peaks.j.y());
+  for (int i = 0; i < 2; ++i) {
+    const AxisLimits& L = options.limits.axes[i];
+    EXPECT_LE(peaks.v[i], L.velocity * (1 + kLimitTolerance));
+    EXPECT_LE(peaks.a[i], L.acceleration * (1 + kLimitTolerance));
+    EXPECT_LE(peaks.j[i], L.jerk * (1 + kLimitTolerance));
+  }
+  // The y limits bind somewhere (within 5 %), so the test is not vacuous.
+  EXPECT_GT(std::max({peaks.v.y() / 150.0, peaks.a.y() / 1000.0, peaks.j.y() / 25000.0}), 0.95);
 }
 
 }  // namespace

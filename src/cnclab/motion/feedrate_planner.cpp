@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
@@ -107,14 +108,24 @@ void FeedratePlannerOptions::validate() const {
     throw OptionError("commit_intervals", std::to_string(commit_intervals),
                       "must be in [1, window_intervals - 1]");
   }
-  // The overlap must hold a full stop from the largest path speed (S-curve
-  // stopping distance v^2/(2a) + v a/(2j) with v = |(V_x, V_y)|, a and j the
-  // smallest axis limits: a conservative bound), else the rest condition at
-  // a window's end slows the part that is kept.
-  double v = std::hypot(limits.axes[0].velocity, limits.axes[1].velocity);
-  double a = std::min(limits.axes[0].acceleration, limits.axes[1].acceleration);
-  double j = std::min(limits.axes[0].jerk, limits.axes[1].jerk);
-  const double braking = v * v / (2 * a) + v * a / (2 * j);
+  // The overlap must hold a full stop from the largest path speed, else the
+  // rest condition at a window's end slows the part that is kept: the
+  // straight-line S-curve stopping distance v^2/(2a) + v a/(2j), with the
+  // path limits in direction (cos t, sin t) v = min_i V_i/|d_i| (a, j alike),
+  // maximised over t (curvature only lowers the speeds).
+  double braking = 0.0;
+  for (int step = 0; step < 360; ++step) {
+    const double t = step * std::numbers::pi / 720.0;  // [0, pi/2): |d_i| symmetric
+    const double d[2] = {std::cos(t), std::sin(t)};
+    double v = INFINITY, a = INFINITY, j = INFINITY;
+    for (int i = 0; i < 2; ++i) {
+      if (d[i] <= 0.0) continue;
+      v = std::min(v, limits.axes[i].velocity / d[i]);
+      a = std::min(a, limits.axes[i].acceleration / d[i]);
+      j = std::min(j, limits.axes[i].jerk / d[i]);
+    }
+    braking = std::max(braking, v * v / (2 * a) + v * a / (2 * j));
+  }
   const double overlap = static_cast<double>(window_intervals - commit_intervals) * grid_spacing;
   if (overlap < braking) {
     std::ostringstream m;

@@ -16,7 +16,7 @@
 // committed prefix can still stop: the plan is feasible whatever follows);
 // its first `commit_intervals` intervals are kept and the next window starts
 // at the last kept node. The overlap must exceed the braking distance
-// (about v^2/(2A) + vA/(2J) = 29 mm at seed 002's limits) for the rest
+// (40 mm at seed 002's limits, see validate()) for the rest
 // condition at a window's end not to slow the kept part.
 #include <cstddef>
 
