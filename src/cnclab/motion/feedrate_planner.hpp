@@ -6,9 +6,11 @@
 //
 // Why exact second derivatives, not limited-memory quasi-Newton: every
 // constraint is a polynomial of degree <= 4 in at most four variables, so
-// the Hessian is a few entries per node, cheap and exact; with it Ipopt
-// converges in tens of iterations, where L-BFGS needs hundreds on these
-// strongly curved jerk constraints.
+// the Hessian is a few entries per node, cheap and exact (checked against
+// finite differences). Measured on 2 turns of the epitrochoid test path
+// (8 windows): both need 32 iterations per window to the same optimum, but
+// Ipopt's L-BFGS costs 16.8 ms per iteration against 7-8 ms with the exact
+// Hessian, whose sparse KKT system MUMPS factorises directly.
 //
 // Long paths are solved in overlapping windows: a window of
 // `window_intervals` grid intervals starts from the state (du/dt, d2u/dt2)
