@@ -20,6 +20,18 @@ std::string io_error(F&& f) {
   return "";
 }
 
+// The message of the exception of type E that f() throws, or "no error"
+// when it throws none (for tests comparing messages of rejected options).
+template <class E, class F>
+std::string error_message(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 }  // namespace cnclab::testing
 
 #define EXPECT_IO_ERROR(statement, text)                                          \
