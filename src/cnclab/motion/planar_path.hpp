@@ -24,9 +24,10 @@ class PlanarPath {
   virtual ~PlanarPath() = default;
   virtual double u_begin() const = 0;
   virtual double u_end() const = 0;
-  // C and its first three derivatives at u in [u_begin, u_end]. The
-  // derivatives must be continuous (a C3 path): the planner bounds jerk,
-  // which contains C'''.
+  // C and its first three derivatives at u in [u_begin, u_end]. C' and C''
+  // must be continuous; C''' should be (the planner bounds the jerk, which
+  // contains C''', at grid nodes only; a jump between nodes, as at a cubic
+  // spline's knots, is not seen there).
   virtual PathPoint evaluate(double u) const = 0;
 };
 
