@@ -30,6 +30,31 @@ FeedDriveOptions linear_axis() {
   return a;
 }
 
+// The continuous velocity loop (velocities in mm/s; 2 pi / p cancels):
+//   x' = v,  v' = (Kv/J)(v_cmd - v + z/Ti) - (b/J) v,  z' = v_cmd - v,
+// state (x, v, z), input v_cmd.
+struct LinearLoop {
+  Eigen::Matrix3d A;
+  Eigen::Vector3d B;
+};
+LinearLoop velocity_loop(const FeedDriveOptions& a) {
+  const double J = a.total_inertia(), Kv = a.velocity_gain, Ti = a.velocity_integral_time;
+  LinearLoop loop;
+  loop.A << 0, 1, 0,                                     //
+      0, -(Kv + a.viscous_friction) / J, Kv / (J * Ti),  //
+      0, -1, 0;
+  loop.B << 0, Kv / J, 1;
+  return loop;
+}
+
+// Loops and integration at 10 us: the sampled cascade approximates the
+// continuous one.
+DriveTiming continuous_timing() {
+  DriveTiming timing;
+  timing.controller_period = timing.velocity_loop_period = timing.integration_step = 1e-5;
+  return timing;
+}
+
 TEST(FeedDrive, ConstantVelocityFollowingErrorIsTheTypeOneLoopValue) {
   // Steady ramp r = v t: the PI velocity loop removes the viscous torque's
   // velocity error, so v_cmd = v and Kp e + k_ff v = v, e = (1 - k_ff) v / Kp,
@@ -53,22 +78,16 @@ TEST(FeedDrive, ConstantVelocityFollowingErrorIsTheTypeOneLoopValue) {
 }
 
 TEST(FeedDrive, StepResponseMatchesTheContinuousLoop) {
-  // Loops and integration at 10 us approximate the continuous cascade
-  //   x' = v,  v' = (Kv/J)(v_cmd - v + z/Ti) - (b/J) v,  z' = v_cmd - v,
-  //   v_cmd = Kp (r - x),
-  // (velocities in mm/s; 2 pi / p cancels) whose step response is
-  // x(t) = [I 0 0] (e^{At} - I) A^{-1} B r by the matrix exponential.
+  // The position loop v_cmd = Kp (r - x) closed around the velocity loop,
+  // A = A_v - Kp B_v [1 0 0], B = Kp B_v, has the step response
+  // x(t) = [1 0 0] (e^{At} - I) A^{-1} B r (matrix exponential).
   FeedDriveOptions a = linear_axis();
   a.velocity_feedforward = 0.0;
-  DriveTiming timing;
-  timing.controller_period = timing.velocity_loop_period = timing.integration_step = 1e-5;
-  const double J = a.total_inertia(), Kv = a.velocity_gain, Ti = a.velocity_integral_time;
-  const double b = a.viscous_friction, Kp = a.position_gain;
-  Eigen::Matrix3d A;
-  A << 0, 1, 0,                                    //
-      -Kv / J * Kp, -(Kv + b) / J, Kv / (J * Ti),  //
-      -Kp, -1, 0;
-  const Eigen::Vector3d B(0, Kv / J * Kp, Kp);
+  const DriveTiming timing = continuous_timing();
+  const double Kp = a.position_gain;
+  const LinearLoop loop = velocity_loop(a);
+  const Eigen::Matrix3d A = loop.A - Kp * loop.B * Eigen::RowVector3d(1, 0, 0);
+  const Eigen::Vector3d B = Kp * loop.B;
   const double step = 0.5;
   const int n = 30000;  // 0.3 s
   std::vector<double> r(n, step), vr(n, 0.0);
@@ -93,25 +112,17 @@ TEST(FeedDrive, LeadErrorResidualIsTheLoopSensitivity) {
   // Only the lead error on: at constant velocity v it is an output
   // disturbance d = A sin(2 pi v t / p) that the linear scale sees, so the
   // logged following error oscillates with amplitude A |S(jw)|,
-  // S = 1 / (1 + Kp G), G(s) = x_n / v_cmd of the closed velocity loop
-  //   x' = v,  v' = (Kv/J)(v_cmd - v + z/Ti) - (b/J) v,  z' = v_cmd - v.
-  // Loops at 10 us approximate the continuous cascade.
+  // S = 1 / (1 + Kp G), G(s) = x_n / v_cmd = [1 0 0] (sI - A_v)^-1 B_v.
   FeedDriveOptions a = linear_axis();
   a.lead_error_amplitude = 0.003;
-  DriveTiming timing;
-  timing.controller_period = timing.velocity_loop_period = timing.integration_step = 1e-5;
-  const double J = a.total_inertia(), Kv = a.velocity_gain, Ti = a.velocity_integral_time;
-  const double b = a.viscous_friction, Kp = a.position_gain;
-  Eigen::Matrix3d Av;
-  Av << 0, 1, 0,                        //
-      0, -(Kv + b) / J, Kv / (J * Ti),  //
-      0, -1, 0;
-  const Eigen::Vector3d Bv(0, Kv / J, 1);
+  const DriveTiming timing = continuous_timing();
+  const double Kp = a.position_gain;
+  const LinearLoop loop = velocity_loop(a);
   for (const double v : {50.0, 100.0, 200.0}) {
     const double w = 2 * std::numbers::pi * v / a.screw_lead;
-    const Eigen::Matrix3cd M =
-        std::complex<double>(0, w) * Eigen::Matrix3cd::Identity() - Av.cast<std::complex<double>>();
-    const std::complex<double> G = (M.inverse() * Bv.cast<std::complex<double>>())(0);
+    const Eigen::Matrix3cd M = std::complex<double>(0, w) * Eigen::Matrix3cd::Identity() -
+                               loop.A.cast<std::complex<double>>();
+    const std::complex<double> G = (M.inverse() * loop.B.cast<std::complex<double>>())(0);
     const double expected = a.lead_error_amplitude / std::abs(1.0 + Kp * G);
     const int n = 150000;  // 1.5 s
     std::vector<double> r(n), vr(n, v);
