@@ -60,20 +60,23 @@ TEST(BsplineBasis, PartitionOfUnityAndFiniteDifferences) {
       const int span = find_span(knots, p, u);
       if (std::abs(u - knots[span]) < 1e-4 || std::abs(u - knots[span + 1]) < 1e-4) continue;
       BasisDerivatives n, plus, minus;
-      basis_derivatives(knots, p, span, u, 2, n);
-      double sum[3] = {0, 0, 0};
+      basis_derivatives(knots, p, span, u, 3, n);
+      double sum[4] = {0, 0, 0, 0};
       for (int j = 0; j <= p; ++j) {
-        for (int k = 0; k < 3; ++k) sum[k] += n[k][j];
+        for (int k = 0; k < 4; ++k) sum[k] += n[k][j];
       }
       EXPECT_NEAR(sum[0], 1.0, kExactTol);
       EXPECT_NEAR(sum[1], 0.0, 1e-10);
       EXPECT_NEAR(sum[2], 0.0, 1e-8);
+      EXPECT_NEAR(sum[3], 0.0, 1e-6);
       const double h = 1e-6;
-      basis_derivatives(knots, p, span, u + h, 2, plus);
-      basis_derivatives(knots, p, span, u - h, 2, minus);
+      basis_derivatives(knots, p, span, u + h, 3, plus);
+      basis_derivatives(knots, p, span, u - h, 3, minus);
       for (int j = 0; j <= p; ++j) {
         EXPECT_NEAR(n[1][j], (plus[0][j] - minus[0][j]) / (2 * h), kFiniteDifferenceTol) << p;
         EXPECT_NEAR(n[2][j], (plus[1][j] - minus[1][j]) / (2 * h), 1e-4 * (1 + std::abs(n[2][j])))
+            << p;
+        EXPECT_NEAR(n[3][j], (plus[2][j] - minus[2][j]) / (2 * h), 1e-4 * (1 + std::abs(n[3][j])))
             << p;
       }
     }

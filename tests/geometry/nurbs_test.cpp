@@ -198,6 +198,52 @@ TEST(NurbsCurve, DerivativesMatchCentralDifferences) {
                            m = curve_derivatives(c, u - h);
     EXPECT_NEAR((d.d1 - (p.point - m.point) / (2 * h)).norm(), 0.0, 1e-5);
     EXPECT_NEAR((d.d2 - (p.d1 - m.d1) / (2 * h)).norm(), 0.0, 1e-4);
+    EXPECT_NEAR((d.d3 - (p.d2 - m.d2) / (2 * h)).norm(), 0.0, 1e-4 * (1 + d.d3.norm()));
+  }
+}
+
+// C''' against central differences of C'' on rational curves of degrees
+// 1..6 with random weights and non-uniform knots, away from the knots (where
+// C''' of a degree <= 3 curve jumps). Degree <= 2 B-spline pieces have no
+// third derivative; the rational ones do.
+TEST(NurbsCurve, ThirdDerivativeMatchesCentralDifferences) {
+  Rng rng(11);
+  for (int p = 1; p <= 6; ++p) {
+    NurbsCurve c;
+    c.degree = p;
+    const int count = p + 4;
+    c.knots.assign(static_cast<std::size_t>(p + 1), 0.0);
+    double t = 0.0;
+    for (int i = 0; i < count - p - 1; ++i) c.knots.push_back(t += rng.uniform(0.3, 1.0));
+    t += rng.uniform(0.3, 1.0);
+    for (int i = 0; i <= p; ++i) c.knots.push_back(t);
+    for (int i = 0; i < count; ++i) {
+      c.points.emplace_back(rng.uniform(-20, 20), rng.uniform(-20, 20), rng.uniform(-20, 20));
+      c.weights.push_back(rng.uniform(0.5, 2.0));
+    }
+    c.validate();
+    const double h = 1e-5;
+    int checked = 0;
+    while (checked < 40) {
+      const double u = rng.uniform(c.first() + 1e-3, c.last() - 1e-3);
+      if (near_knot(u, c.knots)) continue;
+      ++checked;
+      const CurveDerivatives d = curve_derivatives(c, u), plus = curve_derivatives(c, u + h),
+                             minus = curve_derivatives(c, u - h);
+      const Eigen::Vector3d fd = (plus.d2 - minus.d2) / (2 * h);
+      EXPECT_NEAR((d.d3 - fd).norm(), 0.0, 1e-5 * (1 + d.d3.norm())) << p << " " << u;
+    }
+  }
+  // A polynomial cubic Bezier: C''' = 6 (P3 - 3 P2 + 3 P1 - P0) exactly.
+  NurbsCurve bezier;
+  bezier.degree = 3;
+  bezier.knots = {0, 0, 0, 0, 1, 1, 1, 1};
+  bezier.points = {{0, 0, 0}, {1, 3, 0}, {4, -2, 1}, {6, 1, 0}};
+  bezier.weights = {1, 1, 1, 1};
+  const Eigen::Vector3d expected =
+      6.0 * (bezier.points[3] - 3.0 * bezier.points[2] + 3.0 * bezier.points[1] - bezier.points[0]);
+  for (double u : {0.0, 0.4, 1.0}) {
+    EXPECT_NEAR((curve_derivatives(bezier, u).d3 - expected).norm(), 0.0, 1e-12) << u;
   }
 }
 

@@ -12,8 +12,9 @@ namespace cnclab {
 // Highest supported degree: the basis workspace lives on the stack (no heap
 // allocation per evaluation). Free-form CAD surfaces rarely exceed degree 9.
 inline constexpr int kMaxBsplineDegree = 15;
-// Highest derivative order the evaluators return (point, first, second).
-inline constexpr int kMaxDerivativeOrder = 2;
+// Highest derivative order the evaluators return (point, first, second,
+// third: the jerk limit of feedrate planning needs C''').
+inline constexpr int kMaxDerivativeOrder = 3;
 
 // Throws OptionError(`name`, ...) unless: 1 <= degree <= kMaxBsplineDegree,
 // num_points >= degree + 1, knots.size() == num_points + degree + 1, every

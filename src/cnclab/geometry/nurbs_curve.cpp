@@ -51,13 +51,13 @@ Eigen::Vector3d curve_point(const NurbsCurve& c, double u) {
 CurveDerivatives curve_derivatives(const NurbsCurve& c, double u) {
   const int span = find_span(c.knots, c.degree, u);
   BasisDerivatives n;
-  basis_derivatives(c.knots, c.degree, span, std::clamp(u, c.first(), c.last()), 2, n);
-  Eigen::Vector3d a[3] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+  basis_derivatives(c.knots, c.degree, span, std::clamp(u, c.first(), c.last()), 3, n);
+  Eigen::Vector3d a[4] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
                           Eigen::Vector3d::Zero()};
-  double w[3] = {0.0, 0.0, 0.0};
+  double w[4] = {0.0, 0.0, 0.0, 0.0};
   for (int j = 0; j <= c.degree; ++j) {
     const auto i = static_cast<std::size_t>(span - c.degree + j);
-    for (int k = 0; k <= 2; ++k) {
+    for (int k = 0; k <= 3; ++k) {
       const double nw = n[k][j] * c.weights[i];
       a[k] += nw * c.points[i];
       w[k] += nw;
@@ -67,6 +67,7 @@ CurveDerivatives curve_derivatives(const NurbsCurve& c, double u) {
   d.point = a[0] / w[0];
   d.d1 = (a[1] - w[1] * d.point) / w[0];
   d.d2 = (a[2] - 2.0 * w[1] * d.d1 - w[2] * d.point) / w[0];
+  d.d3 = (a[3] - 3.0 * w[1] * d.d2 - 3.0 * w[2] * d.d1 - w[3] * d.point) / w[0];
   return d;
 }
 

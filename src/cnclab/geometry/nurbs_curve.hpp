@@ -27,13 +27,15 @@ void validate_control_net(const std::vector<Eigen::Vector3d>& points,
 
 // Point and derivatives with respect to u at one parameter.
 struct CurveDerivatives {
-  Eigen::Vector3d point, d1, d2;  // C, C', C''
+  Eigen::Vector3d point, d1, d2, d3;  // C, C', C'', C'''
 };
 
 // Point only (A4.1). u outside [first, last] is clamped.
 Eigen::Vector3d curve_point(const NurbsCurve& curve, double u);
 // A3.2 on the homogeneous curve, then the rational quotient rule (A4.2):
-// C' = (A' - w' C) / w,  C'' = (A'' - 2 w' C' - w'' C) / w.
+// C' = (A' - w' C) / w,  C'' = (A'' - 2 w' C' - w'' C) / w,
+// C''' = (A''' - 3 w' C'' - 3 w'' C' - w''' C) / w  (Leibniz rule on A = w C).
+// C''' is zero for degree <= 2 B-splines and jumps at knots of a cubic.
 CurveDerivatives curve_derivatives(const NurbsCurve& curve, double u);
 
 }  // namespace cnclab
