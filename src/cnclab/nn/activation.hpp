@@ -1,4 +1,5 @@
 #pragma once
+#include <Eigen/Core>
 #include <string>
 
 namespace cnclab {
@@ -9,5 +10,11 @@ enum class Activation { relu, tanh, sigmoid, linear };
 // Throws OptionError("activation", name, "must be one of: ...").
 Activation parse_activation(const std::string& name);
 std::string to_string(Activation a);
+
+// z <- f(z), elementwise.
+void apply_activation(Activation f, Eigen::Ref<Eigen::MatrixXd> z);
+// delta *= f'(z), written with the activation value a = f(z).
+void multiply_derivative(Activation f, const Eigen::Ref<const Eigen::MatrixXd>& a,
+                         Eigen::Ref<Eigen::MatrixXd> delta);
 
 }  // namespace cnclab

@@ -10,40 +10,6 @@ namespace {
 using MapMatrix = Eigen::Map<const Eigen::MatrixXd>;
 using MapVector = Eigen::Map<const Eigen::VectorXd>;
 
-void apply_activation(Activation f, Eigen::Ref<Eigen::MatrixXd> z) {
-  switch (f) {
-    case Activation::relu:
-      z = z.cwiseMax(0.0);
-      break;
-    case Activation::tanh:
-      z = z.array().tanh();
-      break;
-    case Activation::sigmoid:
-      z = (1.0 + (-z.array()).exp()).inverse();
-      break;
-    case Activation::linear:
-      break;
-  }
-}
-
-// delta *= f'(z), written with the activation value a = f(z).
-void multiply_derivative(Activation f, const Eigen::MatrixXd& a,
-                         Eigen::Ref<Eigen::MatrixXd> delta) {
-  switch (f) {
-    case Activation::relu:
-      delta = (a.array() > 0.0).select(delta, 0.0);
-      break;
-    case Activation::tanh:
-      delta.array() *= 1.0 - a.array().square();
-      break;
-    case Activation::sigmoid:
-      delta.array() *= a.array() * (1.0 - a.array());
-      break;
-    case Activation::linear:
-      break;
-  }
-}
-
 }  // namespace
 
 std::string to_string(DropoutPlacement p) {

@@ -4,4 +4,5 @@
 #include "cnclab/nn/initializer.hpp"
 #include "cnclab/nn/minmax.hpp"
 #include "cnclab/nn/mlp.hpp"
+#include "cnclab/nn/narx.hpp"
 #include "cnclab/nn/zscore.hpp"

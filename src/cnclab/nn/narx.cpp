@@ -1,0 +1,126 @@
+#include "cnclab/nn/narx.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "cnclab/core/error.hpp"
+
+namespace cnclab {
+namespace {
+
+MlpOptions static_network(const NarxOptions& o) {
+  MlpOptions m;
+  m.inputs = o.input_delays + o.feedback_delays;
+  m.hidden = {o.hidden};
+  m.outputs = 1;
+  m.hidden_activation = o.hidden_activation;
+  m.output_activation = Activation::linear;
+  m.weights = o.weights;
+  m.biases = o.biases;
+  return m;
+}
+
+}  // namespace
+
+void NarxOptions::validate() const {
+  if (input_delays < 1) {
+    throw OptionError("input_delays", std::to_string(input_delays), "must be >= 1");
+  }
+  if (feedback_delays < 1) {
+    throw OptionError("feedback_delays", std::to_string(feedback_delays),
+                      "must be >= 1 (a NARX feeds back at least e(t-1))");
+  }
+  if (hidden < 1) throw OptionError("hidden", std::to_string(hidden), "must be >= 1");
+  if (first_input_delay > 1) {
+    throw OptionError("first_input_delay", std::to_string(first_input_delay),
+                      "must be 0 (v(t), Eq. 1) or 1 (MATLAB narxnet(1:D, ...))");
+  }
+  weights.validate();
+  biases.validate();
+}
+
+Narx::Narx(NarxOptions options)
+    : options_((options.validate(), std::move(options))), mlp_(static_network(options_)) {}
+
+Eigen::Index Narx::first_step() const {
+  const auto last_input = options_.first_input_delay + options_.input_delays - 1;
+  return static_cast<Eigen::Index>(std::max(last_input, options_.feedback_delays));
+}
+
+void Narx::check_series(const Eigen::VectorXd& v, const Eigen::VectorXd& e) const {
+  if (v.size() != e.size() || v.size() <= first_step()) {
+    throw Error("NARX series: velocity has " + std::to_string(v.size()) + " samples, error " +
+                std::to_string(e.size()) + "; need equal lengths > " +
+                std::to_string(first_step()) + " (the delays)");
+  }
+  if (!v.allFinite() || !e.allFinite()) throw Error("NARX series contain NaN or infinity");
+}
+
+Eigen::MatrixXd Narx::open_loop_regressors(const Eigen::VectorXd& v,
+                                           const Eigen::VectorXd& e) const {
+  check_series(v, e);
+  const Eigen::Index t0 = first_step(), steps = v.size() - t0;
+  const auto dv = static_cast<Eigen::Index>(options_.input_delays);
+  const auto de = static_cast<Eigen::Index>(options_.feedback_delays);
+  const auto d0 = static_cast<Eigen::Index>(options_.first_input_delay);
+  Eigen::MatrixXd x(dv + de, steps);
+  for (Eigen::Index s = 0; s < steps; ++s) {
+    const Eigen::Index t = t0 + s;
+    for (Eigen::Index j = 0; j < dv; ++j) x(j, s) = v[t - d0 - j];
+    for (Eigen::Index k = 1; k <= de; ++k) x(dv + k - 1, s) = e[t - k];
+  }
+  return x;
+}
+
+Eigen::VectorXd Narx::simulate_closed_loop(const Eigen::VectorXd& params, const Eigen::VectorXd& v,
+                                           const Eigen::VectorXd& e_initial,
+                                           Eigen::MatrixXd* jacobian) const {
+  check_series(v, e_initial);
+  const Eigen::Index t0 = first_step(), steps = v.size() - t0;
+  const auto dv = static_cast<Eigen::Index>(options_.input_delays);
+  const auto de = static_cast<Eigen::Index>(options_.feedback_delays);
+  const auto d0 = static_cast<Eigen::Index>(options_.first_input_delay);
+  const auto h = static_cast<Eigen::Index>(options_.hidden);
+  const Eigen::Index n = dv + de, w_count = params.size();
+  if (w_count != static_cast<Eigen::Index>(num_parameters())) {
+    throw Error("NARX parameters: " + std::to_string(w_count) + " values, the network has " +
+                std::to_string(num_parameters()));
+  }
+  // Views into the flat vector (Mlp layout).
+  const Eigen::Map<const Eigen::MatrixXd> w1(params.data(), h, n);
+  const Eigen::Map<const Eigen::VectorXd> b1(params.data() + h * n, h);
+  const Eigen::Map<const Eigen::RowVectorXd> w2(params.data() + h * n + h, h);
+  const double b2 = params[h * n + 2 * h];
+
+  // e_full(t): initial states then predictions.
+  Eigen::VectorXd e_full(v.size());
+  e_full.head(t0) = e_initial.head(t0);
+  if (jacobian != nullptr) jacobian->setZero(steps, w_count);
+  Eigen::VectorXd x(n), a(h);
+  Eigen::MatrixXd delta(h, 1);  // w2_i f'(z_i)
+  for (Eigen::Index s = 0; s < steps; ++s) {
+    const Eigen::Index t = t0 + s;
+    for (Eigen::Index j = 0; j < dv; ++j) x[j] = v[t - d0 - j];
+    for (Eigen::Index k = 1; k <= de; ++k) x[dv + k - 1] = e_full[t - k];
+    a = w1 * x + b1;
+    apply_activation(options_.hidden_activation, a);
+    e_full[t] = w2.dot(a) + b2;
+    if (jacobian == nullptr) continue;
+    delta.col(0) = w2.transpose();
+    multiply_derivative(options_.hidden_activation, a, delta);
+    auto row = jacobian->row(s);
+    // Direct term df/dw at x(t).
+    for (Eigen::Index j = 0; j < n; ++j) row.segment(j * h, h) = (delta.col(0) * x[j]).transpose();
+    row.segment(h * n, h) = delta.col(0).transpose();
+    row.segment(h * n + h, h) = a.transpose();
+    row[h * n + 2 * h] = 1.0;
+    // Through the fed-back predictions: df/de(t-k) = sum_i delta_i W1(i, dv+k-1).
+    for (Eigen::Index k = 1; k <= de && s - k >= 0; ++k) {
+      const double gain = delta.col(0).dot(w1.col(dv + k - 1));
+      row += gain * jacobian->row(s - k);
+    }
+  }
+  return e_full.tail(steps);
+}
+
+}  // namespace cnclab
