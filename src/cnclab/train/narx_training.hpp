@@ -1,0 +1,88 @@
+#pragma once
+// Training a NARX network (nn/narx.hpp) the two-stage way of seed 002
+// (Sec. II): (1) series-parallel (open loop: the measured errors are fed
+// back, the network is a static MLP on the regressors) with trainbr from
+// random weights; (2) the loop closed, trainbr continued in the parallel
+// configuration from the same weights, with the exact dynamic Jacobian of
+// the closed-loop outputs (RTRL, Narx::simulate_closed_loop).
+// Residuals are prediction minus measurement at steps t = first_step()..T-1.
+#include <Eigen/Core>
+#include <optional>
+
+#include "cnclab/nn/narx.hpp"
+#include "cnclab/train/mlp_residuals.hpp"
+#include "cnclab/train/residual_objective.hpp"
+#include "cnclab/train/summary.hpp"
+#include "cnclab/train/trainbr.hpp"
+
+namespace cnclab {
+
+// Series-parallel residuals: the static network on the open-loop regressors
+// (MlpResidualObjective, Jacobian by Mlp::output_jacobian).
+class NarxOpenLoopObjective : public ResidualObjective {
+ public:
+  NarxOpenLoopObjective(const Narx& narx, const Eigen::VectorXd& v, const Eigen::VectorXd& e);
+  Eigen::Index num_residuals() const override { return static_.num_residuals(); }
+  Eigen::Index num_parameters() const override { return static_.num_parameters(); }
+  void evaluate(const Eigen::VectorXd& params, Eigen::Index first, Eigen::Index count,
+                Eigen::Ref<Eigen::VectorXd> residuals, Eigen::MatrixXd* jacobian) override {
+    static_.evaluate(params, first, count, residuals, jacobian);
+  }
+
+ private:
+  Eigen::MatrixXd inputs_, targets_;
+  MlpResidualObjective static_;
+};
+
+// Parallel residuals e_hat(t) - e(t), e_hat from the closed-loop simulation
+// started from the measured initial states. The simulation is sequential:
+// one pass (with the dynamic Jacobian when asked) per parameter vector,
+// cached and served in row blocks.
+class NarxClosedLoopObjective : public ResidualObjective {
+ public:
+  NarxClosedLoopObjective(const Narx& narx, const Eigen::VectorXd& v, const Eigen::VectorXd& e);
+  Eigen::Index num_residuals() const override { return e_.size() - narx_.first_step(); }
+  Eigen::Index num_parameters() const override {
+    return static_cast<Eigen::Index>(narx_.num_parameters());
+  }
+  void evaluate(const Eigen::VectorXd& params, Eigen::Index first, Eigen::Index count,
+                Eigen::Ref<Eigen::VectorXd> residuals, Eigen::MatrixXd* jacobian) override;
+
+ private:
+  const Narx& narx_;
+  const Eigen::VectorXd& v_;
+  const Eigen::VectorXd& e_;
+  Eigen::VectorXd cached_params_, residuals_;
+  Eigen::MatrixXd jacobian_;
+  bool has_jacobian_ = false;
+};
+
+struct NarxTrainingOptions {
+  // Stage 1, series-parallel trainbr. Seed 002: "until minimum gradient of
+  // 1e-8 was reached or the training did not show significant progress".
+  TrainbrOptions open_loop = [] {
+    TrainbrOptions o;
+    o.min_gradient = 1e-8;
+    return o;
+  }();
+  // Stage 2, parallel trainbr from the stage-1 weights.
+  TrainbrOptions closed_loop = [] {
+    TrainbrOptions o;
+    o.min_gradient = 1e-8;
+    return o;
+  }();
+  bool run_open_loop = true;    // false: closed-loop only (from the given weights)
+  bool run_closed_loop = true;  // false: open-loop only
+
+  void validate() const;  // both stages' options; at least one stage
+};
+
+struct NarxTrainingResult {
+  std::optional<Summary> open_loop, closed_loop;  // present for the stages run
+};
+
+// Trains `params` in place (initialise it first: Narx::initialise).
+NarxTrainingResult train_narx(const Narx& narx, const Eigen::VectorXd& v, const Eigen::VectorXd& e,
+                              Eigen::VectorXd& params, const NarxTrainingOptions& options = {});
+
+}  // namespace cnclab
