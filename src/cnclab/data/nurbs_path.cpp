@@ -124,8 +124,8 @@ NurbsCurve draw_curve(const RandomNurbsPathOptions& options, Rng& rng) {
     constexpr int kStepDraws = 32;
     bool placed = false;
     for (int draw = 0; draw < kStepDraws && !placed; ++draw) {
-      const double turn = rng.uniform(-max_turn, max_turn);
-      const double turned = heading + (steer ? towards_centre * max_turn : turn);
+      const double turned =
+          heading + (steer ? towards_centre * max_turn : rng.uniform(-max_turn, max_turn));
       const double step = rng.uniform(options.step_min, options.step_max);
       const Eigen::Vector2d next = q + step * direction(turned);
       if (inside(next)) {

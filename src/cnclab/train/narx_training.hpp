@@ -57,20 +57,18 @@ class NarxClosedLoopObjective : public ResidualObjective {
   bool has_jacobian_ = false;
 };
 
+// trainbr with seed 002's stopping rule: "until minimum gradient of 1e-8
+// was reached or the training did not show significant progress" (the
+// latter: mu exceeding mu_max, or the epoch limit).
+inline TrainbrOptions seed002_trainbr() {
+  TrainbrOptions o;
+  o.min_gradient = 1e-8;
+  return o;
+}
+
 struct NarxTrainingOptions {
-  // Stage 1, series-parallel trainbr. Seed 002: "until minimum gradient of
-  // 1e-8 was reached or the training did not show significant progress".
-  TrainbrOptions open_loop = [] {
-    TrainbrOptions o;
-    o.min_gradient = 1e-8;
-    return o;
-  }();
-  // Stage 2, parallel trainbr from the stage-1 weights.
-  TrainbrOptions closed_loop = [] {
-    TrainbrOptions o;
-    o.min_gradient = 1e-8;
-    return o;
-  }();
+  TrainbrOptions open_loop = seed002_trainbr();    // stage 1, series-parallel, random weights
+  TrainbrOptions closed_loop = seed002_trainbr();  // stage 2, parallel, from stage 1's weights
   bool run_open_loop = true;    // false: closed-loop only (from the given weights)
   bool run_closed_loop = true;  // false: open-loop only
 
