@@ -115,6 +115,18 @@ void write_result(const fs::path& path, const RunRecord& r) {
     f.set_attribute("/metrics", "units", target_units + " (squared for mse; r2 is 1)");
     for (const auto& [name, value] : r.metrics) f.set_attribute("/metrics", name, value);
 
+    if (!r.upstream.empty()) {
+      std::vector<std::string> experiments, files, identities;
+      for (const auto& u : r.upstream) {
+        experiments.push_back(u.experiment);
+        files.push_back(u.result_file);
+        identities.push_back(u.identity);
+      }
+      f.write_strings("/upstream/experiments", experiments);
+      f.write_strings("/upstream/result_files", files);
+      f.write_strings("/upstream/identities", identities);
+    }
+
     mark_complete(f);  // last
     f.close();
     out.commit();
@@ -195,6 +207,17 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   r.test_targets = f.read_matrix("/test/targets");
   for (const auto& name : f.attribute_names("/metrics")) {
     if (name != "units") r.metrics[name] = f.attribute_double("/metrics", name);
+  }
+  if (f.exists("/upstream")) {
+    const auto experiments = f.read_strings("/upstream/experiments");
+    const auto files = f.read_strings("/upstream/result_files");
+    const auto identities = f.read_strings("/upstream/identities");
+    if (files.size() != experiments.size() || identities.size() != experiments.size()) {
+      bad("/upstream: lists of different lengths");
+    }
+    for (std::size_t i = 0; i < experiments.size(); ++i) {
+      r.upstream.push_back({experiments[i], files[i], identities[i]});
+    }
   }
   return r;
 }
