@@ -8,6 +8,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/commands.hpp"
+#include "cnclab/experiment/compare.hpp"
 #include "cnclab/experiment/sweep_command.hpp"
 
 namespace {
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
   run->add_option("--out", common.results_dir, "Results folder")->capture_default_str();
   run->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")->capture_default_str();
   run->add_flag("--quiet,-q", common.quiet, "No progress output");
+  run->add_flag("--regenerate", common.regenerate, "Regenerate the dataset even when cached");
   run->footer(
       "Example:\n  cnclab run experiments/friedman/friedman1_mlp.yaml trainer.learning_rate=1e-3 "
       "model.hidden=[32,16] --seed 7\nWrites results/<name>/<name>-seed<N>-<hash>.h5 atomically.");
@@ -69,9 +71,14 @@ int main(int argc, char** argv) {
   reproduce->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")
       ->capture_default_str();
   reproduce->add_flag("--quiet,-q", common.quiet, "No progress output");
+  reproduce->add_flag("--force", common.force,
+                      "Run every experiment even if its result is current");
+  reproduce->add_flag("--regenerate", common.regenerate, "Regenerate datasets even when cached");
   reproduce->footer(
       "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
-      "experiments/friedman");
+      "experiments/friedman\n"
+      "Experiments run upstream first (needs:, init_from:); a result whose resolved config and "
+      "upstream results are unchanged is reused. Each line says ran/reused and why.");
 
   cnclab::SweepCommandOptions sweep_options;
   std::vector<std::string> sweep_words;
@@ -98,7 +105,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   sweep->add_option("--data-dir", sweep_options.common.datasets_dir, "Dataset cache folder")
       ->capture_default_str();
-  sweep->add_flag("--regenerate", sweep_options.regenerate,
+  sweep->add_flag("--regenerate", sweep_options.common.regenerate,
                   "Regenerate the datasets even when cached");
   sweep->add_flag("--quiet,-q", sweep_options.common.quiet, "No progress output");
   sweep->footer(
@@ -116,6 +123,15 @@ int main(int argc, char** argv) {
   merge->add_option("dir", merge_dir, "Sweep folder")->required()->check(CLI::ExistingDirectory);
   merge->footer("Example:\n  cnclab sweep merge results/friedman1_mlp/sweep-1a2b3c4d");
 
+  std::string compare_format = "table";
+  auto* compare = app.add_subcommand(
+      "compare", "Runs side by side: the config keys that differ and the metrics with deltas");
+  compare->add_option("runs", paths, "Result files, run folders or sweep folders")->required();
+  compare->add_option("--format", compare_format, "table, md, csv or json")->capture_default_str();
+  compare->footer(
+      "Examples:\n  cnclab compare results/friedman1_mlp/a.h5 results/friedman1_mlp/b.h5\n"
+      "  cnclab compare results/friedman1_mlp/sweep-1a2b3c4d --format md");
+
   auto* version = app.add_subcommand("version", "Print version, git commit and library versions");
   version->footer("Example:\n  cnclab version");
 
@@ -131,6 +147,7 @@ int main(int argc, char** argv) {
     if (*validate) return cnclab::validate_command(experiment, overrides, seed, std::cout);
     if (*show) return cnclab::show_command(paths, std::cout);
     if (*reproduce) return cnclab::reproduce_command(paths, common, std::cout, std::cerr);
+    if (*compare) return cnclab::compare_command(paths, compare_format, std::cout);
     if (*merge) return cnclab::sweep_merge_command(merge_dir, std::cout);
     if (*sweep) {
       if (experiment.empty()) throw cnclab::ConfigError("sweep: an experiment file is required");

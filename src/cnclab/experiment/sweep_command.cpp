@@ -55,7 +55,7 @@ void prefetch_datasets(const SweepPlan& plan, const std::vector<std::size_t>& to
     const std::string key = spec.dataset.generator->name() +
                             spec.dataset.generator->options_yaml() + std::to_string(seed);
     if (!seen.insert(key).second) continue;
-    obtain_dataset(spec.dataset, seed, o.common.datasets_dir, log, o.regenerate);
+    obtain_dataset(spec.dataset, seed, o.common.datasets_dir, log, o.common.regenerate);
   }
 }
 

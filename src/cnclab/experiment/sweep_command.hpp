@@ -13,7 +13,7 @@
 namespace cnclab {
 
 struct SweepCommandOptions {
-  CommandOptions common;
+  CommandOptions common;      // regenerate: each dataset the trials need once
   std::size_t jobs = 0;       // trials at once; 0 = number of cores
   std::string shard;          // "K/N" or "" for all trials
   std::filesystem::path dir;  // sweep folder; "" = <results>/<name>/sweep-<plan hash>
