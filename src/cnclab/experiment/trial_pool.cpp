@@ -106,7 +106,7 @@ int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options
     on_done(job, exit);
   };
 
-  while (next < jobs.size() || !running.empty()) {
+  while ((stop_signal == 0 && next < jobs.size()) || !running.empty()) {
     while (stop_signal == 0 && next < jobs.size() && running.size() < options.jobs) {
       std::cout.flush();
       std::cerr.flush();
