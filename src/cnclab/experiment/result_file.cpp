@@ -137,8 +137,35 @@ void write_result(const fs::path& path, const RunRecord& r) {
 }
 
 namespace {
+
 RunRecord read_result_in_process(const std::filesystem::path& path);
+
+std::map<std::string, double> read_metrics(const H5File& f) {
+  std::map<std::string, double> metrics;
+  for (const auto& name : f.attribute_names("/metrics")) {
+    if (name != "units") metrics[name] = f.attribute_double("/metrics", name);
+  }
+  return metrics;
+}
+
+ResultStatus read_status_in_process(const std::filesystem::path& path) {
+  const H5File f = H5File::open_read(path);
+  require_format(f, kResultFormat, kResultFormatVersion);
+  ResultStatus s;
+  s.experiment = f.attribute_string("/", "experiment");
+  s.config_hash = f.attribute_string("/", "config_hash");
+  s.status = f.attribute_string("/", "status");
+  s.failure_reason = f.attribute_string("/provenance", "failure_reason");
+  s.metrics = read_metrics(f);
+  return s;
+}
+
 }  // namespace
+
+ResultStatus read_result_status(const std::filesystem::path& path) {
+  probe_in_child(path, [&] { read_status_in_process(path); });
+  return read_status_in_process(path);
+}
 
 RunRecord read_result(const std::filesystem::path& path) {
   probe_in_child(path, [&] { read_result_in_process(path); });
@@ -205,9 +232,7 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   r.test_loss = f.read_vector("/history/test_loss");
   r.test_predictions = f.read_matrix("/test/predictions");
   r.test_targets = f.read_matrix("/test/targets");
-  for (const auto& name : f.attribute_names("/metrics")) {
-    if (name != "units") r.metrics[name] = f.attribute_double("/metrics", name);
-  }
+  r.metrics = read_metrics(f);
   if (f.exists("/upstream")) {
     const auto experiments = f.read_strings("/upstream/experiments");
     const auto files = f.read_strings("/upstream/result_files");

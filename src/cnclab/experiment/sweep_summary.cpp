@@ -91,14 +91,14 @@ TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) 
   std::error_code ec;
   if (fs::exists(result, ec)) {
     try {
-      const RunRecord r = read_result(result);
+      ResultStatus r = read_result_status(result);
       o.result_file = fs::relative(result, dir, ec).string();
-      if (r.provenance.status == "complete") {
+      if (r.status == "complete") {
         o.status = TrialOutcome::Status::complete;
-        o.metrics = r.metrics;
+        o.metrics = std::move(r.metrics);
       } else {
         o.status = TrialOutcome::Status::failed;
-        o.reason = r.provenance.failure_reason;
+        o.reason = r.failure_reason;
       }
       return o;
     } catch (const IoError& e) {

@@ -42,7 +42,7 @@ struct TrialOutcome {
 };
 std::string to_string(TrialOutcome::Status status);
 
-// Reads the trial's result (read_result) or error note from `dir`.
+// Reads the trial's result status (read_result_status) or error note from `dir`.
 TrialOutcome read_trial_outcome(const std::filesystem::path& dir, const PlannedTrial& trial);
 
 struct PointStats {
