@@ -88,7 +88,8 @@ int main(int argc, char** argv) {
   sweep->add_option("parameters", sweep_words,
                     "key=value overrides and swept keys: key=v1,v2,...  key=choice(a,b)  "
                     "key=int_range(lo,hi[,step])  key=uniform(lo,hi)  key=log_uniform(lo,hi)");
-  sweep->add_option("--jobs,-j", sweep_options.jobs, "Trials at once (default: number of cores)");
+  sweep->add_option("--jobs,-j", sweep_options.jobs,
+                    "Trials at once (default: the number of cores this process may use)");
   sweep->add_option("--shard", sweep_options.shard,
                     "K/N: run only shard K of N (trials K, K+N, ...), e.g. one per Slurm task");
   sweep->add_option("--dir", sweep_options.dir,

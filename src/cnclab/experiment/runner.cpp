@@ -78,8 +78,8 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
 
   check_run_memory(spec);
 
-  // Dataset (generated or reused from the cache).
-  // Upstream results first: a missing one stops the run before any work.
+  // Upstream results (needs, init_from) first: a missing one stops the run
+  // before any work.
   std::optional<UpstreamResult> init_source;
   for (const auto& file : upstream_files(spec)) {
     UpstreamResult up = load_upstream(file, options.results_dir);
@@ -91,6 +91,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
                 init_source->record.provenance.failure_reason + "); nothing to start from");
   }
 
+  // Dataset (generated or reused from the cache).
   const CachedDataset cached =
       obtain_dataset(spec.dataset, rec.provenance.derived_seeds["generator"], options.datasets_dir,
                      options.log, options.regenerate_dataset);

@@ -58,7 +58,8 @@ struct ExperimentSpec {
   SgdmOptions trainer;  // trainer: type sgdm
   std::vector<std::string> metrics = {"mse", "rmse", "mae", "max_abs_error", "r2"};
   // needs: [FILE, ...]: experiments whose results this one depends on (paths
-  // relative to this file). `cnclab reproduce` runs them first and re-runs
+  // relative to the experiment file given, also when the key comes from an
+  // include). `cnclab reproduce` runs them first and re-runs
   // this one when their results change. init_from's experiment is implied.
   std::vector<std::string> needs;
   std::vector<std::filesystem::path> needs_files;  // resolved paths of `needs`

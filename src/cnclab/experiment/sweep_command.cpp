@@ -1,5 +1,7 @@
 #include "cnclab/experiment/sweep_command.hpp"
 
+#include <sched.h>
+
 #include <set>
 #include <thread>
 
@@ -65,6 +67,16 @@ std::vector<TrialOutcome> read_outcomes(const fs::path& dir, const SweepPlan& pl
   return out;
 }
 
+// Cores this process may run on (the affinity mask: what Slurm or taskset
+// grants), at least 1.
+std::size_t available_cores() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) {
+    return static_cast<std::size_t>(std::max(1, CPU_COUNT(&set)));
+  }
+  return std::max<std::size_t>(1, std::thread::hardware_concurrency());
+}
+
 int summary_exit_code(const SweepSummary& s) {
   return s.failed + s.errors + s.missing == 0 ? 0 : 1;
 }
@@ -90,8 +102,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
   for (std::size_t i : mine) {
     if (!outcomes[i].done()) todo.push_back(i);
   }
-  const std::size_t jobs =
-      o.jobs > 0 ? o.jobs : std::max<std::size_t>(1, std::thread::hardware_concurrency());
+  const std::size_t jobs = o.jobs > 0 ? o.jobs : available_cores();
   std::ostream* note = o.common.quiet ? nullptr : &log;
   if (note) {
     *note << "sweep " << dir.string() << ": " << plan.trials.size() << " trials";

@@ -14,7 +14,7 @@ namespace cnclab {
 
 struct SweepCommandOptions {
   CommandOptions common;      // regenerate: each dataset the trials need once
-  std::size_t jobs = 0;       // trials at once; 0 = number of cores
+  std::size_t jobs = 0;       // trials at once; 0 = the cores this process may use (affinity)
   std::string shard;          // "K/N" or "" for all trials
   std::filesystem::path dir;  // sweep folder; "" = <results>/<name>/sweep-<plan hash>
   bool regenerate = false;    // regenerate the datasets the trials need once
