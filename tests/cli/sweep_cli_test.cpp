@@ -5,12 +5,9 @@
 // bad sweep specs as usage errors. Independent checks: h5diff (hdf5-tools)
 // compares files; trial contents are compared with the uninterrupted
 // reference sweep.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -22,25 +19,18 @@
 
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "common/process.hpp"
 #include "common/temp_dir.hpp"
-
-extern char** environ;
 
 namespace cnclab {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::slurp;
 using testing::TempDir;
 
 const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
 const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 struct Result {
   int code = -1;
@@ -166,29 +156,15 @@ int interrupt_sweep(const fs::path& dir, const std::string& sweep_dir, int sig,
                                    (dir / "data").string(),
                                    "--dir",
                                    (dir / sweep_dir).string()};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0 || pid <= 0) {  // never kill(-1, ...)
-    ADD_FAILURE() << "cannot spawn cnclab";
-    return -1;
-  }
+  const pid_t pid = testing::spawn_quiet(args);
+  if (pid <= 0) return -1;  // never kill(-1, ...)
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (trial_files(dir / sweep_dir).size() < done_before_kill &&
          std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   kill(pid, sig);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+  return testing::wait_exit(pid);
 }
 
 void expect_resume_completes(const fs::path& dir, const std::string& sweep_dir, int sig,

@@ -4,8 +4,9 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <fstream>
 #include <unistd.h>
+
+#include <fstream>
 
 #include "common/temp_dir.hpp"
 
@@ -15,10 +16,10 @@ namespace {
 namespace fs = std::filesystem;
 
 DatasetSpec friedman(std::size_t samples) {
-  const LoadedExperiment e = parse_experiment(
-      "name: t\nseed: 1\ndataset: {generator: friedman1, options: {samples: " +
-          std::to_string(samples) + "}}\n",
-      "t.yaml");
+  const LoadedExperiment e =
+      parse_experiment("name: t\nseed: 1\ndataset: {generator: friedman1, options: {samples: " +
+                           std::to_string(samples) + "}}\n",
+                       "t.yaml");
   return e.spec.dataset;
 }
 

@@ -10,25 +10,17 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
+#include "common/expect_error.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::config_error;
 using testing::TempDir;
 
 const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
-
-std::string config_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected ConfigError";
-  return "";
-}
 
 SweepParameter param(const std::string& key, const std::string& text) {
   auto p = parse_sweep_values(key, text);
@@ -96,8 +88,8 @@ SweepSpec spec_of(std::initializer_list<std::pair<std::string, std::string>> par
 const std::vector<std::string> kFast = {"trainer.epochs=2", "dataset.options.samples=50"};
 
 TEST(SweepPlan, GridIsTheCartesianProductTimesRepeats) {
-  SweepSpec s = spec_of({{"model.dropout.keep_probability", "0.5,0.75,1.0"},
-                         {"trainer.learning_rate", "1e-3,1e-2"}});
+  SweepSpec s = spec_of(
+      {{"model.dropout.keep_probability", "0.5,0.75,1.0"}, {"trainer.learning_rate", "1e-3,1e-2"}});
   s.repeats = 2;
   const SweepPlan plan = plan_sweep(kExperiment, kFast, std::nullopt, s);
   EXPECT_EQ(plan.method, "grid");
@@ -190,8 +182,9 @@ TEST(SweepPlan, IdenticalSamplesAreOneTrial) {
 
 TEST(SweepPlan, BadSpecsAreConfigErrors) {
   SweepSpec unknown = spec_of({{"trainer.momentm", "0.1,0.2"}});
-  EXPECT_NE(config_error([&] { plan_sweep(kExperiment, kFast, std::nullopt, unknown); })
-                .find("trainer.momentm: unknown key"),
+  EXPECT_NE(config_error([&] {
+              plan_sweep(kExperiment, kFast, std::nullopt, unknown);
+            }).find("trainer.momentm: unknown key"),
             std::string::npos);
   SweepSpec grid = spec_of({{"trainer.learning_rate", "uniform(0.1, 0.2)"}});
   grid.method = SweepMethod::grid;
@@ -202,8 +195,9 @@ TEST(SweepPlan, BadSpecsAreConfigErrors) {
   EXPECT_NE(config_error([] { SweepSpec{}.validate(); }).find("no parameters"), std::string::npos);
   SweepSpec objective = spec_of({{"trainer.learning_rate", "0.1,0.2"}});
   objective.objective = Objective{"accuracy", true};
-  EXPECT_NE(config_error([&] { plan_sweep(kExperiment, kFast, std::nullopt, objective); })
-                .find("'accuracy' is not among"),
+  EXPECT_NE(config_error([&] {
+              plan_sweep(kExperiment, kFast, std::nullopt, objective);
+            }).find("'accuracy' is not among"),
             std::string::npos);
 }
 

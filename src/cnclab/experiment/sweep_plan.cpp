@@ -105,7 +105,6 @@ SweepPlan plan_sweep(const fs::path& file, const std::vector<std::string>& overr
   const LoadedExperiment base = load_experiment(file, overrides, seed);
   SweepPlan plan;
   plan.experiment = base.spec.name;
-  plan.source = file.string();
   plan.method = spec.resolved_method() == SweepMethod::grid ? "grid" : "random";
   plan.repeats = spec.repeats;
   plan.metrics = base.spec.metrics;

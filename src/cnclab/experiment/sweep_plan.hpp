@@ -32,7 +32,6 @@ struct PlannedTrial {
 
 struct SweepPlan {
   std::string experiment;  // experiment name
-  std::string source;      // experiment file as given
   std::string method;      // grid | random
   std::size_t repeats = 1;
   Objective objective;
