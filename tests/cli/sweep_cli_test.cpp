@@ -463,6 +463,29 @@ TEST(GraphCli, ReproduceRunsUpstreamFirstAndReusesUntilUpstreamChanges) {
   EXPECT_NE(cycle.err.find("cycle"), std::string::npos) << cycle.err;
 }
 
+TEST(GraphCli, SweepTrialsRunAgainWhenTheirUpstreamChanged) {
+  TempDir dir;
+  const auto write_up = [&](int epochs) {
+    std::ofstream(dir / "up.yaml")
+        << "include: " << kExperiment << "\nname: up\ntrainer: {epochs: " << epochs
+        << "}\ndataset: {options: {samples: 200}}\n";
+  };
+  write_up(3);
+  std::ofstream(dir / "down.yaml") << "include: up.yaml\nname: down\ninit_from: {experiment: "
+                                      "up.yaml}\n";
+  ASSERT_EQ(sh(dir.path(), kCnclab + " reproduce up.yaml --quiet").code, 0);
+  const std::string sweep = kCnclab + " sweep down.yaml trainer.epochs=1,2 --dir s";
+  ASSERT_EQ(sh(dir.path(), sweep).code, 0);
+  EXPECT_NE(sh(dir.path(), sweep).err.find("2 already done, running 0"), std::string::npos);
+  write_up(4);
+  ASSERT_EQ(sh(dir.path(), kCnclab + " reproduce up.yaml --quiet").code, 0);
+  const Result again = sh(dir.path(), sweep);
+  EXPECT_EQ(again.code, 0) << again.err;
+  EXPECT_NE(again.err.find("2 to run again (upstream results changed); 0 already done, running 2"),
+            std::string::npos)
+      << again.err;
+}
+
 TEST(GraphCli, RunWithoutUpstreamResultSaysHowToMakeIt) {
   TempDir dir;
   std::ofstream(dir / "up.yaml") << "include: " << kExperiment << "\nname: up\n";

@@ -48,12 +48,11 @@ TEST(ExperimentGraph, CycleIsAConfigErrorNamingTheFiles) {
 }
 
 TEST(ExperimentGraph, AResultIsStaleWhenAnUpstreamIdentityChanged) {
-  RunRecord r;
-  r.upstream = {{"a.yaml", "results/a/a.h5", "1111"}};
+  const std::vector<UpstreamRef> r = {{"a.yaml", "results/a/a.h5", "1111"}};
   EXPECT_EQ(staleness(r, {{"a", "1111"}}), "");
   EXPECT_EQ(staleness(r, {{"a", "2222"}}), "upstream a changed");
   EXPECT_EQ(staleness(r, {}), "its upstream experiments changed");
-  EXPECT_EQ(staleness(RunRecord{}, {{"a", "1111"}}), "upstream a changed");
+  EXPECT_EQ(staleness({}, {{"a", "1111"}}), "upstream a changed");
 }
 
 }  // namespace

@@ -83,15 +83,16 @@ std::vector<GraphNode> load_graph(const std::vector<fs::path>& files) {
   return sorted;
 }
 
-std::string staleness(const RunRecord& existing, const std::vector<CurrentUpstream>& upstream) {
-  std::vector<std::string> recorded;
-  for (const auto& u : existing.upstream) recorded.push_back(u.identity);
+std::string staleness(const std::vector<UpstreamRef>& recorded,
+                      const std::vector<CurrentUpstream>& upstream) {
+  std::vector<std::string> identities;
+  for (const auto& u : recorded) identities.push_back(u.identity);
   for (const auto& u : upstream) {
-    if (std::find(recorded.begin(), recorded.end(), u.identity) == recorded.end()) {
+    if (std::find(identities.begin(), identities.end(), u.identity) == identities.end()) {
       return "upstream " + u.name + " changed";
     }
   }
-  if (recorded.size() != upstream.size()) return "its upstream experiments changed";
+  if (identities.size() != upstream.size()) return "its upstream experiments changed";
   return "";
 }
 

@@ -31,10 +31,11 @@ struct CurrentUpstream {
   std::string identity;  // result_identity of its current result
 };
 
-// Why `existing` (the result at the experiment's result path, already read)
-// is out of date given the upstream results now, or "" when it is current.
-// The result path itself encodes the resolved config (its hash), so an
-// existing file at that path already has an unchanged config.
-std::string staleness(const RunRecord& existing, const std::vector<CurrentUpstream>& upstream);
+// Why a result made from the upstream results `recorded` (its /upstream) is
+// out of date given the upstream results now, or "" when it is current. The
+// result path itself encodes the resolved config (its hash), so an existing
+// file at that path already has an unchanged config.
+std::string staleness(const std::vector<UpstreamRef>& recorded,
+                      const std::vector<CurrentUpstream>& upstream);
 
 }  // namespace cnclab

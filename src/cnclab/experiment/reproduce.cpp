@@ -75,7 +75,7 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
     } else {
       try {
         RunRecord existing = read_result(path);
-        why = staleness(existing, upstream);
+        why = staleness(existing.upstream, upstream);
         if (why.empty()) state[i].record = std::move(existing);
       } catch (const IoError& e) {
         why = std::string("result unreadable (") + e.what() + ")";

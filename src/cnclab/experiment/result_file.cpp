@@ -148,6 +148,21 @@ std::map<std::string, double> read_metrics(const H5File& f) {
   return metrics;
 }
 
+std::vector<UpstreamRef> read_upstream(const H5File& f) {
+  std::vector<UpstreamRef> out;
+  if (!f.exists("/upstream")) return out;
+  const auto experiments = f.read_strings("/upstream/experiments");
+  const auto files = f.read_strings("/upstream/result_files");
+  const auto identities = f.read_strings("/upstream/identities");
+  if (files.size() != experiments.size() || identities.size() != experiments.size()) {
+    throw IoError(f.path().string() + ": /upstream: lists of different lengths");
+  }
+  for (std::size_t i = 0; i < experiments.size(); ++i) {
+    out.push_back({experiments[i], files[i], identities[i]});
+  }
+  return out;
+}
+
 ResultStatus read_status_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
   require_format(f, kResultFormat, kResultFormatVersion);
@@ -157,6 +172,7 @@ ResultStatus read_status_in_process(const std::filesystem::path& path) {
   s.status = f.attribute_string("/", "status");
   s.failure_reason = f.attribute_string("/provenance", "failure_reason");
   s.metrics = read_metrics(f);
+  s.upstream = read_upstream(f);
   return s;
 }
 
@@ -233,17 +249,7 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   r.test_predictions = f.read_matrix("/test/predictions");
   r.test_targets = f.read_matrix("/test/targets");
   r.metrics = read_metrics(f);
-  if (f.exists("/upstream")) {
-    const auto experiments = f.read_strings("/upstream/experiments");
-    const auto files = f.read_strings("/upstream/result_files");
-    const auto identities = f.read_strings("/upstream/identities");
-    if (files.size() != experiments.size() || identities.size() != experiments.size()) {
-      bad("/upstream: lists of different lengths");
-    }
-    for (std::size_t i = 0; i < experiments.size(); ++i) {
-      r.upstream.push_back({experiments[i], files[i], identities[i]});
-    }
-  }
+  r.upstream = read_upstream(f);
   return r;
 }
 }  // namespace

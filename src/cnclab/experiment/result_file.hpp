@@ -31,6 +31,7 @@ struct ResultStatus {
   std::string status;          // "complete" | "failed"
   std::string failure_reason;  // failed only
   std::map<std::string, double> metrics;
+  std::vector<UpstreamRef> upstream;  // the upstream results it was made from
 };
 ResultStatus read_result_status(const std::filesystem::path& path);
 

@@ -2,15 +2,18 @@
 
 #include <sched.h>
 
+#include <map>
 #include <set>
 #include <thread>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/dataset_cache.hpp"
+#include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/sweep_plan.hpp"
 #include "cnclab/experiment/sweep_summary.hpp"
 #include "cnclab/experiment/trial_pool.hpp"
+#include "cnclab/experiment/upstream.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -77,6 +80,38 @@ std::size_t available_cores() {
   return std::max<std::size_t>(1, std::thread::hardware_concurrency());
 }
 
+// Trials with init_from/needs whose upstream results changed since they ran
+// are run again (the experiment graph's rule, experiment_graph.hpp); their
+// outcome is reset to missing. Returns how many.
+std::size_t invalidate_stale(const SweepPlan& plan, const std::vector<std::size_t>& mine,
+                             const fs::path& results_dir, std::vector<TrialOutcome>& outcomes) {
+  std::map<fs::path, std::optional<CurrentUpstream>> current;  // per upstream file
+  std::size_t stale = 0;
+  for (std::size_t i : mine) {
+    if (!outcomes[i].done()) continue;
+    std::vector<CurrentUpstream> upstream;
+    for (const auto& file : upstream_files(plan.trials[i].experiment->spec)) {
+      auto it = current.find(file);
+      if (it == current.end()) {
+        std::optional<CurrentUpstream> now;
+        try {
+          const UpstreamResult up = load_upstream(file, results_dir);
+          now = CurrentUpstream{up.experiment.spec.name, result_identity(up.record)};
+        } catch (const IoError&) {
+          // Missing upstream: keep the trial's result (a re-run could only fail).
+        }
+        it = current.emplace(file, now).first;
+      }
+      if (it->second) upstream.push_back(*it->second);
+    }
+    if (!upstream.empty() && !staleness(outcomes[i].upstream, upstream).empty()) {
+      outcomes[i] = TrialOutcome{};
+      ++stale;
+    }
+  }
+  return stale;
+}
+
 int summary_exit_code(const SweepSummary& s) {
   return s.failed + s.errors + s.missing == 0 ? 0 : 1;
 }
@@ -98,6 +133,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
 
   std::vector<TrialOutcome> outcomes = read_outcomes(dir, plan);
   const std::vector<std::size_t> mine = shard_trials(plan.trials.size(), shard, shards);
+  const std::size_t stale = invalidate_stale(plan, mine, o.common.results_dir, outcomes);
   std::vector<std::size_t> todo;
   for (std::size_t i : mine) {
     if (!outcomes[i].done()) todo.push_back(i);
@@ -109,6 +145,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
     if (shards > 1) *note << ", shard " << shard << "/" << shards << " has " << mine.size();
     if (plan.merged_duplicates)
       *note << " (" << plan.merged_duplicates << " duplicate samples merged)";
+    if (stale) *note << "; " << stale << " to run again (upstream results changed)";
     *note << "; " << mine.size() - todo.size() << " already done, running " << todo.size()
           << " with " << std::min(jobs, std::max<std::size_t>(todo.size(), 1)) << " job(s)\n";
   }

@@ -93,6 +93,7 @@ TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) 
     try {
       ResultStatus r = read_result_status(result);
       o.result_file = fs::relative(result, dir, ec).string();
+      o.upstream = std::move(r.upstream);
       if (r.status == "complete") {
         o.status = TrialOutcome::Status::complete;
         o.metrics = std::move(r.metrics);

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "cnclab/experiment/run_record.hpp"
 #include "cnclab/experiment/sweep_plan.hpp"
 
 namespace cnclab {
@@ -36,6 +37,7 @@ struct TrialOutcome {
   std::string reason;                     // failed/error: why; missing: unreadable result
   std::map<std::string, double> metrics;  // complete only
   std::string result_file;                // relative to the sweep folder; "" if none
+  std::vector<UpstreamRef> upstream;      // upstream results the trial was made from
 
   // A complete result exists (status complete or failed): resume skips it.
   bool done() const { return status == Status::complete || status == Status::failed; }
