@@ -247,6 +247,33 @@ TEST(SweepCli, DivergingTrialIsRecordedAsFailedAndTheSweepGoesOn) {
   EXPECT_NE(last_row, std::string::npos) << r.out;
 }
 
+TEST(SweepCli, ThrowingTrialIsRecordedWithItsReasonAndRetriedOnResume) {
+  TempDir dir;
+  // 1e8 samples of 10000 inputs cannot fit in memory: that trial throws a
+  // ResourceError in its process.
+  const std::string sweep = kCnclab + " sweep " + kExperiment +
+                            " trainer.epochs=3 'dataset.options={samples: 200},{samples: "
+                            "100000000, inputs: 10000}' --jobs 2 --data-dir data --dir s";
+  const Result r = sh(dir.path(), sweep);
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.out.find("1 complete, 1 failed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("needs about"), std::string::npos) << r.out;
+  std::size_t notes = 0;
+  for (const auto& e : fs::directory_iterator(dir / "s/trials")) {
+    if (e.path().extension() == ".error") {
+      ++notes;
+      EXPECT_NE(slurp(e.path()).find("TiB"), std::string::npos);
+    }
+  }
+  EXPECT_EQ(notes, 1u);
+  EXPECT_EQ(trial_files(dir / "s").size(), 1u);
+  // No result, so a re-run tries it again (the error may have been transient).
+  const Result again = sh(dir.path(), sweep);
+  EXPECT_NE(again.err.find("1 already done, running 1"), std::string::npos) << again.err;
+  const Result dump = sh(dir.path(), "h5dump -d /trials/status s/summary.h5");
+  EXPECT_NE(dump.out.find("\"error"), std::string::npos) << dump.out;
+}
+
 TEST(SweepCli, ShardsThenMergeEqualAnUnshardedSweep) {
   TempDir dir;
   ASSERT_EQ(sh(dir.path(), kCnclab + " sweep " + sweep_args("--jobs 2 --dir whole")).code, 0);

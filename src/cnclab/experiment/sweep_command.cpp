@@ -49,10 +49,13 @@ std::string trial_text(const SweepPlan& plan, const PlannedTrial& t) {
   return s + (plan.repeats > 1 ? " repeat " + std::to_string(t.repeat) : "");
 }
 
-// Produces every dataset the trials need once, in this process, so the
-// trials all hit the cache (and --regenerate regenerates each once).
-void prefetch_datasets(const SweepPlan& plan, const std::vector<std::size_t>& todo,
-                       const SweepCommandOptions& o, std::ostream* log) {
+// --regenerate: regenerates every dataset the trials need once, here, before
+// the trials start (they then hit the cache). Without it the trials obtain
+// their datasets themselves, in parallel, each missing one produced once
+// under the cache's lock. A dataset that cannot be made is left to the
+// trials, which record the error.
+void regenerate_datasets(const SweepPlan& plan, const std::vector<std::size_t>& todo,
+                         const SweepCommandOptions& o, std::ostream* log) {
   std::set<std::string> seen;
   for (std::size_t i : todo) {
     const ExperimentSpec& spec = plan.trials[i].experiment->spec;
@@ -60,7 +63,10 @@ void prefetch_datasets(const SweepPlan& plan, const std::vector<std::size_t>& to
     const std::string key = spec.dataset.generator->name() +
                             spec.dataset.generator->options_yaml() + std::to_string(seed);
     if (!seen.insert(key).second) continue;
-    obtain_dataset(spec.dataset, seed, o.common.datasets_dir, log, o.common.regenerate);
+    try {
+      obtain_dataset(spec.dataset, seed, o.common.datasets_dir, log, true);
+    } catch (const Error&) {
+    }
   }
 }
 
@@ -149,7 +155,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
     *note << "; " << mine.size() - todo.size() << " already done, running " << todo.size()
           << " with " << std::min(jobs, std::max<std::size_t>(todo.size(), 1)) << " job(s)\n";
   }
-  prefetch_datasets(plan, todo, o, note);
+  if (o.common.regenerate) regenerate_datasets(plan, todo, o, note);
 
   std::vector<TrialJob> pool_jobs;
   for (std::size_t i : todo) {
@@ -179,8 +185,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
       *note << plan.objective.metric << " "
             << (it == r.metrics.end() ? std::string("?") : format_metric(it->second)) << "\n";
     } else {
-      *note << to_string(r.status) << ": " << (exit.message.empty() ? r.reason : exit.message)
-            << "\n";
+      *note << to_string(r.status) << ": " << (r.reason.empty() ? exit.message : r.reason) << "\n";
     }
   });
   if (stopped != 0) {
