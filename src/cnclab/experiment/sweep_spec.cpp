@@ -125,6 +125,22 @@ std::optional<SweepParameter> parse_function(const std::string& text) {
                   "' (known: choice, int_range, uniform, log_uniform)"};
 }
 
+// The grammar of sweep_spec.hpp; BadValues on a broken rule.
+std::optional<SweepParameter> parse_values(const std::string& key, const std::string& text) {
+  const std::string t = trim(text);
+  if (t.empty()) throw BadValues{"empty list of values"};
+  std::optional<SweepParameter> p = parse_function(t);
+  if (!p) {
+    const auto items = split_top_level(t);
+    if (items.size() == 1) return std::nullopt;
+    p.emplace();
+    for (const auto& item : items) p->values.push_back(yaml_value(item));
+  }
+  p->key = key;
+  p->text = t;
+  return p;
+}
+
 void check_key(const std::string& key) {
   parse_override(key + "=0");  // the override key grammar
 }
@@ -166,18 +182,7 @@ YAML::Node SweepParameter::sample(Rng& rng) const {
 std::optional<SweepParameter> parse_sweep_values(const std::string& key, const std::string& text) {
   check_key(key);
   try {
-    const std::string t = trim(text);
-    if (t.empty()) throw BadValues{"empty list of values"};
-    std::optional<SweepParameter> p = parse_function(t);
-    if (!p) {
-      const auto items = split_top_level(t);
-      if (items.size() == 1) return std::nullopt;
-      p.emplace();
-      for (const auto& item : items) p->values.push_back(yaml_value(item));
-    }
-    p->key = key;
-    p->text = t;
-    return p;
+    return parse_values(key, text);
   } catch (const BadValues& e) {
     throw ConfigError("sweep " + key + "=" + text + ": " + e.rule);
   }
@@ -290,31 +295,33 @@ SweepSpec read_sweep_block(const std::filesystem::path& file,
   for (const auto& key : params.keys()) {
     const YAML::Node node = params.raw(key);
     try {
-      if (node.IsSequence()) {
-        if (node.size() == 0) params.fail(key, "empty list of values");
-        SweepParameter p;
-        p.key = key;
-        p.text = node_text(node);
-        for (const auto& v : node) p.values.push_back(YAML::Clone(v));
-        check_key(key);
-        spec.set(std::move(p));
-      } else if (node.IsScalar()) {
-        auto p = parse_sweep_values(key, node.Scalar());
-        if (!p) {  // one value: a fixed setting
-          p.emplace();
-          p->key = key;
-          p->text = node.Scalar();
-          p->values.push_back(YAML::Clone(node));
-        }
-        spec.set(std::move(*p));
-      } else {
-        params.fail(key, "expected a list of values or a text such as log_uniform(1e-4, 1e-1)");
-      }
+      check_key(key);
     } catch (const ConfigError& e) {
-      const std::string what = e.what();
-      if (what.rfind("sweep ", 0) != 0 && what.rfind("override ", 0) != 0) throw;
-      params.fail(key, what);
+      params.fail(key, e.what());
     }
+    std::optional<SweepParameter> p;
+    if (node.IsSequence()) {
+      if (node.size() == 0) params.fail(key, "empty list of values");
+      p.emplace();
+      p->key = key;
+      p->text = node_text(node);
+      for (const auto& v : node) p->values.push_back(YAML::Clone(v));
+    } else if (node.IsScalar()) {
+      try {
+        p = parse_values(key, node.Scalar());
+      } catch (const BadValues& e) {
+        params.fail(key, e.rule);
+      }
+      if (!p) {  // one value: a fixed setting
+        p.emplace();
+        p->key = key;
+        p->text = node.Scalar();
+        p->values.push_back(YAML::Clone(node));
+      }
+    } else {
+      params.fail(key, "expected a list of values or a text such as log_uniform(1e-4, 1e-1)");
+    }
+    spec.set(std::move(*p));
   }
   doc.check_all_consumed();
   return spec;
