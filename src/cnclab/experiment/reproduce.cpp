@@ -47,6 +47,8 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
       continue;
     }
     const LoadedExperiment& exp = *node.experiment;
+    // Experiments not asked for, added because others need them, say so.
+    const std::string name = exp.spec.name + (node.requested ? "" : " (upstream)");
     std::vector<CurrentUpstream> upstream;
     std::string blocked;
     for (std::size_t j : node.upstream) {
@@ -59,7 +61,7 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
       upstream.push_back({up_name, result_identity(*state[j].record)});
     }
     if (!blocked.empty()) {
-      rows.push_back({exp.spec.name, "skipped", blocked, "", ""});
+      rows.push_back({name, "skipped", blocked, "", ""});
       state[i].problem = "skipped";
       exit_code = std::max(exit_code, 1);
       continue;
@@ -92,15 +94,15 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
       }
       const RunRecord& r = *state[i].record;
       const bool ok = r.provenance.status == "complete";
-      rows.push_back({exp.spec.name, ok ? action : action + ", FAILED", why,
+      rows.push_back({name, ok ? action : action + ", FAILED", why,
                       ok ? metrics_line(r.metrics) : r.provenance.failure_reason, path.string()});
       if (!ok) exit_code = std::max(exit_code, 1);
     } catch (const ConfigError& e) {
-      rows.push_back({exp.spec.name, "CONFIG ERROR", why, e.what(), ""});
+      rows.push_back({name, "CONFIG ERROR", why, e.what(), ""});
       state[i].problem = "configuration error";
       exit_code = 2;
     } catch (const Error& e) {
-      rows.push_back({exp.spec.name, "ERROR", why, e.what(), ""});
+      rows.push_back({name, "ERROR", why, e.what(), ""});
       state[i].problem = "error";
       exit_code = std::max(exit_code, 1);
     }
