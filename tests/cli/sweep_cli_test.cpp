@@ -290,6 +290,13 @@ TEST(SweepCli, ShardsThenMergeEqualAnUnshardedSweep) {
   expect_same_trials(dir / "whole", dir / "sharded");
   const Result d = sh(dir.path(), "h5diff whole/summary.h5 sharded/summary.h5");
   EXPECT_EQ(d.code, 0) << d.out << d.err;
+  // A sweep folder compares its trials in plan order: the swept keys differ.
+  const Result c = sh(dir.path(), kCnclab + " compare whole --format csv");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_NE(c.out.find("kind,key,[1],[2],[3],[4],[5],[6],"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("config,model.dropout.keep_probability,0.8,0.8,0.9,0.9,1,1,"),
+            std::string::npos)
+      << c.out;
 }
 
 TEST(SweepCli, MergeReportsMissingShards) {

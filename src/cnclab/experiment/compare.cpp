@@ -12,6 +12,7 @@
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/sweep_plan.hpp"
 #include "cnclab/experiment/text_table.hpp"
 #include "cnclab/io/atomic_file.hpp"
 
@@ -246,6 +247,13 @@ std::vector<ComparedRun> collect_runs(const std::vector<std::string>& inputs) {
     std::vector<fs::path> files;
     if (fs::is_regular_file(input, ec)) {
       files.emplace_back(input);
+    } else if (fs::is_directory(input, ec) && fs::exists(fs::path(input) / "sweep.yaml", ec)) {
+      // A sweep folder: its trials with a result, in plan order.
+      for (const auto& t : load_plan(input).trials) {
+        const fs::path f = trial_result_path(input, t.id);
+        if (fs::exists(f, ec)) files.push_back(f);
+      }
+      if (files.empty()) throw ConfigError(input + ": no trial of this sweep has a result yet");
     } else if (fs::is_directory(input, ec)) {
       for (const auto& e : fs::recursive_directory_iterator(input)) {
         const fs::path& p = e.path();

@@ -22,8 +22,9 @@ struct ComparedRun {
   RunRecord record;
 };
 
-// Result files named by `inputs` (files as given; folders: every *.h5 below
-// them except partial temporaries and summary.h5, sorted). IoError on an
+// Result files named by `inputs` (files as given; a sweep folder: its trials
+// in plan order; other folders: every *.h5 below them except partial
+// temporaries and summary.h5, sorted). IoError on an
 // unreadable file; ConfigError on a missing path or fewer than two runs.
 std::vector<ComparedRun> collect_runs(const std::vector<std::string>& inputs);
 
