@@ -9,6 +9,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/commands.hpp"
 #include "cnclab/experiment/compare.hpp"
+#include "cnclab/experiment/dataset_commands.hpp"
 #include "cnclab/experiment/sweep_command.hpp"
 
 namespace {
@@ -133,6 +134,29 @@ int main(int argc, char** argv) {
       "Examples:\n  cnclab compare results/friedman1_mlp/a.h5 results/friedman1_mlp/b.h5\n"
       "  cnclab compare results/friedman1_mlp/sweep-1a2b3c4d --format md");
 
+  auto* dataset = app.add_subcommand("dataset", "Generate or inspect a dataset file");
+  dataset->require_subcommand(1);
+  dataset->footer(
+      "Example:\n  cnclab dataset generate configs/datasets/step_error_surface1.yaml\n  cnclab "
+      "dataset show datasets/step_error_surface1.h5");
+  std::optional<std::string> dataset_out;
+  auto* generate = dataset->add_subcommand(
+      "generate",
+      "Generate the dataset a YAML `dataset:` section describes; writes HDF5 atomically");
+  generate->add_option("config", experiment, "YAML file with a dataset section")
+      ->required()
+      ->check(CLI::ExistingFile);
+  generate->add_option("overrides", overrides, "Config overrides key=value");
+  generate->add_option("--out", dataset_out, "Output file (default datasets/<config stem>.h5)");
+  generate->footer(
+      "Example:\n  cnclab dataset generate configs/datasets/step_error_surface1.yaml\n  cnclab "
+      "dataset generate configs/datasets/step_error_surface2.yaml dataset.options.lines=20 "
+      "--out s2.h5");
+  auto* dataset_show = dataset->add_subcommand(
+      "show", "Print a dataset file: counts, ranges with units, histogram, convex/concave split");
+  dataset_show->add_option("file", experiment, "Dataset HDF5 file")->required();
+  dataset_show->footer("Example:\n  cnclab dataset show datasets/step_error_surface1.h5");
+
   auto* version = app.add_subcommand("version", "Print version, git commit and library versions");
   version->footer("Example:\n  cnclab version");
 
@@ -155,6 +179,13 @@ int main(int argc, char** argv) {
       return cnclab::sweep_command(experiment, sweep_words, seed, sweep_options, std::cout,
                                    std::cerr);
     }
+    if (*generate) {
+      return cnclab::dataset_generate_command(
+          experiment, overrides,
+          dataset_out ? std::optional<std::filesystem::path>(*dataset_out) : std::nullopt,
+          std::cout);
+    }
+    if (*dataset_show) return cnclab::dataset_show_command(experiment, std::cout);
     if (*version) return cnclab::version_command(std::cout);
   } catch (const cnclab::ConfigError& e) {
     std::cerr << "cnclab: error: " << e.what() << "\n";

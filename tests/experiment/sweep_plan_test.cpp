@@ -17,8 +17,11 @@ namespace cnclab {
 namespace {
 
 namespace fs = std::filesystem;
-using testing::config_error;
 using testing::TempDir;
+
+std::string config_error(const std::function<void()>& f) {
+  return testing::error_message<ConfigError>(f);  // "no error" fails every find below
+}
 
 const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
 

@@ -1,12 +1,16 @@
 #include "cnclab/data/generator.hpp"
 
 #include "cnclab/data/friedman1.hpp"
+#include "cnclab/data/step_error.hpp"
 
 namespace cnclab {
 
 std::vector<GeneratorEntry> builtin_generators() {
   return {
       {"friedman1", "Friedman #1 regression benchmark (noisy, d >= 5 inputs)", read_friedman1},
+      {"step_error",
+       "step errors of an iso-parametric ball-end tool path on a NURBS surface (seed 000)",
+       read_step_error},
   };
 }
 

@@ -26,6 +26,9 @@ struct DatasetSpec {
   std::optional<std::uint64_t> seed;
 };
 
+// Reads a `dataset` section (strict; `cnclab dataset generate` and experiments).
+DatasetSpec read_dataset_spec(const ConfigReader& dataset_section);
+
 enum class Scaling { zscore, none };
 
 // normalisation: {inputs: zscore|none, targets: zscore|none}. Seed 000 Eq. 7
