@@ -58,6 +58,21 @@ void write_note(const std::filesystem::path& path, const std::string& text) {
   ::_exit(code);  // no exit handlers: the parent owns stdio buffers and HDF5 state
 }
 
+// Blocks `signals` for its lifetime (also when an exception leaves the pool).
+class BlockedSignals {
+ public:
+  explicit BlockedSignals(const sigset_t& signals) {
+    ::sigprocmask(SIG_BLOCK, &signals, &original_);
+  }
+  ~BlockedSignals() { ::sigprocmask(SIG_SETMASK, &original_, nullptr); }
+  BlockedSignals(const BlockedSignals&) = delete;
+  BlockedSignals& operator=(const BlockedSignals&) = delete;
+  const sigset_t& original() const { return original_; }
+
+ private:
+  sigset_t original_;
+};
+
 std::string signal_text(int sig) {
   return "signal " + std::to_string(sig) + " (" + ::strsignal(sig) + ")";
 }
@@ -67,12 +82,12 @@ std::string signal_text(int sig) {
 int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options,
                    const std::function<void(std::size_t, const TrialExit&)>& on_done) {
   if (options.jobs < 1) throw ConfigError("--jobs 0: must be at least 1");
-  sigset_t watched, original;
+  sigset_t watched;
   sigemptyset(&watched);
   sigaddset(&watched, SIGCHLD);
   sigaddset(&watched, SIGINT);
   sigaddset(&watched, SIGTERM);
-  ::sigprocmask(SIG_BLOCK, &watched, &original);
+  const BlockedSignals blocked(watched);
   const pid_t self = ::getpid();
 
   std::map<pid_t, std::size_t> running;
@@ -116,7 +131,7 @@ int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options
           throw Error(std::string("cannot fork a trial: ") + std::strerror(errno));
         break;  // retry when a slot frees
       }
-      if (pid == 0) run_child(jobs[next], options.run, self, original);
+      if (pid == 0) run_child(jobs[next], options.run, self, blocked.original());
       running[pid] = next++;
     }
     // Reap everything that ended, then wait for the next event.
@@ -135,14 +150,13 @@ int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options
       for (const auto& [pid, job] : running) ::kill(pid, SIGTERM);
     }
   }
-  // Drop pending SIGCHLDs of our children before restoring the mask.
+  // Drop pending SIGCHLDs of our children before the mask is restored.
   const timespec zero{0, 0};
   sigset_t chld;
   sigemptyset(&chld);
   sigaddset(&chld, SIGCHLD);
   while (::sigtimedwait(&chld, nullptr, &zero) > 0) {
   }
-  ::sigprocmask(SIG_SETMASK, &original, nullptr);
   return stop_signal;
 }
 
