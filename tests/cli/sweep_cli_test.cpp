@@ -520,6 +520,27 @@ TEST(GraphCli, SweepTrialsRunAgainWhenTheirUpstreamChanged) {
       << again.err;
 }
 
+TEST(GraphCli, ANewDatasetGeneratorVersionMakesAResultStale) {
+  TempDir dir;
+  std::ofstream(dir / "e.yaml") << "include: " << kExperiment
+                                << "\nname: e\ntrainer: {epochs: 2}\ndataset: {options: "
+                                   "{samples: 200}}\n";
+  const Result first = sh(dir.path(), kCnclab + " reproduce e.yaml --quiet");
+  ASSERT_EQ(first.code, 0) << first.err;
+  // Pretend the result was made from another generator version's dataset
+  // (its cache file name carries the version).
+  const fs::path file =
+      dir / "results/e" / fs::directory_iterator(dir / "results/e")->path().filename();
+  RunRecord r = read_result(file);
+  r.dataset_file = "datasets/friedman1-0123456789abcdef.h5";
+  write_result(file, r);
+  const Result again = sh(dir.path(), kCnclab + " reproduce e.yaml --quiet");
+  EXPECT_NE(again.out.find("ran          dataset generator changed"), std::string::npos)
+      << again.out;
+  EXPECT_NE(sh(dir.path(), kCnclab + " reproduce e.yaml --quiet").out.find("reused"),
+            std::string::npos);
+}
+
 TEST(GraphCli, RunWithoutUpstreamResultSaysHowToMakeIt) {
   TempDir dir;
   std::ofstream(dir / "up.yaml") << "include: " << kExperiment << "\nname: up\n";

@@ -76,6 +76,16 @@ std::string dataset_config_text(const DatasetGenerator& generator, std::uint64_t
          "\nseed: " + std::to_string(seed) + "\n";
 }
 
+fs::path dataset_cache_file(const DatasetSpec& spec, std::uint64_t seed, const fs::path& dir) {
+  const DatasetGenerator& generator = *spec.generator;
+  const std::string key = Hasher()
+                              .add(generator.name())
+                              .add(std::string_view("\n"))
+                              .add(dataset_config_text(generator, seed))
+                              .hex();
+  return dir / (generator.name() + "-" + key + ".h5");
+}
+
 CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed, const fs::path& dir,
                              std::ostream* log, bool regenerate) {
   // The key must not require generating. The generator's options, version
@@ -83,11 +93,9 @@ CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed, const 
   // make it again.
   const DatasetGenerator& generator = *spec.generator;
   const std::string config_text = dataset_config_text(generator, seed);
-  const std::string key =
-      Hasher().add(generator.name()).add(std::string_view("\n")).add(config_text).hex();
   CachedDataset out;
-  const std::string stem = generator.name() + "-" + key;
-  out.path = dir / (stem + ".h5");
+  out.path = dataset_cache_file(spec, seed, dir);
+  const std::string stem = out.path.stem().string();
 
   // Unlocked first: a cache hit (the common case) costs no lock.
   if (!regenerate && read_cached(out, generator, config_text, nullptr)) return out;

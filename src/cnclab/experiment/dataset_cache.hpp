@@ -30,6 +30,10 @@ Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed);
 // key: the generator's resolved options, its version and the seed.
 std::string dataset_config_text(const DatasetGenerator& generator, std::uint64_t seed);
 
+// Where obtain_dataset keeps the dataset: <dir>/<generator>-<16 hex>.h5.
+std::filesystem::path dataset_cache_file(const DatasetSpec& spec, std::uint64_t seed,
+                                         const std::filesystem::path& dir);
+
 // <dir>/<generator>-<16 hex digits>.h5, the hash covering generator name,
 // version, options and seed. A cached file that fails to read (corrupt, partial,
 // tampered) or was made by another generator config is regenerated, and so is

@@ -5,6 +5,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/commands.hpp"
+#include "cnclab/experiment/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
@@ -78,6 +79,12 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
       try {
         RunRecord existing = read_result(path);
         why = staleness(existing.upstream, upstream);
+        // The dataset file name carries the generator version (not part of
+        // the resolved config): a new generator version makes a new dataset.
+        const fs::path dataset = dataset_cache_file(exp.spec.dataset, generator_seed(exp.spec), "");
+        if (why.empty() && fs::path(existing.dataset_file).filename() != dataset.filename()) {
+          why = "dataset generator changed (" + dataset.filename().string() + ")";
+        }
         if (why.empty()) state[i].record = std::move(existing);
       } catch (const IoError& e) {
         why = std::string("result unreadable (") + e.what() + ")";
