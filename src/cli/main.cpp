@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
       "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
       "model.dropout.keep_probability=0.8,0.9,1.0 trainer.epochs=50 --repeats 3\n"
       "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
-      "trainer.learning_rate=log_uniform(1e-4,1e-1) --trials 20 --objective rmse:min\n"
+      "'trainer.learning_rate=log_uniform(1e-4,1e-1)' --trials 20 --objective rmse:min\n"
       "Re-running the same command resumes: trials with a result are skipped.\n"
       "Exit codes: 0 all trials complete, 1 some failed, 2 bad sweep, 128+N interrupted by "
       "signal N.");
