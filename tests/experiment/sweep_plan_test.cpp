@@ -155,7 +155,7 @@ TEST(SweepPlan, RandomSearchIsDeterministicForASeedAndWithinBounds) {
     EXPECT_LE(batch, 64);
     activations.insert(t.values[3]);
     // The sampled value is the one in the trial's config.
-    EXPECT_DOUBLE_EQ(t.experiment->spec.trainer.learning_rate, lr);
+    EXPECT_DOUBLE_EQ(std::get<SgdmOptions>(t.experiment->spec.trainer).learning_rate, lr);
   }
   EXPECT_EQ(activations, (std::set<std::string>{"relu", "tanh"}));
   // log-uniform: half the mass below the geometric midpoint (binomial(40, .5):

@@ -7,17 +7,12 @@
 #include <vector>
 
 #include "cnclab/data/split.hpp"
+#include "cnclab/experiment/scaling.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/mlp.hpp"
-#include "cnclab/train/sgdm.hpp"
+#include "cnclab/train/summary.hpp"
 
 namespace cnclab {
-
-// Per-feature z-score parameters (empty when the scaling is `none`).
-struct ScalingRecord {
-  Eigen::VectorXd mean;
-  Eigen::VectorXd std;
-};
 
 // An upstream result this run depended on (needs / init_from) when it ran.
 struct UpstreamRef {
@@ -40,6 +35,7 @@ struct RunRecord {
   Eigen::VectorXd parameters;
   ScalingRecord input_scaling, target_scaling;
 
+  std::string trainer = "sgdm";  // trainer type (trainer_spec.hpp)
   Summary training;
   std::vector<double> test_loss;  // per epoch, MSE in normalised units (NaN if no test set)
 

@@ -6,27 +6,15 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/metrics.hpp"
+#include "cnclab/experiment/spec_text.hpp"
 
 namespace cnclab {
 namespace {
 
-std::string one_of(const std::vector<std::string>& names) {
-  std::string s = "must be one of: ";
-  for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];
-  return s;
-}
-
-std::string choice(const ConfigReader& r, const std::string& key, const std::string& fallback,
-                   const std::vector<std::string>& allowed) {
-  const auto value = r.get<std::string>(key, fallback);
-  if (std::find(allowed.begin(), allowed.end(), value) == allowed.end()) {
-    r.fail(key, one_of(allowed));
-  }
-  return value;
-}
-
 Scaling read_scaling(const ConfigReader& r, const std::string& key) {
-  return choice(r, key, "zscore", {"zscore", "none"}) == "zscore" ? Scaling::zscore : Scaling::none;
+  Scaling s = Scaling::zscore;
+  parse_scaling(choice(r, key, to_string(s), {"zscore", "minmax", "none"}), s);
+  return s;
 }
 
 Activation read_activation(const ConfigReader& r, const std::string& key, Activation fallback) {
@@ -119,19 +107,6 @@ MlpOptions read_model(const ConfigReader& r) {
   return m;
 }
 
-SgdmOptions read_trainer(const ConfigReader& r) {
-  SgdmOptions t;
-  choice(r, "type", "sgdm", {"sgdm"});
-  t.learning_rate = r.get<double>("learning_rate", t.learning_rate);
-  t.momentum = r.get<double>("momentum", t.momentum);
-  t.batch_size = r.get<std::size_t>("batch_size", t.batch_size);
-  t.epochs = r.get<std::size_t>("epochs", t.epochs);
-  t.shuffle = r.get<bool>("shuffle", t.shuffle);
-  t.early_stop_patience = r.get<std::size_t>("early_stop_patience", t.early_stop_patience);
-  r.validate([&] { t.validate(); });
-  return t;
-}
-
 // An upstream experiment file named at `key`, relative to the experiment's
 // folder `base`; it must exist.
 std::filesystem::path upstream_file(const ConfigReader& r, const std::string& key,
@@ -187,6 +162,11 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
   spec.normalisation.targets = read_scaling(norm, "targets");
   spec.model = read_model(root.section("model"));
   spec.trainer = read_trainer(root.section("trainer"));
+  if (is_levenberg_marquardt(spec.trainer) && spec.model.dropout_keep_probability < 1.0) {
+    root.section("model").section("dropout").fail(
+        "keep_probability", "must be 1 with trainer " + trainer_name(spec.trainer) +
+                                " (Levenberg-Marquardt needs a deterministic network)");
+  }
   spec.metrics = root.get<std::vector<std::string>>("metrics", spec.metrics);
   for (const auto& m : spec.metrics) {
     const auto& known = known_metrics();
@@ -269,10 +249,9 @@ std::string to_yaml(const ExperimentSpec& spec) {
   out << Key << "validation" << Value << shortest_double(spec.split.validation_fraction);
   out << EndMap;
 
-  const auto scaling = [](Scaling s) { return s == Scaling::zscore ? "zscore" : "none"; };
   out << Key << "normalisation" << Value << BeginMap;
-  out << Key << "inputs" << Value << scaling(spec.normalisation.inputs);
-  out << Key << "targets" << Value << scaling(spec.normalisation.targets);
+  out << Key << "inputs" << Value << to_string(spec.normalisation.inputs);
+  out << Key << "targets" << Value << to_string(spec.normalisation.targets);
   out << EndMap;
 
   const MlpOptions& m = spec.model;
@@ -292,16 +271,8 @@ std::string to_yaml(const ExperimentSpec& spec) {
   emit_initializer(out, m.biases);
   out << EndMap << EndMap;
 
-  const SgdmOptions& t = spec.trainer;
-  out << Key << "trainer" << Value << BeginMap;
-  out << Key << "type" << Value << "sgdm";
-  out << Key << "learning_rate" << Value << shortest_double(t.learning_rate);
-  out << Key << "momentum" << Value << shortest_double(t.momentum);
-  out << Key << "batch_size" << Value << t.batch_size;
-  out << Key << "epochs" << Value << t.epochs;
-  out << Key << "shuffle" << Value << t.shuffle;
-  out << Key << "early_stop_patience" << Value << t.early_stop_patience;
-  out << EndMap;
+  out << Key << "trainer" << Value;
+  emit_trainer(out, spec.trainer);
 
   out << Key << "metrics" << Value << YAML::Flow << spec.metrics;
   // Emitted only when set, so experiments without them keep their identity.

@@ -12,8 +12,9 @@
 #include "cnclab/core/override.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"
+#include "cnclab/experiment/scaling.hpp"
+#include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/nn/mlp.hpp"
-#include "cnclab/train/sgdm.hpp"
 
 namespace cnclab {
 
@@ -29,10 +30,10 @@ struct DatasetSpec {
 // Reads a `dataset` section (strict; `cnclab dataset generate` and experiments).
 DatasetSpec read_dataset_spec(const ConfigReader& dataset_section);
 
-enum class Scaling { zscore, none };
-
-// normalisation: {inputs: zscore|none, targets: zscore|none}. Seed 000 Eq. 7
-// (z-score with the n-1 sample std), fitted on the training split only.
+// normalisation: {inputs: zscore|minmax|none, targets: zscore|minmax|none},
+// fitted on the training split only: zscore = seed 000 Eq. 7 (n-1 sample
+// std), minmax = MATLAB mapminmax to [-1, 1] (seed 002, trainbr's usual
+// companion). See scaling.hpp.
 struct NormalisationSpec {
   Scaling inputs = Scaling::zscore;
   Scaling targets = Scaling::zscore;
@@ -58,7 +59,7 @@ struct ExperimentSpec {
   NormalisationSpec normalisation;
   // model: type mlp; `inputs`/`outputs` come from the dataset at run time.
   MlpOptions model;
-  SgdmOptions trainer;  // trainer: type sgdm
+  TrainerSpec trainer;  // trainer: type sgdm | lm | trainbr (trainer_spec.hpp)
   std::vector<std::string> metrics = {"mse", "rmse", "mae", "max_abs_error", "r2"};
   // needs: [FILE, ...]: experiments whose results this one depends on (paths
   // relative to the experiment file given, also when the key comes from an
