@@ -428,13 +428,16 @@ TEST(CompareCli, RunsOfDifferentExperimentsShowMissingKeys) {
   EXPECT_NE(r.out.find("name "), std::string::npos) << r.out;
 }
 
+// up.yaml: a small upstream experiment; `epochs` changes its result.
+void write_upstream(const fs::path& dir, int epochs) {
+  std::ofstream(dir / "up.yaml") << "include: " << kExperiment
+                                 << "\nname: up\ntrainer: {epochs: " << epochs
+                                 << "}\ndataset: {options: {samples: 200}}\n";
+}
+
 TEST(GraphCli, ReproduceRunsUpstreamFirstAndReusesUntilUpstreamChanges) {
   TempDir dir;
-  const auto write_up = [&](int epochs) {
-    std::ofstream(dir / "up.yaml")
-        << "include: " << kExperiment << "\nname: up\ntrainer: {epochs: " << epochs
-        << "}\ndataset: {options: {samples: 200}}\n";
-  };
+  const auto write_up = [&](int epochs) { write_upstream(dir.path(), epochs); };
   write_up(3);
   // Fine-tuning with a vanishing learning rate keeps the upstream weights
   // exactly, so the downstream predictions must equal the upstream's.
@@ -499,11 +502,7 @@ TEST(GraphCli, ReproduceRunsUpstreamFirstAndReusesUntilUpstreamChanges) {
 
 TEST(GraphCli, SweepTrialsRunAgainWhenTheirUpstreamChanged) {
   TempDir dir;
-  const auto write_up = [&](int epochs) {
-    std::ofstream(dir / "up.yaml")
-        << "include: " << kExperiment << "\nname: up\ntrainer: {epochs: " << epochs
-        << "}\ndataset: {options: {samples: 200}}\n";
-  };
+  const auto write_up = [&](int epochs) { write_upstream(dir.path(), epochs); };
   write_up(3);
   std::ofstream(dir / "down.yaml") << "include: up.yaml\nname: down\ninit_from: {experiment: "
                                       "up.yaml}\n";
