@@ -205,8 +205,6 @@ ResultStatus read_status_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
   require_format(f, kResultFormat, kResultFormatVersion);
   ResultStatus s;
-  s.experiment = f.attribute_string("/", "experiment");
-  s.config_hash = f.attribute_string("/", "config_hash");
   s.status = f.attribute_string("/", "status");
   s.failure_reason = f.attribute_string("/provenance", "failure_reason");
   s.metrics = read_metrics(f);

@@ -26,8 +26,6 @@ RunRecord read_result(const std::filesystem::path& path);
 // like read_result (safe read, format, version, completeness) but without
 // reading its arrays (several times faster).
 struct ResultStatus {
-  std::string experiment;
-  std::string config_hash;
   std::string status;          // "complete" | "failed"
   std::string failure_reason;  // failed only
   std::map<std::string, double> metrics;
