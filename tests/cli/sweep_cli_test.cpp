@@ -199,7 +199,8 @@ class SweepKill : public ::testing::Test {
  protected:
   // One reference sweep for the suite (TempDir needs a running test).
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() / "cnclab_SweepKill");
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("cnclab_SweepKill_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     const Result ref =
