@@ -12,8 +12,6 @@
 
 namespace cnclab {
 namespace fs = std::filesystem;
-namespace {
-
 std::string metrics_line(const std::map<std::string, double>& metrics) {
   std::string s;
   for (const auto& [k, v] : metrics) s += (s.empty() ? "" : "  ") + k + " " + format_metric(v);
@@ -26,10 +24,9 @@ RunOptions run_options(const CommandOptions& options, std::ostream& log) {
   r.datasets_dir = options.datasets_dir;
   r.progress = options.quiet ? ProgressMode::quiet : ProgressMode::automatic;
   r.log = options.quiet ? nullptr : &log;
+  r.regenerate_dataset = options.regenerate;
   return r;
 }
-
-}  // namespace
 
 int run_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                 std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
@@ -83,43 +80,6 @@ std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
   std::sort(files.begin(), files.end());
   files.erase(std::unique(files.begin(), files.end()), files.end());
   return files;
-}
-
-int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
-                      std::ostream& out, std::ostream& log) {
-  const auto files = find_experiments(paths);
-  if (files.empty()) throw ConfigError("reproduce: no experiment files found");
-  struct Row {
-    std::string name, status, detail, file;
-  };
-  std::vector<Row> rows;
-  int exit_code = 0;
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    if (!options.quiet) {
-      log << "[" << i + 1 << "/" << files.size() << "] " << files[i].string() << "\n";
-    }
-    try {
-      const LoadedExperiment loaded = load_experiment(files[i]);
-      const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
-      rows.push_back({loaded.spec.name, outcome.ok ? "ok" : "FAILED",
-                      outcome.ok ? metrics_line(outcome.metrics) : outcome.message,
-                      outcome.result_file.string()});
-      if (!outcome.ok) exit_code = std::max(exit_code, 1);
-    } catch (const ConfigError& e) {
-      rows.push_back({files[i].string(), "CONFIG ERROR", e.what(), ""});
-      exit_code = 2;
-    } catch (const Error& e) {
-      rows.push_back({files[i].string(), "ERROR", e.what(), ""});
-      exit_code = std::max(exit_code, 1);
-    }
-  }
-  out << "\n== cnclab reproduce: " << rows.size() << " experiment(s) ==\n";
-  for (const auto& row : rows) {
-    out << std::left << std::setw(28) << row.name << " " << std::setw(8) << row.status << " "
-        << row.detail << "\n";
-    if (!row.file.empty()) out << std::string(38, ' ') << row.file << "\n";
-  }
-  return exit_code;
 }
 
 int version_command(std::ostream& out) {
