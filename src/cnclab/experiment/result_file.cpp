@@ -31,18 +31,32 @@ Eigen::VectorXd to_eigen(const std::vector<double>& v) {
 void write_scaling(H5File& f, const std::string& g, const ScalingRecord& s,
                    const std::string& units) {
   f.create_group(g);
-  f.set_attribute(g, "method", s.mean.size() ? "zscore" : "none");
+  f.set_attribute(g, "method", s.method());
   if (s.mean.size()) {
     f.write_vector(g + "/mean", to_std(s.mean), units);
     f.write_vector(g + "/std", to_std(s.std), units);
+  }
+  if (s.min.size()) {
+    f.write_vector(g + "/min", to_std(s.min), units);
+    f.write_vector(g + "/max", to_std(s.max), units);
+    f.set_attribute(g, "range_low", s.low);
+    f.set_attribute(g, "range_high", s.high);
   }
 }
 
 ScalingRecord read_scaling(const H5File& f, const std::string& g) {
   ScalingRecord s;
-  if (f.attribute_string(g, "method") == "zscore") {
+  const std::string method = f.attribute_string(g, "method");
+  if (method == "zscore") {
     s.mean = to_eigen(f.read_vector(g + "/mean"));
     s.std = to_eigen(f.read_vector(g + "/std"));
+  } else if (method == "minmax") {
+    s.min = to_eigen(f.read_vector(g + "/min"));
+    s.max = to_eigen(f.read_vector(g + "/max"));
+    s.low = f.attribute_double(g, "range_low");
+    s.high = f.attribute_double(g, "range_high");
+  } else if (method != "none") {
+    throw IoError(g + ": unknown scaling method '" + method + "'");
   }
   return s;
 }

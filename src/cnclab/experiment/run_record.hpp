@@ -13,10 +13,14 @@
 
 namespace cnclab {
 
-// Per-feature z-score parameters (empty when the scaling is `none`).
+// Per-feature normaliser parameters: z-score (mean, std) or min-max (min,
+// max and the range [low, high]); all empty when the scaling is `none`.
 struct ScalingRecord {
   Eigen::VectorXd mean;
   Eigen::VectorXd std;
+  Eigen::VectorXd min, max;
+  double low = -1.0, high = 1.0;
+  std::string method() const { return mean.size() ? "zscore" : min.size() ? "minmax" : "none"; }
 };
 
 struct RunRecord {

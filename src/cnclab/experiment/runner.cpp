@@ -13,7 +13,7 @@
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/io/provenance.hpp"
-#include "cnclab/nn/zscore.hpp"
+#include "cnclab/experiment/scaler.hpp"
 #include "cnclab/train/objective.hpp"
 
 namespace cnclab {
@@ -36,7 +36,9 @@ Eigen::MatrixXd columns(const Eigen::MatrixXd& m, const std::vector<std::size_t>
 // the network's parameters four times (parameters, velocity, gradient, best),
 // and one activation per unit and evaluated sample.
 void check_run_memory(const ExperimentSpec& spec) {
-  const auto [samples, inputs, outputs] = spec.dataset.generator->shape();
+  const auto [samples, inputs, all_outputs] = spec.dataset.generator->shape();
+  const std::size_t outputs =
+      spec.dataset.targets.empty() ? all_outputs : spec.dataset.targets.size();
   const double n = static_cast<double>(samples);
   const double values = static_cast<double>(inputs + outputs);
   double parameters = 0, units = static_cast<double>(inputs + outputs);
@@ -80,7 +82,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   // Dataset (generated or reused from the cache).
   const CachedDataset cached = obtain_dataset(
       spec.dataset, rec.provenance.derived_seeds["generator"], options.datasets_dir, options.log);
-  const Dataset& data = cached.dataset;
+  const Dataset data = select_targets(cached.dataset, spec.dataset.targets);
   rec.dataset_file = cached.path.string();
   rec.dataset_hash = cached.content_hash;
   rec.input_names = data.input_names;
@@ -104,22 +106,14 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   Eigen::MatrixXd y_test = columns(data.targets, rec.split.test);
 
   // Normalisation, fitted on the training split only (seed 000 Eq. 7).
-  std::optional<ZScoreNormaliser> x_scale, y_scale;
-  if (spec.normalisation.inputs == Scaling::zscore) {
-    x_scale.emplace();
-    x_scale->fit(x_train);
-    rec.input_scaling = {x_scale->mean(), x_scale->std()};
-  }
-  if (spec.normalisation.targets == Scaling::zscore) {
-    y_scale.emplace();
-    y_scale->fit(y_train);
-    rec.target_scaling = {y_scale->mean(), y_scale->std()};
-  }
-  auto scale_x = [&](const Eigen::MatrixXd& m) { return x_scale ? x_scale->transform(m) : m; };
-  auto scale_y = [&](const Eigen::MatrixXd& m) { return y_scale ? y_scale->transform(m) : m; };
-  const Eigen::MatrixXd xn_train = scale_x(x_train), yn_train = scale_y(y_train);
-  const Eigen::MatrixXd xn_val = scale_x(x_val), yn_val = scale_y(y_val);
-  const Eigen::MatrixXd xn_test = scale_x(x_test), yn_test = scale_y(y_test);
+  const NormalisationSpec& norm = spec.normalisation;
+  const FeatureScaler x_scale = FeatureScaler::fit(norm.inputs, norm.input_range, x_train);
+  const FeatureScaler y_scale = FeatureScaler::fit(norm.targets, norm.target_range, y_train);
+  rec.input_scaling = x_scale.record();
+  rec.target_scaling = y_scale.record();
+  const Eigen::MatrixXd xn_train = x_scale.transform(x_train), yn_train = y_scale.transform(y_train);
+  const Eigen::MatrixXd xn_val = x_scale.transform(x_val), yn_val = y_scale.transform(y_val);
+  const Eigen::MatrixXd xn_test = x_scale.transform(x_test), yn_test = y_scale.transform(y_test);
 
   // Model.
   rec.model = spec.model;
@@ -162,7 +156,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   // Evaluation in physical units.
   if (ok) {
     Eigen::MatrixXd pred = mlp.predict(params, xn_test);
-    rec.test_predictions = y_scale ? y_scale->inverse_transform(pred) : pred;
+    rec.test_predictions = y_scale.inverse_transform(pred);
     rec.test_targets = y_test;
     rec.metrics = regression_metrics(rec.test_predictions, rec.test_targets, spec.metrics);
   }

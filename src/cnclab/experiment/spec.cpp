@@ -26,7 +26,16 @@ std::string choice(const ConfigReader& r, const std::string& key, const std::str
 }
 
 Scaling read_scaling(const ConfigReader& r, const std::string& key) {
-  return choice(r, key, "zscore", {"zscore", "none"}) == "zscore" ? Scaling::zscore : Scaling::none;
+  const auto text = choice(r, key, "zscore", {"zscore", "minmax", "none"});
+  return text == "zscore" ? Scaling::zscore : text == "minmax" ? Scaling::minmax : Scaling::none;
+}
+
+std::array<double, 2> read_range(const ConfigReader& r, const std::string& key,
+                                 std::array<double, 2> fallback) {
+  if (!r.has(key)) return fallback;
+  const auto v = r.require<std::vector<double>>(key);
+  if (v.size() != 2 || !(v[0] < v[1])) r.fail(key, "must be a list [low, high] with low < high");
+  return {v[0], v[1]};
 }
 
 Activation read_activation(const ConfigReader& r, const std::string& key, Activation fallback) {
@@ -61,16 +70,25 @@ DatasetSpec read_dataset(const ConfigReader& r) {
   DatasetSpec spec;
   spec.generator = read_generator(r);
   spec.seed = r.optional<std::uint64_t>("seed");
+  spec.targets = r.get<std::vector<std::string>>("targets", spec.targets);
   return spec;
 }
 
-SplitOptions read_split(const ConfigReader& r) {
+SplitOptions read_split(const ConfigReader& r, std::size_t samples) {
   SplitOptions s;
+  s.train_count = r.optional<std::size_t>("train_count");
+  s.validation_count = r.optional<std::size_t>("validation_count");
+  s.test_count = r.optional<std::size_t>("test_count");
+  if (s.train_count || s.validation_count || s.test_count) {
+    for (const char* key : {"train", "validation"}) {
+      if (r.has(key)) r.fail(key, "give either fractions (train, validation) or counts, not both");
+    }
+  }
   s.train_fraction = r.get<double>("train", s.train_fraction);
   s.validation_fraction = r.get<double>("validation", s.validation_fraction);
   r.validate([&] {
     try {
-      s.validate();
+      s.validate_for(samples);
     } catch (const OptionError& e) {
       // SplitOptions names its fields *_fraction; the YAML keys are shorter.
       const std::string key = e.field() == "train_fraction"        ? "train"
@@ -146,10 +164,18 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::str
   spec.description = root.get<std::string>("description", "");
   spec.seed = root.require<std::uint64_t>("seed");
   spec.dataset = read_dataset(root.section("dataset"));
-  spec.split = read_split(root.section("split"));
+  spec.split = read_split(root.section("split"), spec.dataset.generator->shape().samples);
   const ConfigReader norm = root.section("normalisation");
   spec.normalisation.inputs = read_scaling(norm, "inputs");
   spec.normalisation.targets = read_scaling(norm, "targets");
+  for (const auto& [key, scaling] : {std::pair{"input_range", spec.normalisation.inputs},
+                                     std::pair{"target_range", spec.normalisation.targets}}) {
+    if (norm.has(key) && scaling != Scaling::minmax) norm.fail(key, "applies to minmax only");
+  }
+  spec.normalisation.input_range =
+      read_range(norm, "input_range", spec.normalisation.input_range);
+  spec.normalisation.target_range =
+      read_range(norm, "target_range", spec.normalisation.target_range);
   spec.model = read_model(root.section("model"));
   spec.trainer = read_trainer(root.section("trainer"));
   spec.metrics = root.get<std::vector<std::string>>("metrics", spec.metrics);
@@ -177,6 +203,10 @@ void emit_initializer(YAML::Emitter& out, const Initializer& init) {
 
 }  // namespace
 
+std::string to_string(Scaling s) {
+  return s == Scaling::zscore ? "zscore" : s == Scaling::minmax ? "minmax" : "none";
+}
+
 LoadedExperiment load_experiment(const std::filesystem::path& file,
                                  const std::vector<std::string>& overrides,
                                  std::optional<std::uint64_t> seed_override) {
@@ -203,18 +233,37 @@ std::string to_yaml(const ExperimentSpec& spec) {
   out << Key << "dataset" << Value << BeginMap;
   out << Key << "generator" << Value << spec.dataset.generator->name();
   if (spec.dataset.seed) out << Key << "seed" << Value << *spec.dataset.seed;
+  if (!spec.dataset.targets.empty()) {
+    out << Key << "targets" << Value << YAML::Flow << spec.dataset.targets;
+  }
   out << Key << "options" << Value << YAML::Load(spec.dataset.generator->options_yaml());
   out << EndMap;
 
+  const SplitOptions& split = spec.split;
   out << Key << "split" << Value << BeginMap;
-  out << Key << "train" << Value << shortest_double(spec.split.train_fraction);
-  out << Key << "validation" << Value << shortest_double(spec.split.validation_fraction);
+  if (split.uses_counts()) {
+    out << Key << "train_count" << Value << *split.train_count;
+    if (split.validation_count) out << Key << "validation_count" << Value << *split.validation_count;
+    if (split.test_count) out << Key << "test_count" << Value << *split.test_count;
+  } else {
+    out << Key << "train" << Value << shortest_double(split.train_fraction);
+    out << Key << "validation" << Value << shortest_double(split.validation_fraction);
+  }
   out << EndMap;
 
-  const auto scaling = [](Scaling s) { return s == Scaling::zscore ? "zscore" : "none"; };
+  const NormalisationSpec& norm = spec.normalisation;
+  const auto range = [](const std::array<double, 2>& r) {
+    return std::vector<std::string>{shortest_double(r[0]), shortest_double(r[1])};
+  };
   out << Key << "normalisation" << Value << BeginMap;
-  out << Key << "inputs" << Value << scaling(spec.normalisation.inputs);
-  out << Key << "targets" << Value << scaling(spec.normalisation.targets);
+  out << Key << "inputs" << Value << to_string(norm.inputs);
+  out << Key << "targets" << Value << to_string(norm.targets);
+  if (norm.inputs == Scaling::minmax) {
+    out << Key << "input_range" << Value << YAML::Flow << range(norm.input_range);
+  }
+  if (norm.targets == Scaling::minmax) {
+    out << Key << "target_range" << Value << YAML::Flow << range(norm.target_range);
+  }
   out << EndMap;
 
   const MlpOptions& m = spec.model;

@@ -2,6 +2,7 @@
 // An experiment: what `cnclab run` reads from YAML. Every section maps onto a
 // typed options struct of the module that uses it; reading is strict (see
 // core/config.hpp) and validate() of each struct runs with the YAML location.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -23,15 +24,23 @@ struct DatasetSpec {
   std::shared_ptr<const DatasetGenerator> generator;
   // Generator seed; absent = derived from the experiment seed ("generator").
   std::optional<std::uint64_t> seed;
+  // targets: [X] - the generator's targets the model learns, in this order;
+  // empty = all. One network per output (seed 004 Table 5) selects one.
+  std::vector<std::string> targets;
 };
 
-enum class Scaling { zscore, none };
+enum class Scaling { zscore, minmax, none };
+std::string to_string(Scaling s);
 
-// normalisation: {inputs: zscore|none, targets: zscore|none}. Seed 000 Eq. 7
-// (z-score with the n-1 sample std), fitted on the training split only.
+// normalisation: {inputs: zscore|minmax|none, targets: ..., input_range:
+// [low, high], target_range: [low, high]}, fitted on the training split
+// only. zscore: seed 000 Eq. 7 (n-1 sample std). minmax: MATLAB mapminmax to
+// the range (default [-1, 1]; a sigmoid output needs one inside (0, 1)).
 struct NormalisationSpec {
   Scaling inputs = Scaling::zscore;
   Scaling targets = Scaling::zscore;
+  std::array<double, 2> input_range = {-1.0, 1.0};   // minmax only: [low, high], low < high
+  std::array<double, 2> target_range = {-1.0, 1.0};  // minmax only
 };
 
 struct ExperimentSpec {

@@ -2,5 +2,6 @@
 // Umbrella header of the nn module.
 #include "cnclab/nn/activation.hpp"
 #include "cnclab/nn/initializer.hpp"
+#include "cnclab/nn/minmax.hpp"
 #include "cnclab/nn/mlp.hpp"
 #include "cnclab/nn/zscore.hpp"
