@@ -71,8 +71,9 @@ TEST(MinMax, BadInputIsAnError) {
   ok << 1, 2;
   n.fit(ok);
   EXPECT_THROW(n.transform(Eigen::MatrixXd(3, 1)), Error);
-  EXPECT_THROW(MinMaxNormaliser(Eigen::VectorXd::Constant(1, 2.0), Eigen::VectorXd::Constant(1, 1.0), 0, 1),
-               Error);
+  EXPECT_THROW(
+      MinMaxNormaliser(Eigen::VectorXd::Constant(1, 2.0), Eigen::VectorXd::Constant(1, 1.0), 0, 1),
+      Error);
 }
 
 }  // namespace

@@ -8,7 +8,8 @@ namespace cnclab {
 std::vector<GeneratorEntry> builtin_generators() {
   return {
       {"friedman1", "Friedman #1 regression benchmark (noisy, d >= 5 inputs)", read_friedman1},
-      {"ik_samples", "TTTRR five-axis inverse kinematics: tool poses -> joints X, Y, Z, A, C (seed 004)",
+      {"ik_samples",
+       "TTTRR five-axis inverse kinematics: tool poses -> joints X, Y, Z, A, C (seed 004)",
        read_ik_samples},
   };
 }

@@ -48,8 +48,7 @@ std::size_t IkSamplesOptions::num_samples() const {
 void IkSamplesOptions::validate() const {
   if (mode == SamplingMode::grid) {
     if (values_per_input < 2) {
-      throw OptionError("values_per_input", std::to_string(values_per_input),
-                        "must be at least 2");
+      throw OptionError("values_per_input", std::to_string(values_per_input), "must be at least 2");
     }
   } else if (samples < 1) {
     throw OptionError("samples", std::to_string(samples), "must be at least 1");

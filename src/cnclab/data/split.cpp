@@ -36,21 +36,24 @@ void SplitOptions::validate_for(std::size_t n) const {
   validate();
   if (!uses_counts()) return;
   const std::size_t given = *train_count + validation_count.value_or(0) + test_count.value_or(0);
-  const std::string rule = "train_count + validation_count + test_count = " +
-                           std::to_string(given) + " for " + std::to_string(n) + " samples";
+  const std::string rule =
+      "train_count + validation_count + test_count = " + std::to_string(given) + " for " +
+      std::to_string(n) + " samples";
   if (given > n) {
-    const char* field = test_count ? "test_count" : validation_count ? "validation_count"
-                                                                     : "train_count";
+    const char* field = test_count         ? "test_count"
+                        : validation_count ? "validation_count"
+                                           : "train_count";
     throw OptionError(field,
-                      std::to_string(test_count ? *test_count
+                      std::to_string(test_count         ? *test_count
                                      : validation_count ? *validation_count
                                                         : *train_count),
                       rule + ": more than the samples");
   }
   if (validation_count && test_count && given != n) {
     throw OptionError("test_count", std::to_string(*test_count),
-                      rule + ": with all three counts given they must add up to the samples "
-                             "(leave one out to give it the rest)");
+                      rule +
+                          ": with all three counts given they must add up to the samples "
+                          "(leave one out to give it the rest)");
   }
 }
 
@@ -68,7 +71,8 @@ SplitOptions::Sizes SplitOptions::sizes(std::size_t n) const {
     }
     return s;
   }
-  s.train = std::min(n, static_cast<std::size_t>(std::llround(train_fraction * static_cast<double>(n))));
+  s.train =
+      std::min(n, static_cast<std::size_t>(std::llround(train_fraction * static_cast<double>(n))));
   s.validation = std::min(
       n - s.train,
       static_cast<std::size_t>(std::llround(validation_fraction * static_cast<double>(n))));

@@ -18,7 +18,9 @@ struct SplitOptions {
   // fractions are unused. Of validation_count and test_count at most one may
   // be absent and takes the rest (both absent: no validation, test = rest);
   // when all three are given they must add up to the sample count.
-  std::optional<std::size_t> train_count, validation_count, test_count;
+  std::optional<std::size_t> train_count = std::nullopt;
+  std::optional<std::size_t> validation_count = std::nullopt;
+  std::optional<std::size_t> test_count = std::nullopt;
 
   bool uses_counts() const { return train_count.has_value(); }
   void validate() const;

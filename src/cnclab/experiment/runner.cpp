@@ -12,8 +12,8 @@
 #include "cnclab/experiment/dataset_cache.hpp"
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
-#include "cnclab/io/provenance.hpp"
 #include "cnclab/experiment/scaler.hpp"
+#include "cnclab/io/provenance.hpp"
 #include "cnclab/train/objective.hpp"
 
 namespace cnclab {
@@ -111,7 +111,8 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   const FeatureScaler y_scale = FeatureScaler::fit(norm.targets, norm.target_range, y_train);
   rec.input_scaling = x_scale.record();
   rec.target_scaling = y_scale.record();
-  const Eigen::MatrixXd xn_train = x_scale.transform(x_train), yn_train = y_scale.transform(y_train);
+  const Eigen::MatrixXd xn_train = x_scale.transform(x_train),
+                        yn_train = y_scale.transform(y_train);
   const Eigen::MatrixXd xn_val = x_scale.transform(x_val), yn_val = y_scale.transform(y_val);
   const Eigen::MatrixXd xn_test = x_scale.transform(x_test), yn_test = y_scale.transform(y_test);
 

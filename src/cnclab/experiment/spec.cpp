@@ -172,8 +172,7 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::str
                                      std::pair{"target_range", spec.normalisation.targets}}) {
     if (norm.has(key) && scaling != Scaling::minmax) norm.fail(key, "applies to minmax only");
   }
-  spec.normalisation.input_range =
-      read_range(norm, "input_range", spec.normalisation.input_range);
+  spec.normalisation.input_range = read_range(norm, "input_range", spec.normalisation.input_range);
   spec.normalisation.target_range =
       read_range(norm, "target_range", spec.normalisation.target_range);
   spec.model = read_model(root.section("model"));
@@ -243,7 +242,8 @@ std::string to_yaml(const ExperimentSpec& spec) {
   out << Key << "split" << Value << BeginMap;
   if (split.uses_counts()) {
     out << Key << "train_count" << Value << *split.train_count;
-    if (split.validation_count) out << Key << "validation_count" << Value << *split.validation_count;
+    if (split.validation_count)
+      out << Key << "validation_count" << Value << *split.validation_count;
     if (split.test_count) out << Key << "test_count" << Value << *split.test_count;
   } else {
     out << Key << "train" << Value << shortest_double(split.train_fraction);
