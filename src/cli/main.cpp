@@ -8,6 +8,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/commands.hpp"
+#include "cnclab/experiment/tables/tables.hpp"
 
 namespace {
 
@@ -72,6 +73,19 @@ int main(int argc, char** argv) {
       "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
       "experiments/friedman");
 
+  std::string table;
+  cnclab::TablesOptions tables_options;
+  auto* tables = app.add_subcommand(
+      "tables", "Print a paper's tables from result files beside the paper's numbers");
+  tables->add_option("table", table, "Table name (none: list the tables)");
+  tables->add_option("--results", tables_options.results_dir, "Results folder")
+      ->capture_default_str();
+  tables->add_option("--experiments", tables_options.experiments_dir, "Experiments folder")
+      ->capture_default_str();
+  tables->add_option("--reference", tables_options.reference_dir, "Paper numbers folder")
+      ->capture_default_str();
+  tables->footer("Example:\n  cnclab tables ik    # seed 004 Table 5 and the machine-space error");
+
   auto* version = app.add_subcommand("version", "Print version, git commit and library versions");
   version->footer("Example:\n  cnclab version");
 
@@ -87,6 +101,7 @@ int main(int argc, char** argv) {
     if (*validate) return cnclab::validate_command(experiment, overrides, seed, std::cout);
     if (*show) return cnclab::show_command(paths, std::cout);
     if (*reproduce) return cnclab::reproduce_command(paths, common, std::cout, std::cerr);
+    if (*tables) return cnclab::tables_command(table, tables_options, std::cout);
     if (*version) return cnclab::version_command(std::cout);
   } catch (const cnclab::ConfigError& e) {
     std::cerr << "cnclab: error: " << e.what() << "\n";

@@ -8,6 +8,7 @@
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
+#include "cnclab/experiment/tables/tables.hpp"
 #include "cnclab/io/provenance.hpp"
 
 namespace cnclab {
@@ -119,6 +120,9 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
         << row.detail << "\n";
     if (!row.file.empty()) out << std::string(38, ' ') << row.file << "\n";
   }
+  TablesOptions tables;
+  tables.results_dir = options.results_dir;
+  print_available_tables(tables, out);
   return exit_code;
 }
 
