@@ -1,6 +1,7 @@
 // cnclab command line: CLI11 wiring only; the work is in the library.
 // Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -73,6 +74,18 @@ int main(int argc, char** argv) {
       "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
       "experiments/friedman");
 
+  std::string toolpath;
+  std::filesystem::path gcode_output;
+  auto* gcode = app.add_subcommand("gcode", "Write a tool path as an ISO 6983 (G-code) program");
+  gcode->add_option("toolpath", toolpath, "Tool path type: trochoid")->required();
+  gcode->add_option("config", experiment, "Tool path YAML (kind: gcode)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  gcode->add_option("overrides", overrides, "Config overrides key=value");
+  gcode->add_option("-o,--output", gcode_output, "G-code file to write (atomically)")->required();
+  gcode->footer(
+      "Example:\n  cnclab gcode trochoid experiments/trochoid/groove_table2.yaml -o groove.nc");
+
   std::string table;
   cnclab::TablesOptions tables_options;
   auto* tables = app.add_subcommand(
@@ -101,6 +114,9 @@ int main(int argc, char** argv) {
     if (*validate) return cnclab::validate_command(experiment, overrides, seed, std::cout);
     if (*show) return cnclab::show_command(paths, std::cout);
     if (*reproduce) return cnclab::reproduce_command(paths, common, std::cout, std::cerr);
+    if (*gcode) {
+      return cnclab::gcode_command(toolpath, experiment, gcode_output, overrides, std::cout);
+    }
     if (*tables) return cnclab::tables_command(table, tables_options, std::cout);
     if (*version) return cnclab::version_command(std::cout);
   } catch (const cnclab::ConfigError& e) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 #include <vector>
@@ -22,10 +23,10 @@ constexpr double kPi = std::numbers::pi;
 
 TEST(TrochoidGroove, Table2GeometryDerived) {
   const TrochoidGroove g = make_trochoid_groove({});  // Table 2: D 20, W 28, L 120, step 1.5
-  EXPECT_DOUBLE_EQ(g.radius, 4.0);                     // (28 - 20) / 2
-  EXPECT_DOUBLE_EQ(g.centre_travel, 92.0);             // 120 - 28
-  EXPECT_EQ(g.loops, 62u);                             // ceil(92 / 1.5) = ceil(61.33)
-  EXPECT_NEAR(g.advance, 92.0 / 62.0, 1e-15);          // 1.4839 mm <= 1.5
+  EXPECT_DOUBLE_EQ(g.radius, 4.0);                    // (28 - 20) / 2
+  EXPECT_DOUBLE_EQ(g.centre_travel, 92.0);            // 120 - 28
+  EXPECT_EQ(g.loops, 62u);                            // ceil(92 / 1.5) = ceil(61.33)
+  EXPECT_NEAR(g.advance, 92.0 / 62.0, 1e-15);         // 1.4839 mm <= 1.5
   EXPECT_NEAR(g.speed, g.advance / (2 * kPi), 1e-15);
   ASSERT_EQ(g.points.size(), (g.loops + 2) * g.samples_per_loop + 1);
   // Starts and ends at angle 0 of the start / end circles.
@@ -177,7 +178,7 @@ TEST(Engagement, TrochoidSteadyStateIsBelowSlotting) {
 // The fit recovers known parameters from points rounded to 4 decimals (as in
 // Table 3) with residuals at the rounding level.
 TEST(TrochoidFit, RecoversKnownParametersFromRoundedPoints) {
-  const TrochoidParameters truth{0.3, -14.2, 0.25, 3.8, 1.07, 3.0};
+  const TrochoidParameters truth{0.3, -14.2, 0.25, -0.1, 3.8, 1.07, 3.0};
   std::vector<double> t;
   std::vector<Eigen::Vector2d> pts;
   for (int i = 0; i < 12; ++i) {
@@ -189,8 +190,43 @@ TEST(TrochoidFit, RecoversKnownParametersFromRoundedPoints) {
   EXPECT_LT(fit.rms, 5e-5);
   EXPECT_NEAR(fit.parameters.radius, truth.radius, 2e-2);
   EXPECT_NEAR(fit.parameters.omega, truth.omega, 2e-3);
-  EXPECT_NEAR(fit.parameters.speed, truth.speed, 2e-2);
+  EXPECT_NEAR(fit.parameters.vx, truth.vx, 2e-2);
+  EXPECT_NEAR(fit.parameters.vy, truth.vy, 2e-2);
+  EXPECT_NEAR(advance_per_turn(truth), 2 * kPi * std::hypot(0.25, 0.1) / 1.07, 1e-12);
   EXPECT_THROW(fit_trochoid(std::vector<double>{1, 2}, std::vector<Eigen::Vector2d>(2)), Error);
+}
+
+// Seed 004 Table 3 (transcribed in results/reference/trochoid_table3.csv) is
+// Eq. 6 advancing along +y: x = -4 cos t, y = -14.75 + t / (2 pi) - 4 sin t
+// (R = 4, w = 1, 1 mm per turn, phase 180 deg), to its 4-decimal rounding;
+// the fit finds those values.
+TEST(TrochoidFit, Seed004Table3IsEq6AdvancingAlongY) {
+  std::ifstream in(std::string(CNCLAB_SOURCE_DIR) + "/results/reference/trochoid_table3.csv");
+  ASSERT_TRUE(in);
+  std::vector<double> t;
+  std::vector<Eigen::Vector2d> pts;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+    std::stringstream ss(line);
+    std::string a, b, c;
+    std::getline(ss, a, ',');
+    std::getline(ss, b, ',');
+    std::getline(ss, c, ',');
+    t.push_back(std::stod(a));
+    pts.emplace_back(std::stod(b), std::stod(c));
+  }
+  ASSERT_EQ(t.size(), 12u);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    EXPECT_NEAR(pts[i].x(), -4 * std::cos(t[i]), 5.01e-5) << t[i];
+    EXPECT_NEAR(pts[i].y(), -14.75 + t[i] / (2 * kPi) - 4 * std::sin(t[i]), 5.01e-5) << t[i];
+  }
+  const TrochoidFit fit = fit_trochoid(t, pts);
+  EXPECT_LT(fit.rms, 1e-4);
+  EXPECT_NEAR(fit.parameters.radius, 4.0, 1e-2);
+  EXPECT_NEAR(std::abs(fit.parameters.omega), 1.0, 1e-3);
+  EXPECT_NEAR(advance_per_turn(fit.parameters), 1.0, 1e-2);
+  EXPECT_NEAR(fit.parameters.vx, 0.0, 1e-3);
 }
 
 TEST(Gcode, ProgramStructureAndWords) {

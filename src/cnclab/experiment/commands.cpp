@@ -9,11 +9,18 @@
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/experiment/trochoid_job.hpp"
+#include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/provenance.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
+
+// One line of `reproduce`'s summary.
+struct ReproduceRow {
+  std::string name, status, detail, file;
+};
 
 std::string metrics_line(const std::map<std::string, double>& metrics) {
   std::string s;
@@ -86,20 +93,61 @@ std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
   return files;
 }
 
+namespace {
+
+struct GcodeOutputs {
+  ReproduceRow row;
+  std::string report;
+};
+
+// results/<name>/<name>.nc, <name>-points.tsv and <name>-report.txt, each
+// written atomically.
+GcodeOutputs write_gcode_outputs(const TrochoidJob& job, const CommandOptions& options) {
+  const TrochoidOutcome outcome = run_trochoid_job(job);
+  const fs::path dir = options.results_dir / job.name;
+  const fs::path nc = dir / (job.name + ".nc");
+  write_text_atomically(nc, outcome.program.text);
+  write_text_atomically(dir / (job.name + "-points.tsv"), outcome.point_table);
+  write_text_atomically(dir / (job.name + "-report.txt"), outcome.report);
+  char detail[160];
+  std::snprintf(detail, sizeof detail,
+                "G-code: %zu points; max radial engagement %.1f deg in the loops (slotting 180)",
+                outcome.groove.points.size(),
+                outcome.max_engagement_rad * 180.0 / 3.141592653589793);
+  return {{job.name, "ok", detail, nc.string()}, outcome.report};
+}
+
+}  // namespace
+
+int gcode_command(const std::string& toolpath, const fs::path& config, const fs::path& output,
+                  const std::vector<std::string>& overrides, std::ostream& out) {
+  if (toolpath != "trochoid") {
+    throw ConfigError("gcode: unknown tool path '" + toolpath + "'; known: trochoid");
+  }
+  const TrochoidOutcome outcome = run_trochoid_job(load_trochoid_job(config, overrides));
+  write_text_atomically(output, outcome.program.text);
+  out << outcome.report << "\nG-code written to " << output.string() << "\n";
+  return 0;
+}
+
 int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
                       std::ostream& out, std::ostream& log) {
   const auto files = find_experiments(paths);
   if (files.empty()) throw ConfigError("reproduce: no experiment files found");
-  struct Row {
-    std::string name, status, detail, file;
-  };
-  std::vector<Row> rows;
+  std::vector<ReproduceRow> rows;
+  std::string reports;
   int exit_code = 0;
   for (std::size_t i = 0; i < files.size(); ++i) {
     if (!options.quiet) {
       log << "[" << i + 1 << "/" << files.size() << "] " << files[i].string() << "\n";
     }
     try {
+      if (experiment_kind(files[i]) == "gcode") {
+        const GcodeOutputs written = write_gcode_outputs(load_trochoid_job(files[i]), options);
+        rows.push_back(written.row);
+        reports += "\n== " + written.row.name + " ==\n" + written.report;
+        continue;
+      }
       const LoadedExperiment loaded = load_experiment(files[i]);
       const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
       rows.push_back({loaded.spec.name, outcome.ok ? "ok" : "FAILED",
@@ -120,6 +168,7 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
         << row.detail << "\n";
     if (!row.file.empty()) out << std::string(38, ' ') << row.file << "\n";
   }
+  out << reports;
   TablesOptions tables;
   tables.results_dir = options.results_dir;
   print_available_tables(tables, out);

@@ -153,14 +153,10 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::str
 
   const ConfigReader root = doc.root();
   ExperimentSpec spec;
-  spec.name = root.require<std::string>("name");
-  for (char c : spec.name) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '_' || c == '-' || c == '.';
-    if (!ok || spec.name.front() == '.') {
-      root.fail("name", "must be a file-name-safe identifier (letters, digits, '_', '-', '.')");
-    }
+  if (root.get<std::string>("kind", "train") != "train") {
+    root.fail("kind", "must be train here (gcode files are run by their own reader)");
   }
+  spec.name = read_experiment_name(root);
   spec.description = root.get<std::string>("description", "");
   spec.seed = root.require<std::uint64_t>("seed");
   spec.dataset = read_dataset(root.section("dataset"));
@@ -201,6 +197,18 @@ void emit_initializer(YAML::Emitter& out, const Initializer& init) {
 }
 
 }  // namespace
+
+std::string read_experiment_name(const ConfigReader& root) {
+  const auto name = root.require<std::string>("name");
+  for (char c : name) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    if (!ok || name.front() == '.') {
+      root.fail("name", "must be a file-name-safe identifier (letters, digits, '_', '-', '.')");
+    }
+  }
+  return name;
+}
 
 std::string to_string(Scaling s) {
   return s == Scaling::zscore ? "zscore" : s == Scaling::minmax ? "minmax" : "none";

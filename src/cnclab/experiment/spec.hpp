@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cnclab/core/config.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"
 #include "cnclab/nn/mlp.hpp"
@@ -78,5 +79,9 @@ LoadedExperiment parse_experiment(const std::string& yaml_text, const std::strin
                                   const std::vector<std::string>& overrides = {});
 
 std::string to_yaml(const ExperimentSpec& spec);
+
+// The required `name` key of an experiment file: a file-name-safe identifier
+// (letters, digits, '_', '-', '.'; no leading '.'), else ConfigError.
+std::string read_experiment_name(const ConfigReader& root);
 
 }  // namespace cnclab

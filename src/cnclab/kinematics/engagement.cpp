@@ -93,7 +93,8 @@ std::vector<EngagementSample> engagement_angles(std::span<const Eigen::Vector2d>
   return out;
 }
 
-std::vector<Eigen::Vector2d> densify(std::span<const Eigen::Vector2d> points, double spacing) {
+std::vector<Eigen::Vector2d> densify(std::span<const Eigen::Vector2d> points, double spacing,
+                                     std::vector<std::size_t>* segment_of) {
   if (!(spacing > 0) || !std::isfinite(spacing)) {
     throw Error("densify: spacing must be a finite number > 0");
   }
@@ -101,12 +102,15 @@ std::vector<Eigen::Vector2d> densify(std::span<const Eigen::Vector2d> points, do
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (i == 0) {
       out.push_back(points[0]);
+      if (segment_of) segment_of->assign(1, 0);
       continue;
     }
     const Eigen::Vector2d a = points[i - 1], b = points[i];
-    const auto pieces = static_cast<std::size_t>(std::max(1.0, std::ceil((b - a).norm() / spacing)));
+    const auto pieces =
+        static_cast<std::size_t>(std::max(1.0, std::ceil((b - a).norm() / spacing)));
     for (std::size_t k = 1; k <= pieces; ++k) {
       out.push_back(a + (b - a) * (static_cast<double>(k) / static_cast<double>(pieces)));
+      if (segment_of) segment_of->push_back(i);
     }
   }
   return out;

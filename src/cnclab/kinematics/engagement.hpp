@@ -35,6 +35,9 @@ std::vector<EngagementSample> engagement_angles(std::span<const Eigen::Vector2d>
 // The path resampled so that consecutive points are at most `spacing` apart
 // (straight segments between the given points): the discrete positions
 // overestimate the engagement by up to 2 asin(spacing / (2r)).
-std::vector<Eigen::Vector2d> densify(std::span<const Eigen::Vector2d> points, double spacing);
+// segment_of (optional): for each output point, the index i of the input
+// point it ends the segment towards (0 for the first point).
+std::vector<Eigen::Vector2d> densify(std::span<const Eigen::Vector2d> points, double spacing,
+                                     std::vector<std::size_t>* segment_of = nullptr);
 
 }  // namespace cnclab

@@ -26,7 +26,9 @@ std::string cat(const Parts&... parts) {
   return s;
 }
 
-std::string feed_word(double f) { return cat("F", fixed(f, 0), "."); }
+std::string feed_word(double f) {
+  return cat("F", fixed(f, 0), ".");
+}
 
 }  // namespace
 
@@ -63,7 +65,8 @@ GcodeProgram write_gcode(std::span<const Eigen::Vector2d> path, const GcodeOptio
   o.validate();
   if (path.size() < 2) throw Error("G-code: the path needs at least 2 points");
   for (std::size_t i = 0; i < path.size(); ++i) {
-    if (!path[i].allFinite()) throw Error("G-code: path point " + std::to_string(i) + " is not finite");
+    if (!path[i].allFinite())
+      throw Error("G-code: path point " + std::to_string(i) + " is not finite");
   }
   GcodeProgram prog;
   std::string& s = prog.text;

@@ -16,7 +16,8 @@ constexpr std::size_t kMaxPoints = 10'000'000;
 void TrochoidGrooveOptions::validate() const {
   const auto positive = [](double v, const char* field, const char* what) {
     if (!(v > 0) || !std::isfinite(v)) {
-      throw OptionError(field, shortest_double(v), std::string("must be a finite ") + what + " > 0");
+      throw OptionError(field, shortest_double(v),
+                        std::string("must be a finite ") + what + " > 0");
     }
   };
   positive(cutter_diameter, "cutter_diameter", "diameter in mm");

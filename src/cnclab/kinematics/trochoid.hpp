@@ -13,8 +13,8 @@
 // The path: one full circle about the start centre (the groove's start
 // semicircle is reached only with the centre at x = W/2), the N loops of
 // Eq. 6, one full circle about the end centre (likewise) - parameter
-// t in [0, 2 pi (N + 2)], the centre at W/2 + V clamp(t - 2 pi, 0, 2 pi N). Sampling: equal steps dt in t with the
-// chord deviation of each G01 segment from the curve at most `chord_tolerance`:
+// t in [0, 2 pi (N + 2)], the centre at W/2 + V clamp(t - 2 pi, 0, 2 pi N). Sampling: equal steps
+// dt in t with the chord deviation of each G01 segment from the curve at most `chord_tolerance`:
 // the curve's smallest radius of curvature is R - V (at the inner side of a
 // loop, for V < R), and a chord of angle a on a circle of radius rho deviates
 // by rho (1 - cos(a / 2)), so dt = 2 acos(1 - tol / (R + V)) bounds it using
@@ -47,14 +47,14 @@ struct TrochoidGrooveOptions {
 
 struct TrochoidGroove {
   TrochoidGrooveOptions options;
-  double radius = 0;          // R [mm]
-  double centre_start = 0;    // x of the loop centre at t = 0 [mm]
-  double centre_travel = 0;   // L - W [mm]
-  std::size_t loops = 0;      // N
-  double advance = 0;         // p = travel / N [mm per loop]
-  double speed = 0;           // V = p / (2 pi) [mm per unit t]
+  double radius = 0;         // R [mm]
+  double centre_start = 0;   // x of the loop centre at t = 0 [mm]
+  double centre_travel = 0;  // L - W [mm]
+  std::size_t loops = 0;     // N
+  double advance = 0;        // p = travel / N [mm per loop]
+  double speed = 0;          // V = p / (2 pi) [mm per unit t]
   std::size_t samples_per_loop = 0;
-  double dt = 0;              // parameter step [rad]
+  double dt = 0;  // parameter step [rad]
   // Sample points along the path (tool centre), with their parameter t:
   // start circle, N loops of Eq. 6, end circle.
   std::vector<double> t;

@@ -12,13 +12,14 @@ namespace {
 
 constexpr int kMaxIterations = 500;
 
-// Parameter vector order: x0, y0, V, R, w, phi (R dropped when fixed).
+// Parameter vector order: x0, y0, Vx, Vy, R, w, phi (R dropped when fixed).
 TrochoidParameters unpack(const Eigen::VectorXd& v, std::optional<double> fixed_radius) {
   TrochoidParameters p;
   int i = 0;
   p.x0 = v[i++];
   p.y0 = v[i++];
-  p.speed = v[i++];
+  p.vx = v[i++];
+  p.vy = v[i++];
   p.radius = fixed_radius ? *fixed_radius : v[i++];
   p.omega = v[i++];
   p.phase = v[i++];
@@ -50,9 +51,10 @@ Eigen::VectorXd levenberg_marquardt(Eigen::VectorXd v, std::span<const double> t
       r[rx] = model.x() - pts[i].x();
       r[ry] = model.y() - pts[i].y();
       Eigen::Index c = 0;
-      j(rx, c++) = 1;  // x0
-      j(ry, c++) = 1;  // y0
-      j(rx, c++) = t[i];  // V
+      j(rx, c++) = 1;     // x0
+      j(ry, c++) = 1;     // y0
+      j(rx, c++) = t[i];  // Vx
+      j(ry, c++) = t[i];  // Vy
       if (!fixed_radius) {
         j(rx, c) = ca;  // R
         j(ry, c++) = sa;
@@ -90,13 +92,17 @@ Eigen::VectorXd levenberg_marquardt(Eigen::VectorXd v, std::span<const double> t
 
 Eigen::Vector2d trochoid_model(const TrochoidParameters& p, double t) {
   const double a = p.omega * t + p.phase;
-  return {p.x0 + p.speed * t + p.radius * std::cos(a), p.y0 + p.radius * std::sin(a)};
+  return {p.x0 + p.vx * t + p.radius * std::cos(a), p.y0 + p.vy * t + p.radius * std::sin(a)};
+}
+
+double advance_per_turn(const TrochoidParameters& p) {
+  return 2 * std::numbers::pi * std::hypot(p.vx, p.vy) / std::abs(p.omega);
 }
 
 TrochoidFit fit_trochoid(std::span<const double> t, std::span<const Eigen::Vector2d> points,
                          std::optional<double> fixed_radius) {
-  if (t.size() != points.size() || t.size() < 7) {
-    throw Error("trochoid fit: need equal numbers (>= 7) of parameters and points, got " +
+  if (t.size() != points.size() || t.size() < 8) {
+    throw Error("trochoid fit: need equal numbers (>= 8) of parameters and points, got " +
                 std::to_string(t.size()) + " and " + std::to_string(points.size()));
   }
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
@@ -114,13 +120,13 @@ TrochoidFit fit_trochoid(std::span<const double> t, std::span<const Eigen::Vecto
       const double omega = 2 * std::numbers::pi * turns / (t_span > 0 ? t_span : 1.0);
       const double phase = q * std::numbers::pi / 2;
       const double radius = fixed_radius.value_or(spread > 0 ? spread : 1.0);
-      Eigen::VectorXd v(fixed_radius ? 5 : 6);
+      Eigen::VectorXd v(fixed_radius ? 6 : 7);
       if (fixed_radius) {
-        v << mean.x() - radius * std::cos(phase), mean.y() - radius * std::sin(phase), 0.0, omega,
-            phase;
-      } else {
-        v << mean.x() - radius * std::cos(phase), mean.y() - radius * std::sin(phase), 0.0, radius,
+        v << mean.x() - radius * std::cos(phase), mean.y() - radius * std::sin(phase), 0.0, 0.0,
             omega, phase;
+      } else {
+        v << mean.x() - radius * std::cos(phase), mean.y() - radius * std::sin(phase), 0.0, 0.0,
+            radius, omega, phase;
       }
       v = levenberg_marquardt(v, t, points, fixed_radius);
       const TrochoidParameters p = unpack(v, fixed_radius);
@@ -131,6 +137,13 @@ TrochoidFit fit_trochoid(std::span<const double> t, std::span<const Eigen::Vecto
       }
     }
   }
+  // (R, phi) and (-R, phi + pi) describe the same curve: report R > 0 and
+  // phi in [-pi, pi].
+  if (best.parameters.radius < 0) {
+    best.parameters.radius = -best.parameters.radius;
+    best.parameters.phase += std::numbers::pi;
+  }
+  best.parameters.phase = std::remainder(best.parameters.phase, 2 * std::numbers::pi);
   best.rms = std::sqrt(best_cost / static_cast<double>(t.size()));
   for (std::size_t i = 0; i < t.size(); ++i) {
     best.max_residual =

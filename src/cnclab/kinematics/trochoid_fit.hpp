@@ -1,8 +1,8 @@
 #pragma once
 // Least-squares fit of a trochoid to sampled points (t_i, x_i, y_i): how
-// seed 004's Table 3 relates to its Eq. 6. Model: Eq. 6 with an offset and
-// a phase,
-//   x = x0 + V t + R cos(w t + phi),   y = y0 + R sin(w t + phi),
+// seed 004's Table 3 relates to its Eq. 6. Model: Eq. 6 with an offset, a
+// phase and the advance in any direction of the plane,
+//   x = x0 + Vx t + R cos(w t + phi),   y = y0 + Vy t + R sin(w t + phi),
 // fitted by Levenberg-Marquardt (analytic Jacobian, Marquardt's diagonal
 // scaling) from a grid of starting (w, phi); optionally with R fixed.
 #include <Eigen/Core>
@@ -13,10 +13,10 @@ namespace cnclab {
 
 struct TrochoidParameters {
   double x0 = 0, y0 = 0;  // offset [mm]
-  double speed = 0;       // V [mm per unit t]
-  double radius = 0;      // R [mm]
+  double vx = 0, vy = 0;  // advance velocity (Eq. 6's V along x: vx = V, vy = 0) [mm per unit t]
+  double radius = 0;      // R [mm] (> 0 in a fit's result)
   double omega = 0;       // w [rad per unit t]
-  double phase = 0;       // phi [rad]
+  double phase = 0;       // phi [rad] (in [-pi, pi] in a fit's result)
 };
 
 Eigen::Vector2d trochoid_model(const TrochoidParameters& p, double t);
@@ -27,7 +27,10 @@ struct TrochoidFit {
   double max_residual = 0;  // largest |model - point| [mm]
 };
 
-// t and points of equal size >= 7 (6 parameters); throws cnclab::Error
+// Advance per revolution of the circling point: 2 pi |V| / |w| [mm].
+double advance_per_turn(const TrochoidParameters& p);
+
+// t and points of equal size >= 8 (7 parameters); throws cnclab::Error
 // otherwise. fixed_radius: fit with R held at this value.
 TrochoidFit fit_trochoid(std::span<const double> t, std::span<const Eigen::Vector2d> points,
                          std::optional<double> fixed_radius = std::nullopt);

@@ -1,0 +1,303 @@
+#include "cnclab/experiment/trochoid_job.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
+#include "cnclab/experiment/spec.hpp"
+#include "cnclab/experiment/tables/text_table.hpp"
+#include "cnclab/kinematics/engagement.hpp"
+#include "cnclab/kinematics/trochoid_fit.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDeg = 180.0 / kPi;
+// RMS of the rounding error of a point given to 4 decimals in x and y:
+// sqrt(2) * 1e-4 / sqrt(12) (uniform rounding error per coordinate).
+const double kTable3RoundingRms = std::sqrt(2.0) * 1e-4 / std::sqrt(12.0);
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+struct Table3Row {
+  double t = 0, x = 0, y = 0;
+  int line = 0;
+  std::string coordinates;
+};
+
+std::vector<Table3Row> read_table3(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw IoError(file.string() + ": cannot read (the transcribed Table 3)");
+  std::vector<Table3Row> rows;
+  std::string line;
+  int number = 0;
+  bool header = true;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#') continue;
+    if (header) {
+      header = false;
+      if (line != "t,x,y,line,coordinates") {
+        throw IoError(file.string() + ":" + std::to_string(number) +
+                      ": expected the header t,x,y,line,coordinates");
+      }
+      continue;
+    }
+    std::stringstream ss(line);
+    std::string field[5];
+    for (int i = 0; i < 5; ++i) std::getline(ss, field[i], i < 4 ? ',' : '\n');
+    try {
+      Table3Row r;
+      r.t = std::stod(field[0]);
+      r.x = std::stod(field[1]);
+      r.y = std::stod(field[2]);
+      r.line = std::stoi(field[3]);
+      r.coordinates = field[4];
+      if (!std::isfinite(r.t) || !std::isfinite(r.x) || !std::isfinite(r.y)) throw std::exception();
+      rows.push_back(r);
+    } catch (const std::exception&) {
+      throw IoError(file.string() + ":" + std::to_string(number) +
+                    ": not a row t,x,y,line,coordinates: " + line);
+    }
+  }
+  if (rows.size() < 8) throw IoError(file.string() + ": needs at least 8 rows to fit a trochoid");
+  return rows;
+}
+
+std::string parameters_text(const TrochoidParameters& p) {
+  return "x0 " + fixed(p.x0, 4) + " mm, y0 " + fixed(p.y0, 4) + " mm, V (" + fixed(p.vx, 5) + ", " +
+         fixed(p.vy, 5) + ") mm/unit t, R " + fixed(p.radius, 4) + " mm, w " + fixed(p.omega, 5) +
+         " rad/unit t, phi " + fixed(p.phase * kDeg, 2) +
+         " deg; advance per turn 2 pi |V| / w = " + fixed(advance_per_turn(p), 4) + " mm";
+}
+
+void compare_table3(const fs::path& file, double our_radius, std::ostream& out) {
+  const auto rows = read_table3(file);
+  std::vector<double> t;
+  std::vector<Eigen::Vector2d> pts;
+  int inconsistent = 0;
+  for (const auto& r : rows) {
+    t.push_back(r.t);
+    pts.emplace_back(r.x, r.y);
+    if (coordinate_words({r.x, r.y}, 3) != r.coordinates) ++inconsistent;
+  }
+  const TrochoidFit free_fit = fit_trochoid(t, pts);
+  const TrochoidFit fixed_fit = fit_trochoid(t, pts, our_radius);
+  // The round values the free fit points to (2 decimals; phase to 45 deg;
+  // advance direction to a quarter turn), checked point by point.
+  TrochoidParameters round;
+  round.x0 = std::round(free_fit.parameters.x0 * 100) / 100;
+  round.y0 = std::round(free_fit.parameters.y0 * 100) / 100;
+  round.radius = std::round(free_fit.parameters.radius * 100) / 100;
+  round.omega = std::round(free_fit.parameters.omega * 100) / 100;
+  round.phase = std::round(free_fit.parameters.phase / (kPi / 4)) * (kPi / 4);
+  const double advance = std::round(advance_per_turn(free_fit.parameters) * 100) / 100;
+  const double direction = std::atan2(free_fit.parameters.vy, free_fit.parameters.vx);
+  const double quarter = std::round(direction / (kPi / 2)) * (kPi / 2);
+  round.vx = advance * round.omega / (2 * kPi) * std::cos(quarter);
+  round.vy = advance * round.omega / (2 * kPi) * std::sin(quarter);
+  double round_max = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const Eigen::Vector2d m = trochoid_model(round, t[i]);
+    round_max = std::max({round_max, std::abs(m.x() - pts[i].x()), std::abs(m.y() - pts[i].y())});
+  }
+  out << "\nSeed 004 Table 3 against Eq. 6 (" << file.string() << ", " << rows.size()
+      << " points, t = " << shortest_double(rows.front().t) << " .. "
+      << shortest_double(rows.back().t) << ")\n"
+      << "- Its Coordinates column is x(t), y(t) rounded to 3 decimals: "
+      << (inconsistent == 0 ? "yes, in every row"
+                            : "NO, in " + std::to_string(inconsistent) + " rows")
+      << ".\n"
+      << "- Least-squares fit of Eq. 6 with an offset, a phase and the advance in any direction, "
+         "x = x0 + Vx t + R cos(w t + phi), y = y0 + Vy t + R sin(w t + phi):\n    "
+      << parameters_text(free_fit.parameters) << "\n    RMS residual "
+      << fixed(free_fit.rms * 1e3, 3) << " um, max " << fixed(free_fit.max_residual * 1e3, 3)
+      << " um (4-decimal rounding alone: about " << fixed(kTable3RoundingRms * 1e3, 3)
+      << " um RMS)\n"
+      << "- The same with R fixed at this groove's R = " << shortest_double(our_radius)
+      << " mm: RMS " << fixed(fixed_fit.rms * 1e3, 3) << " um\n";
+  if (free_fit.rms < 3 * kTable3RoundingRms) {
+    out << "- Table 3 IS Eq. 6 at the table's precision, with the round values\n    "
+        << parameters_text(round) << "\n    (largest coordinate deviation "
+        << fixed(round_max * 1e3, 3) << " um; the table's rounding is 0.05 um): the advance "
+        << "runs along " << (std::abs(std::sin(quarter)) > 0.5 ? "y" : "x")
+        << ", not along x as Eq. 6 writes it, and is " << shortest_double(advance)
+        << " mm per turn, not Table 2's step of 1.5 mm.\n";
+  } else {
+    out << "- The best residual is " << fixed(free_fit.rms / kTable3RoundingRms, 0)
+        << " times the rounding level: NO trochoid of the Eq. 6 family reproduces Table 3.\n";
+  }
+}
+
+}  // namespace
+
+void TrochoidReportOptions::validate() const {
+  if (!(engagement_spacing > 0) || !std::isfinite(engagement_spacing)) {
+    throw OptionError("engagement_spacing", shortest_double(engagement_spacing),
+                      "must be a finite length > 0 mm");
+  }
+  if (!(engagement_every >= engagement_spacing) || !std::isfinite(engagement_every)) {
+    throw OptionError(
+        "engagement_every", shortest_double(engagement_every),
+        "must be finite and at least engagement_spacing " + shortest_double(engagement_spacing));
+  }
+}
+
+std::string experiment_kind(const fs::path& file) {
+  const ConfigDocument doc = ConfigDocument::load(file);
+  const ConfigReader root = doc.root();
+  const auto kind = root.get<std::string>("kind", "train");
+  if (kind != "train" && kind != "gcode") root.fail("kind", "must be one of: train, gcode");
+  return kind;
+}
+
+TrochoidJob load_trochoid_job(const fs::path& file, const std::vector<std::string>& overrides) {
+  ConfigDocument doc = ConfigDocument::load(file);
+  for (const auto& text : overrides) doc.apply(parse_override(text));
+  const ConfigReader root = doc.root();
+  if (root.get<std::string>("kind", "gcode") != "gcode") root.fail("kind", "must be gcode");
+  TrochoidJob job;
+  job.source_file = file;
+  job.name = read_experiment_name(root);
+  job.description = root.get<std::string>("description", "");
+  if (root.get<std::string>("toolpath", "trochoid") != "trochoid") {
+    root.fail("toolpath", "must be one of: trochoid");
+  }
+
+  const ConfigReader g = root.section("trochoid");
+  TrochoidGrooveOptions& o = job.groove;
+  o.cutter_diameter = g.get<double>("cutter_diameter", o.cutter_diameter);
+  o.groove_width = g.get<double>("groove_width", o.groove_width);
+  o.groove_length = g.get<double>("groove_length", o.groove_length);
+  o.step = g.get<double>("step", o.step);
+  o.chord_tolerance = g.get<double>("chord_tolerance", o.chord_tolerance);
+  g.validate([&] { o.validate(); });
+
+  const ConfigReader p = root.section("program");
+  GcodeOptions& c = job.program;
+  c.program_number = static_cast<int>(p.get<std::int64_t>("program_number", c.program_number));
+  c.title = p.get<std::string>("title", c.title);
+  c.feed = p.get<double>("feed", c.feed);
+  c.plunge_feed = p.get<double>("plunge_feed", c.plunge_feed);
+  c.spindle_speed = p.get<double>("spindle_speed", c.spindle_speed);
+  c.safe_z = p.get<double>("safe_z", c.safe_z);
+  c.cut_z = p.get<double>("cut_z", c.cut_z);
+  c.line_increment = static_cast<int>(p.get<std::int64_t>("line_increment", c.line_increment));
+  c.decimals = static_cast<int>(p.get<std::int64_t>("decimals", c.decimals));
+  p.validate([&] { c.validate(); });
+
+  const ConfigReader r = root.section("report");
+  TrochoidReportOptions& rep = job.report;
+  rep.table_rows = r.get<std::size_t>("table_rows", rep.table_rows);
+  rep.engagement_spacing = r.get<double>("engagement_spacing", rep.engagement_spacing);
+  rep.engagement_every = r.get<double>("engagement_every", rep.engagement_every);
+  if (const auto path = r.optional<std::string>("compare_with")) rep.compare_with = *path;
+  r.validate([&] { rep.validate(); });
+  doc.check_all_consumed();
+  return job;
+}
+
+TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
+  TrochoidOutcome res;
+  res.groove = make_trochoid_groove(job.groove);
+  const TrochoidGroove& g = res.groove;
+  res.program = write_gcode(g.points, job.program);
+
+  // Point table, Table 3's layout: t, x(t), y(t), line number, coordinates
+  // (plus the N-word of the point's block in the program).
+  TextTable shown;
+  shown.add_row({"t", "x(t)", "y(t)", "Line N°", "Block", "Coordinates"});
+  shown.add_rule();
+  res.point_table = "t\tx\ty\tline\tblock\tcoordinates\n";
+  for (std::size_t i = 0; i < g.points.size(); ++i) {
+    const std::vector<std::string> cells = {fixed(g.t[i], 4),
+                                            fixed(g.points[i].x(), 4),
+                                            fixed(g.points[i].y(), 4),
+                                            std::to_string(i + 1),
+                                            "N" + std::to_string(res.program.point_line_numbers[i]),
+                                            coordinate_words(g.points[i], job.program.decimals)};
+    if (i < job.report.table_rows) shown.add_row(cells);
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      res.point_table += cells[k] + (k + 1 < cells.size() ? "\t" : "\n");
+    }
+  }
+
+  // Radial engagement along the G01 polygon.
+  std::vector<std::size_t> segment;
+  const auto dense = densify(g.points, job.report.engagement_spacing, &segment);
+  const auto stride = static_cast<std::size_t>(
+      std::max(1.0, std::round(job.report.engagement_every / job.report.engagement_spacing)));
+  const double tool_radius = job.groove.cutter_diameter / 2;
+  const auto engagement = engagement_angles(dense, tool_radius, stride);
+  const double t_loops_end = 2 * kPi * static_cast<double>(g.loops + 1);
+  double steady_sum = 0;
+  std::size_t steady_n = 0;
+  for (const auto& e : engagement) {
+    if (e.index == 0) continue;  // the plunge (2 pi)
+    const double t = g.t[segment[e.index]];
+    if (t <= 2 * kPi + 1e-12) {
+      res.entry_engagement_rad = std::max(res.entry_engagement_rad, e.angle);
+    } else if (t <= t_loops_end + 1e-12) {
+      res.max_engagement_rad = std::max(res.max_engagement_rad, e.angle);
+      steady_sum += e.angle;
+      ++steady_n;
+    } else {
+      res.exit_engagement_rad = std::max(res.exit_engagement_rad, e.angle);
+    }
+  }
+
+  std::ostringstream out;
+  const auto& o = job.groove;
+  out << "Trochoidal groove (seed 004 Table 2): cutter D " << shortest_double(o.cutter_diameter)
+      << " mm, groove " << shortest_double(o.groove_width) << " x "
+      << shortest_double(o.groove_length) << " mm, step " << shortest_double(o.step)
+      << " mm per loop\n"
+      << "  trochoid radius R = (W - D)/2 = " << shortest_double(g.radius) << " mm\n"
+      << "  centre travel L - W = " << shortest_double(g.centre_travel) << " mm in N = ceil("
+      << shortest_double(g.centre_travel) << " / " << shortest_double(o.step) << ") = " << g.loops
+      << " loops: advance p = " << fixed(g.advance, 4) << " mm per loop (<= step)\n"
+      << "  Eq. 6 with w = 1 rad per unit t: V = p / (2 pi) = " << fixed(g.speed, 5)
+      << " mm per unit t; plus one full circle at each end\n"
+      << "  sampling: " << g.samples_per_loop << " points per loop (dt = " << fixed(g.dt, 5)
+      << " rad) for a chord deviation <= " << shortest_double(o.chord_tolerance) << " mm; "
+      << g.points.size() << " points, "
+      << std::count(res.program.text.begin(), res.program.text.end(), '\n') << " program lines\n";
+  out << "\nPoint table (Table 3's layout; first "
+      << std::min(job.report.table_rows, g.points.size()) << " of " << g.points.size()
+      << " rows; groove frame: x from the groove start, y = 0 on its "
+      << "centreline)\n\n";
+  shown.print(out);
+  out << "\nRadial engagement (2-D stock removal, exact disc geometry; G01 path resampled every "
+      << shortest_double(job.report.engagement_spacing) << " mm, evaluated every "
+      << shortest_double(job.report.engagement_every) << " mm)\n"
+      << "  plunge at the start point:      360 deg (full stock: pre-drill or ramp in)\n"
+      << "  start circle (after the plunge): max " << fixed(res.entry_engagement_rad * kDeg, 1)
+      << " deg\n"
+      << "  trochoidal loops:                max " << fixed(res.max_engagement_rad * kDeg, 1)
+      << " deg, mean " << fixed(steady_n ? steady_sum / static_cast<double>(steady_n) * kDeg : 0, 1)
+      << " deg\n"
+      << "  end circle:                      max " << fixed(res.exit_engagement_rad * kDeg, 1)
+      << " deg\n"
+      << "  plain slotting, same cutter:     180 deg (pi + 2 asin(s / D) -> 180 deg as the "
+         "resampling s -> 0)\n"
+      << "  (resampling overestimates by at most 2 asin(s / D) = "
+      << fixed(2 * std::asin(job.report.engagement_spacing / o.cutter_diameter) * kDeg, 2)
+      << " deg)\n";
+  if (job.report.compare_with) compare_table3(*job.report.compare_with, g.radius, out);
+  res.report = out.str();
+  return res;
+}
+
+}  // namespace cnclab
