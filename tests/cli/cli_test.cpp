@@ -246,6 +246,10 @@ TEST_F(Cli, GcodeTrochoidWritesACompleteProgramAtomically) {
   EXPECT_NE(r.out.find("trochoid radius R = (W - D)/2 = 4 mm"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("trochoidal loops:"), std::string::npos) << r.out;
   EXPECT_EQ(outputs().size(), 1u);  // g.nc only: no temporaries left
+  const Result v = cnclab("validate " + kGroove + " trochoid.step=1.2");
+  EXPECT_EQ(v.code, 0) << v.err;
+  EXPECT_NE(v.out.find("step: 1.2"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("kind: gcode"), std::string::npos) << v.out;
 }
 
 TEST_F(Cli, DegenerateGrooveIsAUsageErrorAndWritesNothing) {

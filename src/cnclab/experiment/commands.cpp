@@ -37,11 +37,41 @@ RunOptions run_options(const CommandOptions& options, std::ostream& log) {
   return r;
 }
 
+struct GcodeOutputs {
+  ReproduceRow row;
+  std::string report;
+};
+
+// results/<name>/<name>.nc, <name>-points.tsv and <name>-report.txt, each
+// written atomically.
+GcodeOutputs write_gcode_outputs(const TrochoidJob& job, const CommandOptions& options) {
+  const TrochoidOutcome outcome = run_trochoid_job(job);
+  const fs::path dir = options.results_dir / job.name;
+  const fs::path nc = dir / (job.name + ".nc");
+  write_text_atomically(nc, outcome.program.text);
+  write_text_atomically(dir / (job.name + "-points.tsv"), outcome.point_table);
+  write_text_atomically(dir / (job.name + "-report.txt"), outcome.report);
+  char detail[160];
+  std::snprintf(detail, sizeof detail,
+                "G-code: %zu points; max radial engagement %.1f deg in the loops (slotting 180)",
+                outcome.groove.points.size(),
+                outcome.max_engagement_rad * 180.0 / 3.141592653589793);
+  return {{job.name, "ok", detail, nc.string()}, outcome.report};
+}
+
 }  // namespace
 
 int run_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                 std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
                 std::ostream& log) {
+  if (experiment_kind(experiment) == "gcode") {
+    if (seed) throw ConfigError("--seed: " + experiment.string() + " is a gcode job (no seed)");
+    const GcodeOutputs written =
+        write_gcode_outputs(load_trochoid_job(experiment, overrides), options);
+    if (!options.quiet) out << written.report << "\n";
+    out << written.row.file << "\n";
+    return 0;
+  }
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed);
   const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
   if (!outcome.ok) {
@@ -56,6 +86,12 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
 
 int validate_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                      std::optional<std::uint64_t> seed, std::ostream& out) {
+  if (experiment_kind(experiment) == "gcode") {
+    if (seed) throw ConfigError("--seed: " + experiment.string() + " is a gcode job (no seed)");
+    out << "# " << experiment.string() << ": valid; resolved configuration:\n"
+        << to_yaml(load_trochoid_job(experiment, overrides));
+    return 0;
+  }
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed);
   out << "# " << experiment.string() << ": valid; resolved configuration:\n"
       << loaded.resolved_yaml;
@@ -92,32 +128,6 @@ std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
   files.erase(std::unique(files.begin(), files.end()), files.end());
   return files;
 }
-
-namespace {
-
-struct GcodeOutputs {
-  ReproduceRow row;
-  std::string report;
-};
-
-// results/<name>/<name>.nc, <name>-points.tsv and <name>-report.txt, each
-// written atomically.
-GcodeOutputs write_gcode_outputs(const TrochoidJob& job, const CommandOptions& options) {
-  const TrochoidOutcome outcome = run_trochoid_job(job);
-  const fs::path dir = options.results_dir / job.name;
-  const fs::path nc = dir / (job.name + ".nc");
-  write_text_atomically(nc, outcome.program.text);
-  write_text_atomically(dir / (job.name + "-points.tsv"), outcome.point_table);
-  write_text_atomically(dir / (job.name + "-report.txt"), outcome.report);
-  char detail[160];
-  std::snprintf(detail, sizeof detail,
-                "G-code: %zu points; max radial engagement %.1f deg in the loops (slotting 180)",
-                outcome.groove.points.size(),
-                outcome.max_engagement_rad * 180.0 / 3.141592653589793);
-  return {{job.name, "ok", detail, nc.string()}, outcome.report};
-}
-
-}  // namespace
 
 int gcode_command(const std::string& toolpath, const fs::path& config, const fs::path& output,
                   const std::vector<std::string>& overrides, std::ostream& out) {

@@ -1,5 +1,7 @@
 #include "cnclab/experiment/trochoid_job.hpp"
 
+#include <yaml-cpp/yaml.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -207,6 +209,39 @@ TrochoidJob load_trochoid_job(const fs::path& file, const std::vector<std::strin
   r.validate([&] { rep.validate(); });
   doc.check_all_consumed();
   return job;
+}
+
+std::string to_yaml(const TrochoidJob& job) {
+  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
+  YAML::Emitter out;
+  out << BeginMap << Key << "kind" << Value << "gcode" << Key << "name" << Value << job.name << Key
+      << "description" << Value << job.description << Key << "toolpath" << Value << "trochoid";
+  const auto& g = job.groove;
+  out << Key << "trochoid" << Value << BeginMap;
+  out << Key << "cutter_diameter" << Value << shortest_double(g.cutter_diameter);
+  out << Key << "groove_width" << Value << shortest_double(g.groove_width);
+  out << Key << "groove_length" << Value << shortest_double(g.groove_length);
+  out << Key << "step" << Value << shortest_double(g.step);
+  out << Key << "chord_tolerance" << Value << shortest_double(g.chord_tolerance) << EndMap;
+  const auto& p = job.program;
+  out << Key << "program" << Value << BeginMap;
+  out << Key << "program_number" << Value << p.program_number;
+  out << Key << "title" << Value << p.title;
+  out << Key << "feed" << Value << shortest_double(p.feed);
+  out << Key << "plunge_feed" << Value << shortest_double(p.plunge_feed);
+  out << Key << "spindle_speed" << Value << shortest_double(p.spindle_speed);
+  out << Key << "safe_z" << Value << shortest_double(p.safe_z);
+  out << Key << "cut_z" << Value << shortest_double(p.cut_z);
+  out << Key << "line_increment" << Value << p.line_increment;
+  out << Key << "decimals" << Value << p.decimals << EndMap;
+  const auto& r = job.report;
+  out << Key << "report" << Value << BeginMap;
+  out << Key << "table_rows" << Value << r.table_rows;
+  out << Key << "engagement_spacing" << Value << shortest_double(r.engagement_spacing);
+  out << Key << "engagement_every" << Value << shortest_double(r.engagement_every);
+  if (r.compare_with) out << Key << "compare_with" << Value << r.compare_with->string();
+  out << EndMap << EndMap;
+  return std::string(out.c_str()) + "\n";
 }
 
 TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {

@@ -55,6 +55,10 @@ std::string experiment_kind(const std::filesystem::path& file);
 TrochoidJob load_trochoid_job(const std::filesystem::path& file,
                               const std::vector<std::string>& overrides = {});
 
+// The resolved job, defaults included, as YAML that loads back to the same
+// job (what `cnclab validate` prints).
+std::string to_yaml(const TrochoidJob& job);
+
 struct TrochoidOutcome {
   TrochoidGroove groove;
   GcodeProgram program;
