@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 
 #include "cnclab/core/config.hpp"
@@ -272,6 +273,29 @@ TEST(TttrrOptions, ValidateAndReadFromYamlInDegrees) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("machine.limits.a"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace cnclab
+
+namespace cnclab {
+namespace {
+
+// Every shipped machine file loads, validates and reaches the home pose.
+TEST(TttrrOptions, ShippedMachineConfigsLoad) {
+  int found = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(CNCLAB_SOURCE_DIR) + "/configs/machines")) {
+    if (entry.path().filename().string().rfind("tttrr_", 0) != 0) continue;
+    const ConfigDocument doc = ConfigDocument::load(entry.path());
+    const TttrrOptions o =
+        read_tttrr_options(doc.root().section("dataset").section("options").section("machine"));
+    EXPECT_NO_THROW(doc.check_all_consumed()) << entry.path();
+    const TttrrMachine m(o);
+    EXPECT_NO_THROW(m.inverse_both(ToolPose{})) << entry.path();
+    ++found;
+  }
+  EXPECT_GE(found, 2);
 }
 
 }  // namespace

@@ -10,9 +10,7 @@ namespace cnclab {
 namespace {
 
 std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  std::string s = buf;
+  std::string s = fixed_decimals(v, decimals);
   // "-0.000" -> "0.000": a rounded zero has no sign.
   if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
   return s;
