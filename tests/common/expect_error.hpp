@@ -4,20 +4,28 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "cnclab/core/error.hpp"
 
 namespace cnclab::testing {
 
-template <class F>
-std::string io_error(F&& f) {
+// The message of the E that f() throws, or "" and a test failure when it
+// throws none.
+template <class E, class F>
+std::string thrown_message(F&& f) {
   try {
     f();
-  } catch (const IoError& e) {
+  } catch (const E& e) {
     return e.what();
   }
-  ADD_FAILURE() << "expected IoError";
+  ADD_FAILURE() << "expected an exception of the named cnclab::Error type";
   return "";
+}
+
+template <class F>
+std::string io_error(F&& f) {
+  return thrown_message<IoError>(std::forward<F>(f));
 }
 
 }  // namespace cnclab::testing

@@ -14,6 +14,14 @@ namespace {
 
 constexpr double kTol = 1e-12;
 
+Dataset sampled(SamplingMode mode, std::size_t samples, std::uint64_t seed) {
+  IkSamplesOptions o;
+  o.mode = mode;
+  o.samples = samples;
+  Rng rng(seed);
+  return generate_ik_samples(o, rng);
+}
+
 // The grid of seed 004: 5 values per input -> 3125 samples, each input taking
 // exactly its 5 equally spaced values, every combination once.
 TEST(IkSamples, GridHasFiveToTheFiveDistinctPoses) {
@@ -73,11 +81,8 @@ TEST(IkSamples, TargetsAreTheInverseKinematicsOfTheInputs) {
 // Latin hypercube: each input has exactly one sample in each of the n equal
 // strata of its range.
 TEST(IkSamples, LatinHypercubeFillsEveryStratumOnce) {
-  IkSamplesOptions o;
-  o.mode = SamplingMode::latin_hypercube;
-  o.samples = 200;
-  Rng rng(7);
-  const Dataset d = generate_ik_samples(o, rng);
+  const Dataset d = sampled(SamplingMode::latin_hypercube, 200, 7);
+  const IkSamplesOptions o;
   const JointRange* r[] = {&o.px, &o.py, &o.pz, &o.oi, &o.oj};
   for (int i = 0; i < 5; ++i) {
     std::vector<int> hits(200, 0);
@@ -88,8 +93,8 @@ TEST(IkSamples, LatinHypercubeFillsEveryStratumOnce) {
     EXPECT_EQ(*std::min_element(hits.begin(), hits.end()), 1) << i;
     EXPECT_EQ(*std::max_element(hits.begin(), hits.end()), 1) << i;
   }
-  Rng a(7);
-  EXPECT_EQ(generate_ik_samples(o, a).content_hash(), d.content_hash());
+  EXPECT_EQ(sampled(SamplingMode::latin_hypercube, 200, 7).content_hash(), d.content_hash());
+  EXPECT_NE(sampled(SamplingMode::latin_hypercube, 200, 8).content_hash(), d.content_hash());
 }
 
 TEST(IkSamples, BadOptionsAndUnreachablePosesAreClearErrors) {
@@ -150,11 +155,7 @@ TEST(IkSamples, RegistryReadsOptionsAndRoundTripsThem) {
 }
 
 TEST(SelectTargets, KeepsNamedRowsInOrderAndRejectsUnknownNames) {
-  IkSamplesOptions o;
-  o.mode = SamplingMode::uniform;
-  o.samples = 10;
-  Rng rng(3);
-  const Dataset d = generate_ik_samples(o, rng);
+  const Dataset d = sampled(SamplingMode::uniform, 10, 3);
   const Dataset s = select_targets(d, {"C", "X"});
   ASSERT_EQ(s.targets.rows(), 2);
   EXPECT_EQ(s.targets.row(0), d.targets.row(4));

@@ -14,6 +14,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/kinematics/tttrr_config.hpp"
+#include "common/expect_error.hpp"
 
 namespace cnclab {
 namespace {
@@ -175,14 +176,9 @@ TEST(TttrrInverse, ChoosesTheTurnOfCClosestToThePrevious) {
   EXPECT_NEAR(m.inverse(p, ABranch::positive, -5.0).c, 0.2 - 2 * kPi, 1e-12);
 }
 
-std::string kinematics_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const KinematicsError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected KinematicsError";
-  return "";
+template <class F>
+std::string kinematics_error(F&& f) {
+  return testing::thrown_message<KinematicsError>(std::forward<F>(f));
 }
 
 TEST(TttrrInverse, JointLimitsAndBadPosesAreClearErrors) {
