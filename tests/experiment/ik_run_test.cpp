@@ -6,7 +6,6 @@
 #include "cnclab/data/dataset_file.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/scaler.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
@@ -35,10 +34,10 @@ TEST(IkRun, OneAxisWithCountSplitAndMinMaxTargets) {
   EXPECT_EQ(r.split.test.size(), 60u);
   EXPECT_EQ(r.split.validation.size(), 243u - 180u);
   EXPECT_EQ(r.model.outputs, 1u);
-  EXPECT_EQ(r.target_scaling.method(), "minmax");
-  EXPECT_EQ(r.input_scaling.method(), "minmax");
-  EXPECT_EQ(r.target_scaling.low, 0.1);
-  EXPECT_EQ(r.target_scaling.high, 0.9);
+  EXPECT_EQ(r.target_scaling.method, Scaling::minmax);
+  EXPECT_EQ(r.input_scaling.method, Scaling::minmax);
+  EXPECT_EQ(r.target_scaling.y_min, 0.1);
+  EXPECT_EQ(r.target_scaling.y_max, 0.9);
 
   // The recorded min and max are those of C (row 4) over the training
   // samples of the dataset file.
@@ -56,11 +55,10 @@ TEST(IkRun, OneAxisWithCountSplitAndMinMaxTargets) {
     ASSERT_EQ(r.test_targets(0, static_cast<Eigen::Index>(k)),
               d.targets(4, static_cast<Eigen::Index>(r.split.test[k])));
   }
-  // The restored scaler maps the training extremes to the range ends.
-  const FeatureScaler s = FeatureScaler::from_record(r.target_scaling);
+  // The recorded scaling maps the training extremes to the range ends.
   Eigen::MatrixXd ends(1, 2);
   ends << lo, hi;
-  const Eigen::MatrixXd mapped = s.transform(ends);
+  const Eigen::MatrixXd mapped = r.target_scaling.transform(ends);
   EXPECT_NEAR(mapped(0, 0), 0.1, 1e-12);
   EXPECT_NEAR(mapped(0, 1), 0.9, 1e-12);
 }

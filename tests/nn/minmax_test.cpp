@@ -23,8 +23,8 @@ TEST(MinMax, MapsTrainingExtremesToTheRangeEnds) {
       0.1, 0.9, 0.5;
   EXPECT_LT((y - expected).cwiseAbs().maxCoeff(), kTol);
   EXPECT_LT((n.inverse_transform(y) - x).cwiseAbs().maxCoeff(), kTol);
-  EXPECT_EQ(n.min()(0), 2.0);
-  EXPECT_EQ(n.max()(1), 1.0);
+  EXPECT_EQ(n.x_min()(0), 2.0);
+  EXPECT_EQ(n.x_max()(1), 1.0);
 }
 
 TEST(MinMax, DefaultRangeIsMapminmaxsMinusOneToOne) {
@@ -40,14 +40,20 @@ TEST(MinMax, DefaultRangeIsMapminmaxsMinusOneToOne) {
   EXPECT_NEAR(y(0, 2), 2.0, kTol);
 }
 
-TEST(MinMax, ConstantFeatureMapsToLowAndBack) {
-  Eigen::MatrixXd x(1, 3);
-  x << 5, 5, 5;
-  MinMaxNormaliser n(0, 1);
+// MATLAB mapminmax: a constant row passes through unchanged (y = x).
+TEST(MinMax, ConstantFeaturePassesThrough) {
+  Eigen::MatrixXd x(2, 3);
+  x << 5, 5, 5,  //
+      0, 1, 2;
+  MinMaxNormaliser n(0.1, 0.9);
   n.fit(x);
-  EXPECT_EQ(n.constant_features().size(), 1u);
-  EXPECT_LT((n.transform(x).array() - 0.0).abs().maxCoeff(), kTol);
-  EXPECT_LT((n.inverse_transform(n.transform(x)) - x).cwiseAbs().maxCoeff(), kTol);
+  EXPECT_EQ(n.constant_features(), std::vector<Eigen::Index>{0});
+  Eigen::MatrixXd probe(2, 1);
+  probe << 7, 1;
+  const Eigen::MatrixXd y = n.transform(probe);
+  EXPECT_NEAR(y(0, 0), 7.0, kTol);
+  EXPECT_NEAR(y(1, 0), 0.5, kTol);
+  EXPECT_LT((n.inverse_transform(y) - probe).cwiseAbs().maxCoeff(), kTol);
 }
 
 TEST(MinMax, RestoredEqualsFitted) {
@@ -55,7 +61,7 @@ TEST(MinMax, RestoredEqualsFitted) {
   x << 1, 2, 3, 7, -4, 0, 2, 9;
   MinMaxNormaliser fitted(0.1, 0.9);
   fitted.fit(x);
-  const MinMaxNormaliser restored(fitted.min(), fitted.max(), 0.1, 0.9);
+  const MinMaxNormaliser restored(fitted.x_min(), fitted.x_max(), 0.1, 0.9);
   EXPECT_LT((restored.transform(x) - fitted.transform(x)).cwiseAbs().maxCoeff(), kTol);
 }
 

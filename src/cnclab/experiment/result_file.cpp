@@ -31,32 +31,35 @@ Eigen::VectorXd to_eigen(const std::vector<double>& v) {
 void write_scaling(H5File& f, const std::string& g, const ScalingRecord& s,
                    const std::string& units) {
   f.create_group(g);
-  f.set_attribute(g, "method", s.method());
-  if (s.mean.size()) {
+  f.set_attribute(g, "method", to_string(s.method));
+  if (s.method == Scaling::zscore) {
     f.write_vector(g + "/mean", to_std(s.mean), units);
     f.write_vector(g + "/std", to_std(s.std), units);
-  }
-  if (s.min.size()) {
+  } else if (s.method == Scaling::minmax) {
+    // y = (y_max - y_min) (x - min) / (max - min) + y_min; constant features
+    // (min = max): y = x.
+    f.set_attribute(g, "formula", "mapminmax to [y_min, y_max]");
+    f.set_attribute(g, "y_min", s.y_min);
+    f.set_attribute(g, "y_max", s.y_max);
     f.write_vector(g + "/min", to_std(s.min), units);
     f.write_vector(g + "/max", to_std(s.max), units);
-    f.set_attribute(g, "range_low", s.low);
-    f.set_attribute(g, "range_high", s.high);
   }
 }
 
 ScalingRecord read_scaling(const H5File& f, const std::string& g) {
   ScalingRecord s;
   const std::string method = f.attribute_string(g, "method");
-  if (method == "zscore") {
+  if (!parse_scaling(method, s.method)) {
+    throw IoError(f.path().string() + ": " + g + ": unknown scaling method '" + method + "'");
+  }
+  if (s.method == Scaling::zscore) {
     s.mean = to_eigen(f.read_vector(g + "/mean"));
     s.std = to_eigen(f.read_vector(g + "/std"));
-  } else if (method == "minmax") {
+  } else if (s.method == Scaling::minmax) {
     s.min = to_eigen(f.read_vector(g + "/min"));
     s.max = to_eigen(f.read_vector(g + "/max"));
-    s.low = f.attribute_double(g, "range_low");
-    s.high = f.attribute_double(g, "range_high");
-  } else if (method != "none") {
-    throw IoError(g + ": unknown scaling method '" + method + "'");
+    s.y_min = f.attribute_double(g, "y_min");
+    s.y_max = f.attribute_double(g, "y_max");
   }
   return s;
 }

@@ -7,21 +7,12 @@
 #include <vector>
 
 #include "cnclab/data/split.hpp"
+#include "cnclab/experiment/scaling.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/mlp.hpp"
 #include "cnclab/train/sgdm.hpp"
 
 namespace cnclab {
-
-// Per-feature normaliser parameters: z-score (mean, std) or min-max (min,
-// max and the range [low, high]); all empty when the scaling is `none`.
-struct ScalingRecord {
-  Eigen::VectorXd mean;
-  Eigen::VectorXd std;
-  Eigen::VectorXd min, max;
-  double low = -1.0, high = 1.0;
-  std::string method() const { return mean.size() ? "zscore" : min.size() ? "minmax" : "none"; }
-};
 
 struct RunRecord {
   std::string experiment;     // spec.name

@@ -12,7 +12,6 @@
 #include "cnclab/experiment/dataset_cache.hpp"
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
-#include "cnclab/experiment/scaler.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/train/objective.hpp"
 
@@ -107,10 +106,10 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
 
   // Normalisation, fitted on the training split only (seed 000 Eq. 7).
   const NormalisationSpec& norm = spec.normalisation;
-  const FeatureScaler x_scale = FeatureScaler::fit(norm.inputs, norm.input_range, x_train);
-  const FeatureScaler y_scale = FeatureScaler::fit(norm.targets, norm.target_range, y_train);
-  rec.input_scaling = x_scale.record();
-  rec.target_scaling = y_scale.record();
+  rec.input_scaling = ScalingRecord::fit(norm.inputs, x_train, norm.input_range);
+  rec.target_scaling = ScalingRecord::fit(norm.targets, y_train, norm.target_range);
+  const ScalingRecord& x_scale = rec.input_scaling;
+  const ScalingRecord& y_scale = rec.target_scaling;
   const Eigen::MatrixXd xn_train = x_scale.transform(x_train),
                         yn_train = y_scale.transform(y_train);
   const Eigen::MatrixXd xn_val = x_scale.transform(x_val), yn_val = y_scale.transform(y_val);

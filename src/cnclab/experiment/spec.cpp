@@ -26,8 +26,9 @@ std::string choice(const ConfigReader& r, const std::string& key, const std::str
 }
 
 Scaling read_scaling(const ConfigReader& r, const std::string& key) {
-  const auto text = choice(r, key, "zscore", {"zscore", "minmax", "none"});
-  return text == "zscore" ? Scaling::zscore : text == "minmax" ? Scaling::minmax : Scaling::none;
+  Scaling s = Scaling::zscore;
+  parse_scaling(choice(r, key, to_string(s), {"zscore", "minmax", "none"}), s);
+  return s;
 }
 
 std::array<double, 2> read_range(const ConfigReader& r, const std::string& key,
@@ -208,10 +209,6 @@ std::string read_experiment_name(const ConfigReader& root) {
     }
   }
   return name;
-}
-
-std::string to_string(Scaling s) {
-  return s == Scaling::zscore ? "zscore" : s == Scaling::minmax ? "minmax" : "none";
 }
 
 LoadedExperiment load_experiment(const std::filesystem::path& file,

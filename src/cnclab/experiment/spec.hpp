@@ -13,6 +13,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"
+#include "cnclab/experiment/scaling.hpp"
 #include "cnclab/nn/mlp.hpp"
 #include "cnclab/train/sgdm.hpp"
 
@@ -29,9 +30,6 @@ struct DatasetSpec {
   // empty = all. One network per output (seed 004 Table 5) selects one.
   std::vector<std::string> targets;
 };
-
-enum class Scaling { zscore, minmax, none };
-std::string to_string(Scaling s);
 
 // normalisation: {inputs: zscore|minmax|none, targets: ..., input_range:
 // [low, high], target_range: [low, high]}, fitted on the training split

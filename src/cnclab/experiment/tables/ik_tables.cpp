@@ -12,7 +12,6 @@
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/scaler.hpp"
 #include "cnclab/experiment/tables/text_table.hpp"
 #include "cnclab/kinematics/joint_error.hpp"
 
@@ -70,7 +69,7 @@ double validation_mse(const RunRecord& r) {
 
 // Test MSE in the normalised units the network was trained in.
 double normalised_test_mse(const RunRecord& r) {
-  const FeatureScaler y = FeatureScaler::from_record(r.target_scaling);
+  const ScalingRecord& y = r.target_scaling;
   return (y.transform(r.test_predictions) - y.transform(r.test_targets)).array().square().mean();
 }
 
@@ -199,7 +198,7 @@ void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, std::o
 
   const auto& s = runs.front().record;
   const std::string range =
-      table_number(s.target_scaling.low) + ", " + table_number(s.target_scaling.high);
+      table_number(s.target_scaling.y_min) + ", " + table_number(s.target_scaling.y_max);
   const auto& text = ref.rows.at("text_split");
   out << "\nNotes\n"
       << "- Paper values: results/reference/ik_table5.yaml (" << ref.sources.at("mse_test")
