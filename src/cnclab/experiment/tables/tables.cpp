@@ -34,7 +34,9 @@ void print_available_tables(const TablesOptions& options, std::ostream& out) {
   for (const auto& t : builtin_tables()) {
     try {
       t.print(options, out);
-    } catch (const MissingResults& e) {
+    } catch (const Error& e) {
+      // Missing or failed inputs: the runs' summary above stands; say why
+      // the table is absent (`cnclab tables NAME` reports it as an error).
       out << "\n(table " << t.name << " not printed: " << e.what() << ")\n";
     }
   }

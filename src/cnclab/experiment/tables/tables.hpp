@@ -38,8 +38,9 @@ std::vector<TableEntry> builtin_tables();
 // ConfigErrors listing the known ones. Returns the exit code (0).
 int tables_command(const std::string& name, const TablesOptions& options, std::ostream& out);
 
-// Prints every table whose results exist; a table with missing results gets
-// a one-line note instead (what `cnclab reproduce` ends with).
+// Prints every table whose results exist; a table whose inputs are missing
+// or unusable gets a one-line note instead (what `cnclab reproduce` ends
+// with).
 void print_available_tables(const TablesOptions& options, std::ostream& out);
 
 }  // namespace cnclab
