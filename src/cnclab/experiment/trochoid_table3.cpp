@@ -71,10 +71,13 @@ std::vector<Table3Row> read_table3(const fs::path& file) {
 }
 
 std::string parameters_text(const TrochoidParameters& p) {
+  // Shown in (-180, 180].
+  const double phase_deg =
+      p.phase * kDeg <= -180.0 + 1e-9 ? p.phase * kDeg + 360.0 : p.phase * kDeg;
   return "x0 " + fixed_decimals(p.x0, 4) + " mm, y0 " + fixed_decimals(p.y0, 4) + " mm, V (" +
          fixed_decimals(p.vx, 5) + ", " + fixed_decimals(p.vy, 5) + ") mm/unit t, R " +
          fixed_decimals(p.radius, 4) + " mm, w " + fixed_decimals(p.omega, 5) +
-         " rad/unit t, phi " + fixed_decimals(p.phase * kDeg, 2) +
+         " rad/unit t, phi " + fixed_decimals(phase_deg, 2) +
          " deg; advance per turn 2 pi |V| / w = " + fixed_decimals(advance_per_turn(p), 4) + " mm";
 }
 
