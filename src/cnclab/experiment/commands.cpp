@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iomanip>
+#include <numbers>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/metrics.hpp"
@@ -55,8 +56,15 @@ GcodeOutputs write_gcode_outputs(const TrochoidJob& job, const CommandOptions& o
   std::snprintf(detail, sizeof detail,
                 "G-code: %zu points; max radial engagement %.1f deg in the loops (slotting 180)",
                 outcome.groove.points.size(),
-                outcome.max_engagement_rad * 180.0 / 3.141592653589793);
+                outcome.max_engagement_rad * 180.0 / std::numbers::pi);
   return {{job.name, "ok", detail, nc.string()}, outcome.report};
+}
+
+// A gcode job has no random streams: --seed would silently do nothing.
+bool is_gcode_job(const fs::path& experiment, std::optional<std::uint64_t> seed) {
+  if (experiment_kind(experiment) != "gcode") return false;
+  if (seed) throw ConfigError("--seed: " + experiment.string() + " is a gcode job (no seed)");
+  return true;
 }
 
 }  // namespace
@@ -64,8 +72,7 @@ GcodeOutputs write_gcode_outputs(const TrochoidJob& job, const CommandOptions& o
 int run_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                 std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
                 std::ostream& log) {
-  if (experiment_kind(experiment) == "gcode") {
-    if (seed) throw ConfigError("--seed: " + experiment.string() + " is a gcode job (no seed)");
+  if (is_gcode_job(experiment, seed)) {
     const GcodeOutputs written =
         write_gcode_outputs(load_trochoid_job(experiment, overrides), options);
     if (!options.quiet) out << written.report << "\n";
@@ -86,8 +93,7 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
 
 int validate_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                      std::optional<std::uint64_t> seed, std::ostream& out) {
-  if (experiment_kind(experiment) == "gcode") {
-    if (seed) throw ConfigError("--seed: " + experiment.string() + " is a gcode job (no seed)");
+  if (is_gcode_job(experiment, seed)) {
     out << "# " << experiment.string() << ": valid; resolved configuration:\n"
         << to_yaml(load_trochoid_job(experiment, overrides));
     return 0;
