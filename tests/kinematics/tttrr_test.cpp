@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 
@@ -87,10 +88,14 @@ TEST(TttrrForward, HomePutsTheToolTipAtTheWorkpieceOrigin) {
 }
 
 // FK(IK(pose)) = pose on 1e5 random poses in the work volume, both branches.
-// Poses: P uniform in a box, O uniform on the cap A in [1e-6, 80 deg].
+// Poses: P uniform in a box, O uniform on the cap A in [1e-6, 80 deg]. The
+// seed can be overridden with CNCLAB_IK_SEED to explore other poses.
 TEST(TttrrInverse, RoundTripOnRandomPosesBothBranches) {
   const TttrrMachine m(test_machine());
-  Rng rng(20240607);
+  const char* seed_env = std::getenv("CNCLAB_IK_SEED");
+  const std::uint64_t seed = seed_env ? std::strtoull(seed_env, nullptr, 10) : 20240607;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  Rng rng(seed);
   constexpr int kPoses = 100'000;
   double worst_p = 0, worst_o = 0;
   for (int i = 0; i < kPoses; ++i) {
