@@ -9,6 +9,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/commands.hpp"
+#include "cnclab/experiment/dataset_commands.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
 
 namespace {
@@ -74,6 +75,29 @@ int main(int argc, char** argv) {
       "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
       "experiments/friedman");
 
+  auto* dataset = app.add_subcommand("dataset", "Generate or inspect a dataset file");
+  dataset->require_subcommand(1);
+  dataset->footer(
+      "Example:\n  cnclab dataset generate configs/datasets/step_error_surface1.yaml\n  cnclab "
+      "dataset show datasets/step_error_surface1.h5");
+  std::optional<std::string> dataset_out;
+  auto* generate = dataset->add_subcommand(
+      "generate",
+      "Generate the dataset a YAML `dataset:` section describes; writes HDF5 atomically");
+  generate->add_option("config", experiment, "YAML file with a dataset section")
+      ->required()
+      ->check(CLI::ExistingFile);
+  generate->add_option("overrides", overrides, "Config overrides key=value");
+  generate->add_option("--out", dataset_out, "Output file (default datasets/<config stem>.h5)");
+  generate->footer(
+      "Example:\n  cnclab dataset generate configs/datasets/step_error_surface1.yaml\n  cnclab "
+      "dataset generate configs/datasets/step_error_surface2.yaml dataset.options.lines=20 "
+      "--out s2.h5");
+  auto* dataset_show = dataset->add_subcommand(
+      "show", "Print a dataset file: counts, ranges with units, histogram, convex/concave split");
+  dataset_show->add_option("file", experiment, "Dataset HDF5 file")->required();
+  dataset_show->footer("Example:\n  cnclab dataset show datasets/step_error_surface1.h5");
+
   std::string toolpath;
   std::filesystem::path gcode_output;
   auto* gcode = app.add_subcommand("gcode", "Write a tool path as an ISO 6983 (G-code) program");
@@ -114,6 +138,13 @@ int main(int argc, char** argv) {
     if (*validate) return cnclab::validate_command(experiment, overrides, seed, std::cout);
     if (*show) return cnclab::show_command(paths, std::cout);
     if (*reproduce) return cnclab::reproduce_command(paths, common, std::cout, std::cerr);
+    if (*generate) {
+      return cnclab::dataset_generate_command(
+          experiment, overrides,
+          dataset_out ? std::optional<std::filesystem::path>(*dataset_out) : std::nullopt,
+          std::cout);
+    }
+    if (*dataset_show) return cnclab::dataset_show_command(experiment, std::cout);
     if (*gcode) {
       return cnclab::gcode_command(toolpath, experiment, gcode_output, overrides, std::cout);
     }

@@ -195,6 +195,58 @@ TEST_F(Cli, DivergedTrainingIsAFailedResultNotACrash) {
   EXPECT_NE(show.out.find("failed"), std::string::npos) << show.out;
 }
 
+// A small step-error config: 3 lines x 5 CC points on surface 1.
+std::string step_error_config() {
+  return "dataset:\n  generator: step_error\n  options:\n    surface: " CNCLAB_SOURCE_DIR
+         "/configs/surfaces/surface1.yaml\n    lines: 3\n    points_per_line: 5\n";
+}
+
+TEST_F(Cli, DatasetGenerateWritesAFileThatShowDescribes) {
+  write("s1.yaml", step_error_config());
+  const Result g = cnclab("dataset generate s1.yaml --out out/s1.h5");
+  ASSERT_EQ(g.code, 0) << g.err;
+  EXPECT_NE(g.out.find("wrote out/s1.h5: 12 samples, 73 inputs, 1 targets"), std::string::npos)
+      << g.out;
+  const Result show = cnclab("dataset show out/s1.h5");
+  ASSERT_EQ(show.code, 0) << show.err;
+  for (const char* text :
+       {"samples    12", "inputs     73", "p20_z", "cl_i+1_x", "mm", "step_error", "µm",
+        "histogram of step_error [µm]", "convex/concave split: convex", "u_i+1"}) {
+    EXPECT_NE(show.out.find(text), std::string::npos) << text << "\n" << show.out;
+  }
+  // h5dump (independent reader) sees the metadata beside the inputs, with units.
+  const Result dump = sh("h5dump -A out/s1.h5");
+  EXPECT_NE(dump.out.find("DATASET \"metadata\""), std::string::npos) << dump.out;
+  EXPECT_NE(dump.out.find("( 12, 6 )"), std::string::npos) << dump.out;
+  // Default output name and overrides.
+  const Result d = cnclab("dataset generate s1.yaml dataset.options.lines=2");
+  ASSERT_EQ(d.code, 0) << d.err;
+  EXPECT_NE(d.out.find("wrote datasets/s1.h5: 8 samples"), std::string::npos) << d.out;
+  EXPECT_TRUE(fs::exists(dir_ / "datasets" / "s1.h5"));
+}
+
+TEST_F(Cli, DatasetGenerateRejectsBadConfigsAndWritesNothing) {
+  write("s1.yaml", step_error_config());
+  expect_one_line_error(cnclab("dataset generate s1.yaml dataset.options.tool_radius=-1"), 2,
+                        "dataset.options.tool_radius = -1: must be a finite ball radius > 0 mm");
+  expect_one_line_error(cnclab("dataset generate s1.yaml dataset.options.points_per_line=1"), 2,
+                        "points_per_line = 1");
+  write("missing.yaml",
+        "dataset:\n  generator: step_error\n  options:\n    surface: nowhere.yaml\n");
+  expect_one_line_error(cnclab("dataset generate missing.yaml"), 2, "nowhere.yaml: no such file");
+  write("nodata.yaml", "name: x\n");
+  expect_one_line_error(cnclab("dataset generate nodata.yaml"), 2, "dataset: is required");
+  EXPECT_TRUE(outputs().empty());
+  const auto corrupt = write("corrupt.h5bad", "not HDF5\n");
+  expect_one_line_error(cnclab("dataset show " + corrupt.string()), 1, corrupt.string());
+  for (const char* sub : {"dataset", "dataset generate", "dataset show"}) {
+    const Result r = cnclab(std::string(sub) + " --help");
+    EXPECT_EQ(r.code, 0) << sub;
+    EXPECT_NE(r.out.find("Example"), std::string::npos) << sub << r.out;
+  }
+  EXPECT_EQ(cnclab("dataset").code, 2);
+}
+
 TEST_F(Cli, ReproduceRunsAFolderAndPrintsMetrics) {
   fs::create_directories(dir_ / "exps");
   write("exps/e.yaml",

@@ -4,28 +4,32 @@
 #include <gtest/gtest.h>
 
 #include <string>
-#include <utility>
 
 #include "cnclab/core/error.hpp"
 
 namespace cnclab::testing {
 
-// The message of the E that f() throws, or "" and a test failure when it
-// throws none.
+template <class F>
+std::string io_error(F&& f) {
+  try {
+    f();
+  } catch (const IoError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected IoError";
+  return "";
+}
+
+// The message of the exception of type E that f() throws, or "no error"
+// when it throws none (for tests comparing messages of rejected options).
 template <class E, class F>
-std::string thrown_message(F&& f) {
+std::string error_message(F&& f) {
   try {
     f();
   } catch (const E& e) {
     return e.what();
   }
-  ADD_FAILURE() << "expected an exception of the named cnclab::Error type";
-  return "";
-}
-
-template <class F>
-std::string io_error(F&& f) {
-  return thrown_message<IoError>(std::forward<F>(f));
+  return "no error";
 }
 
 }  // namespace cnclab::testing

@@ -43,6 +43,16 @@ Dataset mixed() {
   return d;
 }
 
+// mixed() with two metadata columns (not inputs).
+Dataset with_metadata() {
+  Dataset d = mixed();
+  d.metadata.resize(2, 3);
+  d.metadata << 0, 1, 2, 0.25, 0.5, 1;
+  d.metadata_names = {"line", "u_i"};
+  d.metadata_units = {"1", "1"};
+  return d;
+}
+
 // Runs `edit` on the file opened read-write through the raw C API.
 template <class F>
 void edit_raw(const fs::path& path, F&& edit) {
@@ -50,6 +60,21 @@ void edit_raw(const fs::path& path, F&& edit) {
   ASSERT_GE(file, 0);
   edit(file);
   H5Fclose(file);
+}
+
+// Replaces element `index` (row-major) of the float64 dataset `name` of
+// `size` elements by change(element), through the raw C API.
+template <class F>
+void edit_value(const fs::path& path, const char* name, std::size_t size, std::size_t index,
+                F&& change) {
+  edit_raw(path, [&](hid_t file) {
+    const hid_t ds = H5Dopen2(file, name, H5P_DEFAULT);
+    std::vector<double> v(size);
+    H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    v[index] = change(v[index]);
+    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Dclose(ds);
+  });
 }
 
 std::string raw_string_attribute(hid_t object, const char* name) {
@@ -124,14 +149,9 @@ TEST(DatasetFile, TamperedValueIsDetectedByHash) {
   TempDir dir;
   const auto path = dir / "d.h5";
   write_dataset(path, small());
-  edit_raw(path, [](hid_t file) {
-    const hid_t ds = H5Dopen2(file, "/inputs", H5P_DEFAULT);
-    std::vector<double> v(kSamples * kInputs);
-    H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    v[7 * kInputs + 2] = std::nextafter(v[7 * kInputs + 2], 2.0);  // one ulp of one value
-    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    H5Dclose(ds);
-  });
+  // One ulp of one value.
+  edit_value(path, "/inputs", kSamples * kInputs, 7 * kInputs + 2,
+             [](double x) { return std::nextafter(x, 2.0); });
   EXPECT_IO_ERROR(read_dataset(path), path.string() + ": content hash mismatch");
 }
 
@@ -254,6 +274,66 @@ TEST(Dataset, HashChangesWithAnyPartOfTheContent) {
   a.input_names = {"ab", "c"};
   b.input_names = {"a", "bc"};
   EXPECT_NE(a.content_hash(), b.content_hash());
+}
+
+TEST(DatasetFile, MetadataRoundTripsAndEntersTheHash) {
+  TempDir dir;
+  const Dataset d = with_metadata();
+  write_dataset(dir / "m.h5", d);
+  const Dataset r = read_dataset(dir / "m.h5");
+  EXPECT_EQ(r.metadata, d.metadata);
+  EXPECT_EQ(r.metadata_names, d.metadata_names);
+  EXPECT_EQ(r.metadata_units, d.metadata_units);
+  EXPECT_EQ(r.content_hash(), d.content_hash());
+  EXPECT_NE(d.content_hash(), mixed().content_hash());
+  Dataset changed = d;
+  changed.metadata(1, 2) = 0.75;
+  EXPECT_NE(changed.content_hash(), d.content_hash());
+  // Datasets without metadata keep their hash (files written before metadata).
+  Dataset none = mixed();
+  none.metadata.resize(0, 3);
+  EXPECT_EQ(none.content_hash(), mixed().content_hash());
+  EXPECT_EQ(r.metadata_row("u_i"), 1);
+  EXPECT_EQ(r.metadata_row("convex"), -1);
+}
+
+TEST(DatasetFile, TamperedMetadataIsDetectedByHash) {
+  TempDir dir;
+  const auto path = dir / "m.h5";
+  write_dataset(path, with_metadata());
+  edit_value(path, "/metadata", 6, 4, [](double) { return 7.0; });
+  EXPECT_IO_ERROR(read_dataset(path), path.string() + ": content hash mismatch");
+}
+
+TEST(DatasetFile, MetadataOfTheWrongSizeIsRejected) {
+  Dataset d = with_metadata();
+  d.metadata.conservativeResize(2, 2);
+  EXPECT_THROW(d.validate(), Error);
+  d = with_metadata();
+  d.metadata_units.pop_back();
+  EXPECT_THROW(d.validate(), Error);
+  d = with_metadata();
+  d.metadata(0, 1) = NAN;
+  EXPECT_THROW(d.validate(), Error);
+}
+
+// A version-1 file (the layout before metadata) still reads; unknown newer
+// versions do not.
+TEST(DatasetFile, Version1FilesStillReadAndNewerVersionsAreRefused) {
+  TempDir dir;
+  const auto path = dir / "v1.h5";
+  write_dataset(path, small());
+  const auto set_version = [&](std::int64_t version) {
+    edit_raw(path, [&](hid_t file) {
+      const hid_t attr = H5Aopen(file, "format_version", H5P_DEFAULT);
+      H5Awrite(attr, H5T_NATIVE_INT64, &version);
+      H5Aclose(attr);
+    });
+  };
+  set_version(1);
+  EXPECT_EQ(read_dataset(path).content_hash(), small().content_hash());
+  set_version(kDatasetFormatVersion + 1);
+  EXPECT_IO_ERROR(read_dataset(path), "unsupported format_version 3 (expected 1 to 2)");
 }
 
 }  // namespace

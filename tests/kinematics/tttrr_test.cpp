@@ -183,7 +183,7 @@ TEST(TttrrInverse, ChoosesTheTurnOfCClosestToThePrevious) {
 
 template <class F>
 std::string kinematics_error(F&& f) {
-  return testing::thrown_message<KinematicsError>(std::forward<F>(f));
+  return testing::error_message<KinematicsError>(std::forward<F>(f));
 }
 
 TEST(TttrrInverse, JointLimitsAndBadPosesAreClearErrors) {

@@ -144,19 +144,6 @@ std::string read_text(const fs::path& file) {
   return ss.str();
 }
 
-fs::path resolve_include(const fs::path& including_file, const std::string& name) {
-  const fs::path relative = including_file.parent_path() / name;
-  std::error_code ec;
-  if (fs::exists(relative, ec)) return relative;
-  // "configs/..." against the nearest ancestor that has a configs/ folder.
-  for (fs::path dir = fs::absolute(including_file, ec).parent_path(); !dir.empty();
-       dir = dir.parent_path()) {
-    if (fs::is_directory(dir / "configs", ec) && fs::exists(dir / name, ec)) return dir / name;
-    if (dir == dir.parent_path()) break;
-  }
-  return relative;  // reported as missing by read_text
-}
-
 struct Loaded {
   YAML::Node tree;
   std::map<std::string, SourceLocation> locations;
@@ -200,7 +187,7 @@ Loaded load_recursive(const fs::path& file, std::vector<fs::path>& stack) {
   Loaded result{YAML::Node(YAML::NodeType::Map), {}};
   stack.push_back(canonical);
   for (const auto& name : includes) {
-    const fs::path path = resolve_include(file, name);
+    const fs::path path = resolve_config_path(file, name);
     // Never assign to a YAML::Node that already refers to a node: yaml-cpp's
     // operator= rewrites the referenced node instead of rebinding.
     Loaded inc = [&] {
@@ -247,6 +234,19 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 }  // namespace
+
+fs::path resolve_config_path(const fs::path& including_file, const std::string& name) {
+  const fs::path relative = including_file.parent_path() / name;
+  std::error_code ec;
+  if (fs::exists(relative, ec)) return relative;
+  // "configs/..." against the nearest ancestor that has a configs/ folder.
+  for (fs::path dir = fs::absolute(including_file, ec).parent_path(); !dir.empty();
+       dir = dir.parent_path()) {
+    if (fs::is_directory(dir / "configs", ec) && fs::exists(dir / name, ec)) return dir / name;
+    if (dir == dir.parent_path()) break;
+  }
+  return relative;  // reported as missing by read_text
+}
 
 std::string node_text(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "null";

@@ -109,6 +109,13 @@ class ConfigReader {
   std::string path_;
 };
 
+// A path named in a config file, resolved the way `include:` is: relative to
+// the naming file, else "configs/..." against the nearest ancestor directory
+// of that file holding configs/. A missing file is returned as the relative
+// path (the reader reports it).
+std::filesystem::path resolve_config_path(const std::filesystem::path& including_file,
+                                          const std::string& name);
+
 // Flow-style one-line text of a node, for messages.
 std::string node_text(const YAML::Node& node);
 

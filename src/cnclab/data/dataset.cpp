@@ -37,6 +37,18 @@ void Dataset::validate() const {
   }
   check_matrix(inputs, "inputs", input_names, input_units);
   check_matrix(targets, "targets", target_names, target_units);
+  if (has_metadata() && metadata.cols() != inputs.cols()) {
+    throw Error("dataset: " + std::to_string(inputs.cols()) + " input samples but " +
+                std::to_string(metadata.cols()) + " metadata samples");
+  }
+  check_matrix(metadata, "metadata", metadata_names, metadata_units);
+}
+
+Eigen::Index Dataset::metadata_row(const std::string& name) const {
+  for (std::size_t i = 0; i < metadata_names.size(); ++i) {
+    if (metadata_names[i] == name) return static_cast<Eigen::Index>(i);
+  }
+  return -1;
 }
 
 std::string Dataset::content_hash() const {
@@ -54,6 +66,13 @@ std::string Dataset::content_hash() const {
   add_strings({generator, generator_config});
   h.add(std::span<const double>(inputs.data(), static_cast<std::size_t>(inputs.size())));
   h.add(std::span<const double>(targets.data(), static_cast<std::size_t>(targets.size())));
+  if (has_metadata()) {
+    h.add(static_cast<std::uint64_t>(metadata.rows()))
+        .add(static_cast<std::uint64_t>(metadata.cols()));
+    add_strings(metadata_names);
+    add_strings(metadata_units);
+    h.add(std::span<const double>(metadata.data(), static_cast<std::size_t>(metadata.size())));
+  }
   return h.hex();
 }
 

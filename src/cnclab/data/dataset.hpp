@@ -1,6 +1,8 @@
 #pragma once
 // A regression dataset: inputs and targets with one sample per column,
-// feature names and units, and the generator that made it.
+// feature names and units, optional per-sample metadata (bookkeeping beside
+// the inputs that no model sees, e.g. a tool-path line index), and the
+// generator that made it.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -12,6 +14,10 @@ struct Dataset {
   Eigen::MatrixXd targets;  // n_outputs x n_samples
   std::vector<std::string> input_names, input_units;
   std::vector<std::string> target_names, target_units;
+  // n_metadata x n_samples; zero rows = no metadata (then its column count
+  // is ignored).
+  Eigen::MatrixXd metadata;
+  std::vector<std::string> metadata_names, metadata_units;
   std::string generator;         // e.g. "friedman1"
   std::string generator_config;  // YAML text of the generator's options and seed
 
@@ -19,11 +25,16 @@ struct Dataset {
   // Sizes consistent (names and units per row, same sample count) and every
   // value finite; throws cnclab::Error naming the matrix, feature and sample.
   void validate() const;
+  bool has_metadata() const { return metadata.rows() > 0; }
+  // Row index of a metadata column by name, or -1.
+  Eigen::Index metadata_row(const std::string& name) const;
   // 16 hex digits of FNV-1a (cnclab::Hasher) over, in order: the shapes of
   // inputs and targets; input names, input units, target names, target
   // units, generator and generator_config (each list and string prefixed by
   // its length, so boundaries count); then the IEEE-754 bytes of inputs and
-  // of targets in storage order (sample by sample). Bit-exact: 0.0 and -0.0
+  // of targets in storage order (sample by sample); then, only when there is
+  // metadata (so hashes of datasets without it are unchanged), the metadata
+  // shape, names, units and values likewise. Bit-exact: 0.0 and -0.0
   // differ. Identical content gives identical hashes on any platform with
   // little-endian doubles.
   std::string content_hash() const;

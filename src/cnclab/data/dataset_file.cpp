@@ -34,6 +34,11 @@ void write_dataset(const std::filesystem::path& path, const Dataset& d) {
     f.write_strings("/target_names", d.target_names);
     f.write_strings("/target_units", d.target_units);
     f.write_string("/generator_config", d.generator_config);
+    if (d.has_metadata()) {
+      f.write_matrix("/metadata", d.metadata, common_unit(d.metadata_units, "/metadata_units"));
+      f.write_strings("/metadata_names", d.metadata_names);
+      f.write_strings("/metadata_units", d.metadata_units);
+    }
     mark_complete(f);
     f.close();
     out.commit();
@@ -56,7 +61,8 @@ namespace {
 Dataset read_dataset_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
   const auto bad = [&](const std::string& what) { throw IoError(path.string() + ": " + what); };
-  require_format(f, kDatasetFormat, kDatasetFormatVersion);
+  const int version =
+      require_format(f, kDatasetFormat, kDatasetOldestFormatVersion, kDatasetFormatVersion);
   Dataset d;
   d.inputs = f.read_matrix("/inputs");
   d.targets = f.read_matrix("/targets");
@@ -66,6 +72,11 @@ Dataset read_dataset_in_process(const std::filesystem::path& path) {
   d.target_units = f.read_strings("/target_units");
   d.generator = f.attribute_string("/", "generator");
   d.generator_config = f.read_string("/generator_config");
+  if (version >= 2 && f.exists("/metadata")) {
+    d.metadata = f.read_matrix("/metadata");
+    d.metadata_names = f.read_strings("/metadata_names");
+    d.metadata_units = f.read_strings("/metadata_units");
+  }
   try {
     d.validate();
   } catch (const Error& e) {

@@ -2,12 +2,16 @@
 
 #include "cnclab/data/friedman1.hpp"
 #include "cnclab/data/ik_samples.hpp"
+#include "cnclab/data/step_error.hpp"
 
 namespace cnclab {
 
 std::vector<GeneratorEntry> builtin_generators() {
   return {
       {"friedman1", "Friedman #1 regression benchmark (noisy, d >= 5 inputs)", read_friedman1},
+      {"step_error",
+       "step errors of an iso-parametric ball-end tool path on a NURBS surface (seed 000)",
+       read_step_error},
       {"ik_samples",
        "TTTRR five-axis inverse kinematics: tool poses -> joints X, Y, Z, A, C (seed 004)",
        read_ik_samples},

@@ -13,15 +13,18 @@ Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed) {
   return spec.generator->generate(rng);
 }
 
+std::string dataset_config_text(const DatasetGenerator& generator, std::uint64_t seed) {
+  return generator.options_yaml() + "generator_version: " + std::to_string(generator.version()) +
+         "\nseed: " + std::to_string(seed) + "\n";
+}
+
 CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed, const fs::path& dir,
                              std::ostream* log) {
   // The key must not require generating. The generator's options, version
   // and seed are also stored in the dataset file, so the file says how to
   // make it again.
   const DatasetGenerator& generator = *spec.generator;
-  const std::string config_text = generator.options_yaml() +
-                                  "generator_version: " + std::to_string(generator.version()) +
-                                  "\nseed: " + std::to_string(seed) + "\n";
+  const std::string config_text = dataset_config_text(generator, seed);
   const std::string key =
       Hasher().add(generator.name()).add(std::string_view("\n")).add(config_text).hex();
   CachedDataset out;

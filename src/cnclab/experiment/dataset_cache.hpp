@@ -22,6 +22,10 @@ struct CachedDataset {
 // Generates the dataset `spec` describes with generator seed `seed`.
 Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed);
 
+// The generator_config text stored in a dataset and hashed into its cache
+// key: the generator's resolved options, its version and the seed.
+std::string dataset_config_text(const DatasetGenerator& generator, std::uint64_t seed);
+
 // <dir>/<generator>-<16 hex digits>.h5, the hash covering generator name,
 // version, options and seed. A cached file that fails to read (corrupt, partial,
 // tampered) or was made by another generator config is regenerated.

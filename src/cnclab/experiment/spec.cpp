@@ -67,13 +67,17 @@ Initializer read_initializer(const ConfigReader& r, const Initializer& fallback)
   return init;
 }
 
-DatasetSpec read_dataset(const ConfigReader& r) {
+}  // namespace
+
+DatasetSpec read_dataset_spec(const ConfigReader& r) {
   DatasetSpec spec;
   spec.generator = read_generator(r);
   spec.seed = r.optional<std::uint64_t>("seed");
   spec.targets = r.get<std::vector<std::string>>("targets", spec.targets);
   return spec;
 }
+
+namespace {
 
 SplitOptions read_split(const ConfigReader& r, std::size_t samples) {
   SplitOptions s;
@@ -160,7 +164,7 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::str
   spec.name = read_experiment_name(root);
   spec.description = root.get<std::string>("description", "");
   spec.seed = root.require<std::uint64_t>("seed");
-  spec.dataset = read_dataset(root.section("dataset"));
+  spec.dataset = read_dataset_spec(root.section("dataset"));
   spec.split = read_split(root.section("split"), spec.dataset.generator->shape().samples);
   const ConfigReader norm = root.section("normalisation");
   spec.normalisation.inputs = read_scaling(norm, "inputs");

@@ -31,6 +31,9 @@ struct DatasetSpec {
   std::vector<std::string> targets;
 };
 
+// Reads a `dataset` section (strict; `cnclab dataset generate` and experiments).
+DatasetSpec read_dataset_spec(const ConfigReader& dataset_section);
+
 // normalisation: {inputs: zscore|minmax|none, targets: ..., input_range:
 // [low, high], target_range: [low, high]}, fitted on the training split
 // only. zscore: seed 000 Eq. 7 (n-1 sample std). minmax: MATLAB mapminmax to

@@ -17,6 +17,10 @@ void mark_complete(H5File& file) {
 }
 
 void require_format(const H5File& f, const std::string& format, int version) {
+  require_format(f, format, version, version);
+}
+
+int require_format(const H5File& f, const std::string& format, int oldest, int newest) {
   const std::string file = f.path().string();
   // A temporary of an atomic write may hold complete content (killed between
   // close and rename) but was never committed: never a file to read.
@@ -27,13 +31,16 @@ void require_format(const H5File& f, const std::string& format, int version) {
     throw IoError(file + ": not a " + format + " file (root attribute format)");
   }
   const auto found = f.attribute_int("/", "format_version");
-  if (found != version) {
+  if (found < oldest || found > newest) {
     throw IoError(file + ": unsupported format_version " + std::to_string(found) + " (expected " +
-                  std::to_string(version) + ")");
+                  (oldest == newest ? std::to_string(newest)
+                                    : std::to_string(oldest) + " to " + std::to_string(newest)) +
+                  ")");
   }
   if (!f.has_attribute("/", "complete") || f.attribute_int("/", "complete") != 1) {
     throw IoError(file + ": incomplete file (interrupted write?)");
   }
+  return static_cast<int>(found);
 }
 
 }  // namespace cnclab

@@ -13,5 +13,8 @@ void mark_complete(H5File& file);
 // Throws IoError naming the file unless it has this format and version, is
 // marked complete, and its name is not a partial name (is_partial_path).
 void require_format(const H5File& file, const std::string& format, int version);
+// The same, accepting any format_version in [oldest, newest] (readers that
+// still read older layouts); returns the version found.
+int require_format(const H5File& file, const std::string& format, int oldest, int newest);
 
 }  // namespace cnclab

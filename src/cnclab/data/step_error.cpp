@@ -1,0 +1,126 @@
+#include "cnclab/data/step_error.hpp"
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
+#include "cnclab/core/resources.hpp"
+#include "cnclab/geometry/surface_config.hpp"
+
+namespace cnclab {
+
+namespace {
+// Micrometres per millimetre: targets are reported in µm (DESIGN.md "Units").
+constexpr double kUmPerMm = 1000.0;
+}  // namespace
+
+void StepErrorDatasetOptions::validate() const {
+  surface.validate();
+  tool_path.validate();
+  exact.validate();
+  if (curve_points < 1 || curve_points > 10'000) {
+    throw OptionError("curve_points", std::to_string(curve_points), "must be in [1, 10000]");
+  }
+}
+
+Dataset generate_step_error_dataset(const StepErrorDatasetOptions& o) {
+  o.validate();
+  const std::size_t n = o.num_samples(), k = o.curve_points;
+  check_memory(static_cast<double>(n) * static_cast<double>(o.num_inputs() + 7) * 8.0,
+               "step_error dataset (" + std::to_string(n) + " samples x " +
+                   std::to_string(o.num_inputs() + 7) + " values)");
+  Dataset d;
+  d.inputs.resize(static_cast<Eigen::Index>(o.num_inputs()), static_cast<Eigen::Index>(n));
+  d.targets.resize(1, static_cast<Eigen::Index>(n));
+  d.metadata.resize(6, static_cast<Eigen::Index>(n));
+  Eigen::Index col = 0;
+  for (std::size_t line = 0; line < o.tool_path.lines; ++line) {
+    const ToolPathLine path = plan_line(o.surface, o.tool_path, line);
+    for (std::size_t i = 0; i + 1 < path.u.size(); ++i, ++col) {
+      const StepError e = exact_step_error(path.segment(i), o.exact);
+      auto x = d.inputs.col(col);
+      const double du = (path.u[i + 1] - path.u[i]) / static_cast<double>(k + 1);
+      for (std::size_t j = 0; j < k; ++j) {
+        x.segment<3>(static_cast<Eigen::Index>(3 * j)) =
+            curve_point(path.curve, path.u[i] + du * static_cast<double>(j + 1));
+      }
+      const auto base = static_cast<Eigen::Index>(3 * k);
+      x.segment<3>(base) = path.cc[i];
+      x.segment<3>(base + 3) = path.cc[i + 1];
+      x.segment<3>(base + 6) = path.cl[i];
+      x.segment<3>(base + 9) = path.cl[i + 1];
+      x(base + 12) = o.tool_path.tool_radius;
+      d.targets(0, col) = e.error * kUmPerMm;
+      d.metadata.col(col) << static_cast<double>(line), static_cast<double>(i), path.u[i],
+          path.u[i + 1], path.v, e.convex ? 1.0 : 0.0;
+    }
+  }
+  const auto xyz = [&](const std::string& point) {
+    for (const char* axis : {"_x", "_y", "_z"}) d.input_names.push_back(point + axis);
+  };
+  // (append, not operator+: GCC 12 -Wrestrict false positive on "p" + to_string)
+  for (std::size_t j = 1; j <= k; ++j) xyz(std::string(1, 'p').append(std::to_string(j)));
+  xyz("cc_i");
+  xyz("cc_i+1");
+  xyz("cl_i");
+  xyz("cl_i+1");
+  d.input_names.push_back("R");
+  d.input_units.assign(d.input_names.size(), "mm");
+  d.target_names = {"step_error"};
+  d.target_units = {"µm"};
+  d.metadata_names = {"line", "point", "u_i", "u_i+1", "v", "convex"};
+  d.metadata_units.assign(d.metadata_names.size(), "1");
+  d.generator = "step_error";
+  return d;
+}
+
+StepErrorGenerator::StepErrorGenerator(StepErrorDatasetOptions options)
+    : options_(std::move(options)) {
+  options_.validate();
+}
+
+std::string StepErrorGenerator::options_yaml() const {
+  const ToolPathOptions& t = options_.tool_path;
+  return "surface:\n" + nurbs_surface_yaml(options_.surface, "  ") +
+         "lines: " + std::to_string(t.lines) +
+         "\npoints_per_line: " + std::to_string(t.points_per_line) +
+         "\ntool_radius: " + shortest_double(t.tool_radius) +
+         "\ncurve_points: " + std::to_string(options_.curve_points) + "\n";
+}
+
+namespace {
+
+// `surface:` as a file name (resolved like include:) or an inline map.
+NurbsSurface read_surface(const ConfigReader& r) {
+  if (!r.has("surface")) r.fail("surface", "is required (a configs/surfaces/*.yaml path or a map)");
+  const YAML::Node node = r.raw("surface");
+  if (node.IsMap()) return read_nurbs_surface(r.section("surface"));
+  if (!node.IsScalar()) r.fail("surface", "expected a file name or a map");
+  // A command-line override has no file position: its path is relative to
+  // the working directory.
+  const SourceLocation where = r.location("surface");
+  const std::filesystem::path file = where.line > 0 ? resolve_config_path(where.file, node.Scalar())
+                                                    : std::filesystem::path(node.Scalar());
+  ConfigDocument doc;
+  try {
+    doc = ConfigDocument::load(file);
+  } catch (const ConfigError& e) {
+    r.fail("surface", e.what());
+  }
+  NurbsSurface surface = read_nurbs_surface(doc.root());
+  doc.check_all_consumed();
+  return surface;
+}
+
+}  // namespace
+
+std::shared_ptr<const DatasetGenerator> read_step_error(const ConfigReader& r) {
+  StepErrorDatasetOptions o;
+  o.surface = read_surface(r);
+  o.tool_path.lines = r.get<std::size_t>("lines", o.tool_path.lines);
+  o.tool_path.points_per_line = r.get<std::size_t>("points_per_line", o.tool_path.points_per_line);
+  o.tool_path.tool_radius = r.get<double>("tool_radius", o.tool_path.tool_radius);
+  o.curve_points = r.get<std::size_t>("curve_points", o.curve_points);
+  r.validate([&] { o.validate(); });
+  return std::make_shared<StepErrorGenerator>(std::move(o));
+}
+
+}  // namespace cnclab

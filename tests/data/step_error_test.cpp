@@ -1,0 +1,219 @@
+#include "cnclab/data/step_error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <fstream>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/core/error.hpp"
+#include "cnclab/data/dataset_file.hpp"
+#include "cnclab/data/generator.hpp"
+#include "cnclab/geometry/surface_config.hpp"
+#include "common/expect_error.hpp"
+#include "common/temp_dir.hpp"
+
+namespace cnclab {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::TempDir;
+
+const std::string kSurface1 = CNCLAB_SOURCE_DIR "/configs/surfaces/surface1.yaml";
+
+// A small tool path on surface 1: 4 lines x 6 CC points, K = 3.
+std::string small_config(const std::string& surface, const std::string& extra = "") {
+  return "dataset:\n  generator: step_error\n  options:\n    surface: " + surface +
+         "\n    lines: 4\n    points_per_line: 6\n    tool_radius: 4.5\n    curve_points: 3\n" +
+         extra;
+}
+
+struct Loaded {
+  ConfigDocument doc;
+  std::shared_ptr<const DatasetGenerator> generator;
+};
+
+Loaded load(const fs::path& file) {
+  Loaded l{ConfigDocument::load(file), nullptr};
+  l.generator = read_generator(l.doc.root().section("dataset"));
+  l.doc.check_all_consumed();
+  return l;
+}
+
+fs::path write(const TempDir& dir, const std::string& name, const std::string& text) {
+  fs::create_directories((dir / name).parent_path());
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+NurbsSurface surface1() {
+  const ConfigDocument doc = ConfigDocument::load(kSurface1);
+  return read_nurbs_surface(doc.root());
+}
+
+// Every value checked against the surface evaluated independently of the
+// tool-path code: p_j and CC points at their parameters, CL = CC + R n with n
+// the surface normal, and the target against a 20,001-point scan of L.
+TEST(StepErrorGenerator, SamplesAreTheSurfaceGeometryThroughTheRegistry) {
+  TempDir dir;
+  const Loaded l = load(write(dir, "d.yaml", small_config(kSurface1)));
+  EXPECT_EQ(l.generator->name(), "step_error");
+  const DatasetShape shape = l.generator->shape();
+  EXPECT_EQ(shape.samples, 4u * 5u);
+  EXPECT_EQ(shape.inputs, 3u * 3u + 13u);
+  Rng unused(0);
+  const Dataset d = l.generator->generate(unused);
+  d.validate();
+  ASSERT_EQ(d.num_samples(), shape.samples);
+  ASSERT_EQ(static_cast<std::size_t>(d.inputs.rows()), shape.inputs);
+  EXPECT_EQ(d.input_names.front(), "p1_x");
+  EXPECT_EQ(d.input_names[9], "cc_i_x");
+  EXPECT_EQ(d.input_names.back(), "R");
+  EXPECT_EQ(d.input_units, std::vector<std::string>(shape.inputs, "mm"));
+  EXPECT_EQ(d.target_units, std::vector<std::string>{"µm"});
+  EXPECT_EQ(d.metadata_names,
+            (std::vector<std::string>{"line", "point", "u_i", "u_i+1", "v", "convex"}));
+
+  const NurbsSurface s = surface1();
+  const double r = 4.5;
+  std::size_t convex = 0;
+  for (Eigen::Index j = 0; j < d.inputs.cols(); ++j) {
+    const double line = d.metadata(0, j), point = d.metadata(1, j);
+    const double u0 = d.metadata(2, j), u1 = d.metadata(3, j), v = d.metadata(4, j);
+    EXPECT_DOUBLE_EQ(v, line / 3.0);
+    EXPECT_NEAR(u0, point / 5.0, 1e-15);
+    EXPECT_NEAR(u1, (point + 1) / 5.0, 1e-15);
+    const auto x = d.inputs.col(j);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = surface_point(s, u0 + (u1 - u0) * (k + 1) / 4.0, v);
+      EXPECT_NEAR((x.segment<3>(3 * k) - p).norm(), 0.0, 1e-11);
+    }
+    const Eigen::Vector3d cc0 = x.segment<3>(9), cc1 = x.segment<3>(12);
+    const Eigen::Vector3d cl0 = x.segment<3>(15), cl1 = x.segment<3>(18);
+    EXPECT_NEAR((cc0 - surface_point(s, u0, v)).norm(), 0.0, 1e-11);
+    EXPECT_NEAR((cc1 - surface_point(s, u1, v)).norm(), 0.0, 1e-11);
+    const SurfaceDerivatives sd = surface_derivatives(s, u0, v);
+    Eigen::Vector3d n = sd.du.cross(sd.dv).normalized();
+    if (n.z() < 0) n = -n;
+    EXPECT_NEAR((cl0 - (cc0 + r * n)).norm(), 0.0, 1e-11);
+    EXPECT_NEAR((cl1 - cc1).norm(), r, 1e-11);
+    EXPECT_EQ(x(21), r);
+    // Scan of L (seed 000 Eq. 1) over the segment.
+    const Eigen::Vector3d axis = (cl1 - cl0).normalized();
+    const bool is_convex = d.metadata(5, j) == 1.0;
+    convex += is_convex;
+    double extreme = is_convex ? INFINITY : -INFINITY;
+    for (int k = 0; k <= 20'000; ++k) {
+      const Eigen::Vector3d p = surface_point(s, u0 + (u1 - u0) * k / 20'000.0, v);
+      const double l = (p - cl0).cross(axis).norm();
+      extreme = is_convex ? std::min(extreme, l) : std::max(extreme, l);
+    }
+    // The scan's own error grows with the (deliberately coarse, ~24 mm) step.
+    EXPECT_NEAR(d.targets(0, j), 1000.0 * std::abs(r - extreme), 1e-8 * d.targets(0, j) + 1e-6)
+        << "sample " << j;
+  }
+  EXPECT_GT(convex, 0u);
+  EXPECT_LT(convex, d.num_samples());
+}
+
+// The resolved options (surface inline) read back to the same generator.
+TEST(StepErrorGenerator, OptionsYamlRoundTrips) {
+  TempDir dir;
+  const Loaded a = load(write(dir, "a.yaml", small_config(kSurface1)));
+  std::string inline_text = "dataset:\n  generator: step_error\n  options:\n";
+  const std::string options = a.generator->options_yaml();
+  std::size_t start = 0;
+  while (start < options.size()) {
+    const std::size_t end = options.find('\n', start);
+    inline_text += "    " + options.substr(start, end - start) + "\n";
+    start = end + 1;
+  }
+  const Loaded b = load(write(dir, "b.yaml", inline_text));
+  EXPECT_EQ(b.generator->options_yaml(), options);
+  Rng unused(0);
+  EXPECT_EQ(a.generator->generate(unused).content_hash(),
+            b.generator->generate(unused).content_hash());
+}
+
+// "configs/..." resolves against the nearest ancestor holding configs/.
+TEST(StepErrorGenerator, SurfacePathResolvesLikeInclude) {
+  TempDir dir;
+  std::ifstream in(kSurface1);
+  std::stringstream text;
+  text << in.rdbuf();
+  write(dir, "configs/surfaces/mine.yaml", text.str());
+  const fs::path config =
+      write(dir, "configs/datasets/d.yaml", small_config("configs/surfaces/mine.yaml"));
+  EXPECT_EQ(load(config).generator->shape().samples, 20u);
+}
+
+// Seed 000's three surfaces with its tool path (200 x 100, R = 5 mm): the
+// paper's bounding boxes within 0.5 %, largest step error within 25 % of the
+// paper's, smallest below 0.05 µm, convex and concave segments on each.
+TEST(StepErrorGenerator, TheThreeSurfacesMatchThePapersBoxesAndRanges) {
+  struct Paper {
+    const char* file;
+    double box[3], max_um;
+  };
+  for (const Paper& p :
+       {Paper{"/surface1.yaml", {120, 140, 38}, 13}, Paper{"/surface2.yaml", {135, 175, 68.28}, 14},
+        Paper{"/surface3.yaml", {150, 150, 54.02}, 9}}) {
+    const ConfigDocument doc =
+        ConfigDocument::load(std::string(CNCLAB_SOURCE_DIR "/configs/surfaces") + p.file);
+    StepErrorDatasetOptions o;
+    o.surface = read_nurbs_surface(doc.root());
+    o.curve_points = 1;  // inputs do not matter here
+    const Dataset d = generate_step_error_dataset(o);
+    EXPECT_EQ(d.num_samples(), 19'800u);
+    const Eigen::Vector3d size = sampled_bounding_box(o.surface, 401).size();
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(size(a), p.box[a], 0.005 * p.box[a]) << p.file;
+    EXPECT_NEAR(d.targets.maxCoeff(), p.max_um, 0.25 * p.max_um) << p.file;
+    EXPECT_LT(d.targets.minCoeff(), 0.05) << p.file;
+    const double convex_share = d.metadata.row(d.metadata_row("convex")).mean();
+    EXPECT_GT(convex_share, 0.1) << p.file;
+    EXPECT_LT(convex_share, 0.9) << p.file;
+  }
+}
+
+std::string config_error(const std::string& text) {
+  TempDir dir;
+  return testing::error_message<ConfigError>([&] { load(write(dir, "bad.yaml", text)); });
+}
+
+TEST(StepErrorGenerator, BadOptionsAreLocatedConfigErrors) {
+  std::string radius = small_config(kSurface1);
+  radius.replace(radius.find("tool_radius: 4.5"), 16, "tool_radius: 0");
+  const std::string m = config_error(radius);
+  EXPECT_NE(m.find("bad.yaml:7:18:"), std::string::npos) << m;
+  EXPECT_NE(m.find("dataset.options.tool_radius = 0: must be a finite ball radius > 0 mm"),
+            std::string::npos)
+      << m;
+  std::string points = small_config(kSurface1);
+  points.replace(points.find("points_per_line: 6"), 18, "points_per_line: 1");
+  EXPECT_NE(config_error(points).find("points_per_line = 1: must be in [2, 1000000]"),
+            std::string::npos);
+  std::string k = small_config(kSurface1);
+  k.replace(k.find("curve_points: 3"), 15, "curve_points: 0");
+  EXPECT_NE(config_error(k).find("curve_points = 0"), std::string::npos);
+  EXPECT_NE(config_error(small_config("/nonexistent/surface.yaml")).find("no such file"),
+            std::string::npos);
+  EXPECT_NE(config_error(small_config(kSurface1, "    speed: 3\n")).find("dataset.options.speed"),
+            std::string::npos);
+  std::string no_surface = small_config(kSurface1);
+  no_surface.replace(no_surface.find("surface: "), 9 + kSurface1.size(), "lines_: 2");
+  EXPECT_NE(config_error(no_surface).find("dataset.options.surface: is required"),
+            std::string::npos)
+      << config_error(no_surface);
+  // An inline surface with a bad knot vector names the key in this file.
+  const std::string bad_knots =
+      "dataset:\n  generator: step_error\n  options:\n    surface:\n      degree_u: 1\n"
+      "      degree_v: 1\n      knots_u: [0, 1, 0, 1]\n      knots_v: [0, 0, 1, 1]\n"
+      "      control_points: [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1]]]\n";
+  const std::string km = config_error(bad_knots);
+  EXPECT_NE(km.find("bad.yaml:"), std::string::npos) << km;
+  EXPECT_NE(km.find("non-decreasing"), std::string::npos) << km;
+}
+
+}  // namespace
+}  // namespace cnclab
