@@ -354,7 +354,10 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
   EXPECT_NE(t.out.find("Machine-space error"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("(n = 100,"), std::string::npos) << t.out;
 
-  expect_one_line_error(cnclab("tables nosuch"), 2, "unknown table 'nosuch'");
+  expect_one_line_error(cnclab("tables nosuch"), 2, "unknown table 'nosuch'; known: ik");
+  const Result list = cnclab("tables");
+  EXPECT_EQ(list.code, 0);
+  EXPECT_EQ(list.out.rfind("ik  seed 004 Table 5", 0), 0u) << list.out;
   fs::remove_all(dir_ / "results/ik_c");
   expect_one_line_error(cnclab("tables ik --reference " CNCLAB_SOURCE_DIR "/results/reference"), 1,
                         "no result for experiments/ik/ik_c.yaml");
