@@ -132,8 +132,7 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
   // Point table, Table 3's layout: t, x(t), y(t), line number, coordinates
   // (plus the N-word of the point's block in the program).
   TextTable shown;
-  shown.add_row({"t", "x(t)", "y(t)", "Line N°", "Block", "Coordinates"});
-  shown.add_rule();
+  shown.header = {"t", "x(t)", "y(t)", "Line N°", "Block", "Coordinates"};
   res.point_table = "t\tx\ty\tline\tblock\tcoordinates\n";
   for (std::size_t i = 0; i < g.points.size(); ++i) {
     const std::vector<std::string> cells = {fixed_decimals(g.t[i], 4),
@@ -142,7 +141,7 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
                                             std::to_string(i + 1),
                                             "N" + std::to_string(res.program.point_line_numbers[i]),
                                             coordinate_words(g.points[i], job.program.decimals)};
-    if (i < job.report.table_rows) shown.add_row(cells);
+    if (i < job.report.table_rows) shown.rows.push_back(cells);
     for (std::size_t k = 0; k < cells.size(); ++k) {
       res.point_table += cells[k] + (k + 1 < cells.size() ? "\t" : "\n");
     }
@@ -193,7 +192,7 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
       << std::min(job.report.table_rows, g.points.size()) << " of " << g.points.size()
       << " rows; groove frame: x from the groove start, y = 0 on its "
       << "centreline)\n\n";
-  shown.print(out);
+  shown.print_aligned(out);
   out << "\nRadial engagement (2-D stock removal, exact disc geometry; G01 path resampled every "
       << shortest_double(job.report.engagement_spacing) << " mm, evaluated every "
       << shortest_double(job.report.engagement_every) << " mm)\n"

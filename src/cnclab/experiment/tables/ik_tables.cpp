@@ -109,18 +109,11 @@ std::string integer(double v) {
 
 void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, std::ostream& out) {
   TextTable t;
-  std::vector<std::string> head = {"", ""}, sub = {"", ""};
+  t.header = {"", ""};
   for (const auto& run : runs) {
-    head.push_back(run.axis + "-axis");
-    sub.push_back("ours");
-    if (run.axis != "A" && run.axis != "C") {
-      head.push_back("");
-      sub.push_back("paper");
-    }
+    t.header.push_back(run.axis + " ours");
+    if (run.axis != "A" && run.axis != "C") t.header.push_back(run.axis + " paper");
   }
-  t.add_row(head);
-  t.add_row(sub);
-  t.add_rule();
   using Ours = std::function<std::string(const AxisRun&)>;
   const auto row = [&](const std::string& group, const std::string& label, const std::string& key,
                        const Ours& ours, bool integer_ref) {
@@ -132,7 +125,7 @@ void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, std::o
         cells.push_back(integer_ref ? integer(v) : table_number(v));
       }
     }
-    t.add_row(cells);
+    t.rows.push_back(cells);
   };
   const auto count = [](std::size_t n) { return std::to_string(n); };
   row(
@@ -144,7 +137,6 @@ void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, std::o
   row(
       "", "Validation set", "validation_set",
       [&](const AxisRun& r) { return count(r.record.split.validation.size()); }, true);
-  t.add_rule();
   row(
       "Number of neurons", "Input layer", "input_layer",
       [&](const AxisRun& r) { return count(r.record.model.inputs); }, true);
@@ -163,14 +155,12 @@ void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, std::o
   row(
       "", "Output layer", "output_layer",
       [&](const AxisRun& r) { return count(r.record.model.outputs); }, true);
-  t.add_rule();
   row(
       "Learning rate", "LR", "learning_rate",
       [&](const AxisRun& r) { return table_number(r.loaded.spec.trainer.learning_rate); }, false);
   row(
       "Momentum parameter", "MU", "momentum",
       [&](const AxisRun& r) { return table_number(r.loaded.spec.trainer.momentum); }, false);
-  t.add_rule();
   row(
       "MSE-validation", "", "mse_validation",
       [&](const AxisRun& r) { return table_number(validation_mse(r.record), 3); }, false);
@@ -180,21 +170,19 @@ void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, std::o
 
   out << "\nSeed 004 Table 5: the obtained MLP parameters (ours beside the paper's; A and C: ours "
          "only)\n\n";
-  t.print(out);
+  t.print_aligned(out);
 
   TextTable phys;
-  phys.add_row({"Test error in machine units", "X [mm]", "Y [mm]", "Z [mm]", "A [deg]", "C [deg]"});
-  phys.add_rule();
+  phys.header = {"Test error in machine units", "X [mm]", "Y [mm]", "Z [mm]", "A [deg]", "C [deg]"};
   std::vector<std::string> rmse = {"RMSE"}, maxe = {"max |error|"};
   for (const auto& r : runs) {
     const double f = (r.axis == "A" || r.axis == "C") ? kDegPerRad : 1.0;
     rmse.push_back(table_number(f * r.record.metrics.at("rmse"), 3));
     maxe.push_back(table_number(f * r.record.metrics.at("max_abs_error"), 3));
   }
-  phys.add_row(rmse);
-  phys.add_row(maxe);
+  phys.rows = {rmse, maxe};
   out << "\n";
-  phys.print(out);
+  phys.print_aligned(out);
 
   const auto& s = runs.front().record;
   const std::string range =
@@ -241,9 +229,8 @@ void print_machine_error(const std::vector<AxisRun>& runs, std::ostream& out) {
     truth.row(static_cast<Eigen::Index>(i)) = runs[i].record.test_targets.row(0);
   }
   TextTable t;
-  t.add_row({"Predicted joints", "tool tip [mm]", "", "", "tool axis [deg]", "", ""});
-  t.add_row({"", "mean", "p95", "max", "mean", "p95", "max"});
-  t.add_rule();
+  t.header = {"Predicted joints", "tip mean [mm]",  "tip p95 [mm]",  "tip max [mm]",
+              "axis mean [deg]",  "axis p95 [deg]", "axis max [deg]"};
   const auto add = [&](const std::string& label, const std::vector<int>& rows) {
     Eigen::MatrixXd mixed = truth;
     for (int row : rows) mixed.row(row) = predicted.row(row);
@@ -252,8 +239,9 @@ void print_machine_error(const std::vector<AxisRun>& runs, std::ostream& out) {
     std::vector<double> axis_deg;
     for (double v : e.axis_rad) axis_deg.push_back(v * kDegPerRad);
     const ErrorSummary a = summarize_errors(axis_deg);
-    t.add_row({label, table_number(p.mean, 3), table_number(p.p95, 3), table_number(p.max, 3),
-               table_number(a.mean, 3), table_number(a.p95, 3), table_number(a.max, 3)});
+    t.rows.push_back({label, table_number(p.mean, 3), table_number(p.p95, 3),
+                      table_number(p.max, 3), table_number(a.mean, 3), table_number(a.p95, 3),
+                      table_number(a.max, 3)});
   };
   add("X, Y, Z, A, C (all five networks)", {0, 1, 2, 3, 4});
   add("X, Y, Z (A, C exact)", {0, 1, 2});
@@ -261,7 +249,7 @@ void print_machine_error(const std::vector<AxisRun>& runs, std::ostream& out) {
   out << "\nMachine-space error (beyond the paper): predicted joint sets through forward "
          "kinematics,\ncompared with the true pose, test split (n = "
       << n << ", machine offset d = " << table_number(machine.options().offset_d) << " mm)\n\n";
-  t.print(out);
+  t.print_aligned(out);
   out << "\nNotes\n"
       << "- tool tip: |P(predicted joints) - P(true joints)|; tool axis: angle between the two "
          "tool orientations; p95 = 95th percentile (linear interpolation).\n"

@@ -7,7 +7,7 @@
 namespace cnclab {
 namespace {
 
-// Display width of UTF-8 text: code points, not bytes.
+// Display width: UTF-8 continuation bytes take no column (°, ±).
 std::size_t width(const std::string& s) {
   return static_cast<std::size_t>(
       std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
@@ -15,27 +15,30 @@ std::size_t width(const std::string& s) {
 
 }  // namespace
 
-void TextTable::print(std::ostream& out) const {
-  std::vector<std::size_t> widths;
-  for (const auto& row : rows_) {
-    if (widths.size() < row.size()) widths.resize(row.size(), 0);
-    for (std::size_t i = 0; i < row.size(); ++i) widths[i] = std::max(widths[i], width(row[i]));
-  }
-  std::size_t total = 0;
-  for (auto w : widths) total += w + 2;
-  for (const auto& row : rows_) {
-    if (row.empty()) {
-      out << std::string(total > 2 ? total - 2 : 0, '-') << "\n";
-      continue;
+void TextTable::print_aligned(std::ostream& out) const {
+  std::vector<std::size_t> w(header.size(), 0);
+  for (std::size_t c = 0; c < header.size(); ++c) w[c] = width(header[c]);
+  for (const auto& row : rows) {
+    for (std::size_t c = 0; c < row.size() && c < w.size(); ++c) {
+      w[c] = std::max(w[c], width(row[c]));
     }
-    std::string line;
-    for (std::size_t i = 0; i < row.size(); ++i) {
-      line += row[i];
-      if (i + 1 < row.size()) line += std::string(widths[i] - width(row[i]) + 2, ' ');
-    }
-    line.erase(line.find_last_not_of(' ') + 1);
-    out << line << "\n";
   }
+  const auto line = [&](const std::vector<std::string>& cells) {
+    std::string s;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      s += cells[c];
+      if (c + 1 < cells.size() && c + 1 < w.size()) {
+        s += std::string(w[c] - width(cells[c]) + 2, ' ');
+      }
+    }
+    s.erase(s.find_last_not_of(' ') + 1);
+    out << s << "\n";
+  };
+  line(header);
+  std::vector<std::string> rule;
+  for (std::size_t c = 0; c < w.size(); ++c) rule.push_back(std::string(w[c], '-'));
+  line(rule);
+  for (const auto& row : rows) line(row);
 }
 
 std::string table_number(double value, int digits) {

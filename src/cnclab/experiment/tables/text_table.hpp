@@ -1,24 +1,21 @@
 #pragma once
-// A plain-text table with left-aligned columns sized to their widest cell;
-// what `cnclab tables` prints.
+// A plain-text table with aligned columns: a header, a rule, the rows. Same
+// shape as the sweep/compare tables' TextTable on the issue-4 branch (fold
+// into one when both are on main).
 #include <ostream>
 #include <string>
 #include <vector>
 
 namespace cnclab {
 
-class TextTable {
- public:
-  void add_row(std::vector<std::string> cells) { rows_.push_back(std::move(cells)); }
-  // A horizontal rule across all columns.
-  void add_rule() { rows_.emplace_back(); }
-  void print(std::ostream& out) const;
+struct TextTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
 
- private:
-  std::vector<std::vector<std::string>> rows_;
+  void print_aligned(std::ostream& out) const;
 };
 
-// Numbers for tables: %.*g with `digits` significant digits.
+// Numbers for tables: %.*g with `digits` significant digits; NaN as "-".
 std::string table_number(double value, int digits = 4);
 
 }  // namespace cnclab
