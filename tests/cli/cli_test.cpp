@@ -132,6 +132,24 @@ TEST_F(Cli, ValidatePrintsResolvedConfigWithDefaultsAndWritesNothing) {
   EXPECT_TRUE(outputs().empty());
 }
 
+TEST_F(Cli, TrainbrExperimentValidatesWithMatlabDefaultsAndRuns) {
+  const std::string exp = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_trainbr.yaml";
+  Result r = cnclab("validate " + exp);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("type: trainbr"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("mu: 0.005"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("inputs: minmax"), std::string::npos) << r.out;
+  r = cnclab("run " + exp + " trainer.epochs=3 dataset.options.samples=120 --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Result shown = cnclab("show results/friedman1_trainbr/*.h5");
+  EXPECT_EQ(shown.code, 0) << shown.err;
+  EXPECT_NE(shown.out.find("gamma "), std::string::npos) << shown.out;
+  expect_one_line_error(cnclab("run " + exp + " trainer.type=adam --quiet"), 2,
+                        "trainer.type = adam: must be one of: sgdm, lm, trainbr");
+  expect_one_line_error(cnclab("run " + exp + " trainer.mu_dec=2 --quiet"), 2,
+                        "trainer.mu_dec = 2: must be in (0, 1)");
+}
+
 TEST_F(Cli, HelpExplainsWithExample) {
   for (const char* sub : {"run", "validate", "show", "reproduce", "version"}) {
     const Result r = cnclab(std::string(sub) + " --help");

@@ -22,7 +22,7 @@ TEST(Spec, DefaultsApplyAndResolvedYamlReloadsToTheSameSpec) {
   const auto a = parse_experiment(kMinimal, "e.yaml");
   EXPECT_EQ(a.spec.name, "t");
   EXPECT_EQ(a.spec.seed, 3u);
-  EXPECT_DOUBLE_EQ(a.spec.trainer.momentum, SgdmOptions{}.momentum);
+  EXPECT_DOUBLE_EQ(std::get<SgdmOptions>(a.spec.trainer).momentum, SgdmOptions{}.momentum);
   // Round trip: the resolved text is itself a valid experiment with no
   // unknown keys, and resolves to the identical text.
   const auto b = parse_experiment(a.resolved_yaml, "resolved.yaml");
@@ -34,8 +34,8 @@ TEST(Spec, OverridesAreTypedAsYaml) {
                                   {"model.hidden=[28, 20]", "trainer.learning_rate=1e-4",
                                    "trainer.shuffle=false", "model.dropout.keep_probability=0.5"});
   EXPECT_EQ(a.spec.model.hidden, (std::vector<std::size_t>{28, 20}));
-  EXPECT_DOUBLE_EQ(a.spec.trainer.learning_rate, 1e-4);
-  EXPECT_FALSE(a.spec.trainer.shuffle);
+  EXPECT_DOUBLE_EQ(std::get<SgdmOptions>(a.spec.trainer).learning_rate, 1e-4);
+  EXPECT_FALSE(std::get<SgdmOptions>(a.spec.trainer).shuffle);
   EXPECT_DOUBLE_EQ(a.spec.model.dropout_keep_probability, 0.5);
 }
 
@@ -72,6 +72,66 @@ TEST(Spec, InitializerKeysDependOnType) {
   EXPECT_DOUBLE_EQ(a.spec.model.weights.std, 2.0);
   // `std` belongs to normal only: with xavier it is an unknown key.
   EXPECT_NE(error_of(kMinimal, {"model.init.weights={type: xavier, std: 2}"}).find("unknown key"),
+            std::string::npos);
+}
+
+TEST(Spec, LevenbergMarquardtTrainersWithMatlabDefaults) {
+  const auto lm = parse_experiment(kMinimal + "trainer: {type: lm}\n", "e.yaml");
+  const auto& l = std::get<LmOptions>(lm.spec.trainer);
+  EXPECT_EQ(l.mu, 1e-3);  // trainlm
+  EXPECT_EQ(l.epochs, 1000u);
+  EXPECT_NE(lm.resolved_yaml.find("type: lm\n  epochs: 1000\n  goal: 0\n  mu: 0.001\n"
+                                  "  mu_dec: 0.1\n  mu_inc: 10\n  mu_max: 10000000000\n"
+                                  "  min_gradient: 1e-07"),
+            std::string::npos)
+      << lm.resolved_yaml;
+  const auto br = parse_experiment(kMinimal + "trainer: {type: trainbr, mu_max: 1e8}\n", "e.yaml");
+  const auto& b = std::get<TrainbrOptions>(br.spec.trainer);
+  EXPECT_EQ(b.mu, 5e-3);  // trainbr
+  EXPECT_EQ(b.mu_max, 1e8);
+  // Resolved text reloads to the same spec, for both.
+  EXPECT_EQ(parse_experiment(lm.resolved_yaml, "r.yaml").resolved_yaml, lm.resolved_yaml);
+  EXPECT_EQ(parse_experiment(br.resolved_yaml, "r.yaml").resolved_yaml, br.resolved_yaml);
+  // Overridable from the command line like any key.
+  const auto o = parse_experiment(kMinimal, "e.yaml", {"trainer={type: trainbr, epochs: 7}"});
+  EXPECT_EQ(std::get<TrainbrOptions>(o.spec.trainer).epochs, 7u);
+}
+
+TEST(Spec, TrainerErrorsNameKeyValueAndRule) {
+  EXPECT_NE(error_of(kMinimal + "trainer:\n  type: adam\n")
+                .find("e.yaml:4:9: trainer.type = adam: must be one of: sgdm, lm, trainbr"),
+            std::string::npos)
+      << error_of(kMinimal + "trainer:\n  type: adam\n");
+  EXPECT_NE(error_of(kMinimal, {"trainer={type: lm, mu: -1}"})
+                .find("trainer.mu = -1: must be a finite number > 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"trainer={type: trainbr, mu_inc: 0.5}"})
+                .find("trainer.mu_inc = 0.5: must be a finite number > 1"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"trainer={type: lm, mu: 1e12}"})
+                .find("trainer.mu = 1e12: must not exceed mu_max = 1e+10"),
+            std::string::npos)
+      << error_of(kMinimal, {"trainer={type: lm, mu: 1e12}"});
+  // Keys of another trainer type are unknown keys.
+  EXPECT_NE(error_of(kMinimal, {"trainer={type: lm, learning_rate: 0.1}"})
+                .find("trainer.learning_rate: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"trainer={type: sgdm, mu: 0.1}"}).find("trainer.mu: unknown key"),
+            std::string::npos);
+  // Dropout makes the objective random: not with Levenberg-Marquardt.
+  EXPECT_NE(error_of(kMinimal, {"trainer={type: trainbr}", "model.dropout.keep_probability=0.5"})
+                .find("model.dropout.keep_probability = 0.5: must be 1 with trainer trainbr"),
+            std::string::npos);
+}
+
+TEST(Spec, NormalisationMinMax) {
+  const auto a =
+      parse_experiment(kMinimal + "normalisation: {inputs: minmax, targets: none}\n", "e.yaml");
+  EXPECT_EQ(a.spec.normalisation.inputs, Scaling::minmax);
+  EXPECT_EQ(a.spec.normalisation.targets, Scaling::none);
+  EXPECT_NE(a.resolved_yaml.find("inputs: minmax"), std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"normalisation.inputs=mapminmax"})
+                .find("normalisation.inputs = mapminmax: must be one of: zscore, minmax, none"),
             std::string::npos);
 }
 

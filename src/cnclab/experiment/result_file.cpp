@@ -6,6 +6,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/metrics.hpp"
+#include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
@@ -58,11 +59,28 @@ ScalingRecord read_scaling(const H5File& f, const std::string& g) {
   } else if (s.method == Scaling::minmax) {
     s.min = to_eigen(f.read_vector(g + "/min"));
     s.max = to_eigen(f.read_vector(g + "/max"));
-    s.y_min = f.attribute_double(g, "y_min");
-    s.y_max = f.attribute_double(g, "y_max");
+    // Results written before the range was configurable used [-1, 1].
+    if (f.has_attribute(g, "y_min")) s.y_min = f.attribute_double(g, "y_min");
+    if (f.has_attribute(g, "y_max")) s.y_max = f.attribute_double(g, "y_max");
   }
   return s;
 }
+
+// Levenberg-Marquardt history (lm, trainbr): one value per epoch.
+struct LmSeries {
+  const char* name;
+  double LmEpochRecord::*field;
+  const char* units;
+};
+constexpr LmSeries kLmSeries[] = {
+    {"sse", &LmEpochRecord::sse, "normalised target units squared (E_D, sum)"},
+    {"ssw", &LmEpochRecord::ssw, "1 (E_W, sum of squared parameters)"},
+    {"alpha", &LmEpochRecord::alpha, "1"},
+    {"beta", &LmEpochRecord::beta, "1"},
+    {"gamma", &LmEpochRecord::gamma, "1 (effective number of parameters)"},
+    {"mu", &LmEpochRecord::mu, "1"},
+    {"gradient", &LmEpochRecord::gradient, "2 |J^T e|"},
+};
 
 }  // namespace
 
@@ -107,7 +125,7 @@ void write_result(const fs::path& path, const RunRecord& r) {
     write_scaling(f, "/model/target_scaling", r.target_scaling, join(r.target_units, ","));
 
     f.create_group("/training");
-    f.set_attribute("/training", "trainer", "sgdm");
+    f.set_attribute("/training", "trainer", r.trainer);
     f.set_attribute("/training", "termination", to_string(r.training.termination));
     f.set_attribute("/training", "message", r.training.message);
     f.set_attribute("/training", "best_epoch", static_cast<std::int64_t>(r.training.best_epoch));
@@ -123,6 +141,15 @@ void write_result(const fs::path& path, const RunRecord& r) {
     f.write_vector("/history/validation_loss", val, "normalised MSE");
     f.write_vector("/history/test_loss", r.test_loss, "normalised MSE");
     f.write_vector("/history/wall_seconds", wall, "s");
+    if (r.trainer != "sgdm") {
+      f.set_attribute("/training", "beta_guard_count",
+                      static_cast<std::int64_t>(r.training.beta_guard_count));
+      for (const auto& series : kLmSeries) {
+        std::vector<double> v;
+        for (const auto& e : r.training.lm_history) v.push_back(e.*series.field);
+        f.write_vector(std::string("/history/") + series.name, v, series.units);
+      }
+    }
 
     const std::string target_units = join(r.target_units, ",");
     f.write_matrix("/test/predictions", r.test_predictions, target_units);
@@ -189,12 +216,13 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   r.target_scaling = read_scaling(f, "/model/target_scaling");
 
   const std::string termination = f.attribute_string("/training", "termination");
-  bool known = false;
-  for (auto t : {Termination::max_epochs, Termination::early_stop, Termination::diverged,
-                 Termination::stopped_by_callback}) {
-    if (to_string(t) == termination) r.training.termination = t, known = true;
+  if (!parse_termination(termination, r.training.termination)) {
+    bad("/training: unknown termination '" + termination + "'");
   }
-  if (!known) bad("/training: unknown termination '" + termination + "'");
+  r.trainer = f.attribute_string("/training", "trainer");
+  if (!is_trainer_name(r.trainer)) {
+    bad("/training: unknown trainer '" + r.trainer + "'");
+  }
   r.training.message = f.attribute_string("/training", "message");
   r.training.best_epoch = static_cast<std::size_t>(f.attribute_int("/training", "best_epoch"));
   const auto epoch = f.read_vector("/history/epoch");
@@ -206,6 +234,16 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   }
   for (std::size_t i = 0; i < epoch.size(); ++i) {
     r.training.history.push_back({static_cast<std::size_t>(epoch[i]), train[i], val[i], wall[i]});
+  }
+  if (r.trainer != "sgdm") {
+    r.training.beta_guard_count =
+        static_cast<std::size_t>(f.attribute_int("/training", "beta_guard_count"));
+    r.training.lm_history.resize(epoch.size());
+    for (const auto& series : kLmSeries) {
+      const auto v = f.read_vector(std::string("/history/") + series.name);
+      if (v.size() != epoch.size()) bad(std::string("/history/") + series.name + ": wrong length");
+      for (std::size_t i = 0; i < v.size(); ++i) r.training.lm_history[i].*series.field = v[i];
+    }
   }
   r.test_loss = f.read_vector("/history/test_loss");
   r.test_predictions = f.read_matrix("/test/predictions");
@@ -243,13 +281,29 @@ void print_result(const RunRecord& r, std::ostream& out) {
   out << "-" << r.model.outputs << " (" << to_string(r.model.hidden_activation) << ", keep p "
       << format_metric(r.model.dropout_keep_probability) << ", " << r.parameters.size()
       << " parameters)\n";
-  out << "training     " << to_string(r.training.termination) << ": " << r.training.message << "\n";
+  out << "training     " << r.trainer << ", " << to_string(r.training.termination) << ": "
+      << r.training.message << "\n";
   if (!r.training.history.empty()) {
     const auto& last = r.training.history.back();
     out << "             final train loss " << format_metric(last.train_loss);
     if (!r.test_loss.empty()) out << ", test loss " << format_metric(r.test_loss.back());
     out << " (normalised MSE) after " << last.epoch << " epochs, "
         << format_metric(last.wall_seconds) << " s\n";
+  }
+  if (!r.training.lm_history.empty()) {
+    const auto& lm = r.training.lm_history.back();
+    out << "             final SSE " << format_metric(lm.sse) << ", SSW " << format_metric(lm.ssw)
+        << ", mu " << format_metric(lm.mu) << ", gradient " << format_metric(lm.gradient) << "\n";
+    if (r.trainer == "trainbr") {
+      out << "             alpha " << format_metric(lm.alpha) << ", beta " << format_metric(lm.beta)
+          << ", gamma " << format_metric(lm.gamma) << " of " << r.parameters.size()
+          << " parameters effective";
+      if (r.training.beta_guard_count > 0) {
+        out << "; beta guard (N - gamma <= 0, previous beta kept) in "
+            << r.training.beta_guard_count << " epochs";
+      }
+      out << "\n";
+    }
   }
   out << "metrics      (test split, " << join(r.target_units) << ")\n";
   for (const auto& [name, value] : r.metrics) {

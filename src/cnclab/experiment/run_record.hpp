@@ -10,7 +10,7 @@
 #include "cnclab/experiment/scaling.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/mlp.hpp"
-#include "cnclab/train/sgdm.hpp"
+#include "cnclab/train/summary.hpp"
 
 namespace cnclab {
 
@@ -28,6 +28,7 @@ struct RunRecord {
   Eigen::VectorXd parameters;
   ScalingRecord input_scaling, target_scaling;
 
+  std::string trainer = "sgdm";  // trainer type (trainer_spec.hpp)
   Summary training;
   std::vector<double> test_loss;  // per epoch, MSE in normalised units (NaN if no test set)
 

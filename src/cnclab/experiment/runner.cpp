@@ -12,8 +12,8 @@
 #include "cnclab/experiment/dataset_cache.hpp"
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/training.hpp"
 #include "cnclab/io/provenance.hpp"
-#include "cnclab/train/objective.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -48,7 +48,8 @@ void check_run_memory(const ExperimentSpec& spec) {
     fan_in = width;
   }
   parameters += static_cast<double>((fan_in + 1) * outputs);
-  const double bytes = 8.0 * (4.0 * n * values + 4.0 * parameters + 2.0 * n * units);
+  const double bytes = 8.0 * (4.0 * n * values + 4.0 * parameters + 2.0 * n * units) +
+                       trainer_workspace_bytes(spec.trainer, parameters);
   check_memory(bytes, spec.name + ": the run (" + std::to_string(samples) + " samples x " +
                           std::to_string(inputs + outputs) + " values, " +
                           std::to_string(static_cast<std::uint64_t>(parameters)) +
@@ -104,16 +105,15 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   Eigen::MatrixXd x_test = columns(data.inputs, rec.split.test);
   Eigen::MatrixXd y_test = columns(data.targets, rec.split.test);
 
-  // Normalisation, fitted on the training split only (seed 000 Eq. 7).
+  // Normalisation, fitted on the training split only (scaling.hpp).
   const NormalisationSpec& norm = spec.normalisation;
   rec.input_scaling = ScalingRecord::fit(norm.inputs, x_train, norm.input_range);
   rec.target_scaling = ScalingRecord::fit(norm.targets, y_train, norm.target_range);
-  const ScalingRecord& x_scale = rec.input_scaling;
-  const ScalingRecord& y_scale = rec.target_scaling;
-  const Eigen::MatrixXd xn_train = x_scale.transform(x_train),
-                        yn_train = y_scale.transform(y_train);
-  const Eigen::MatrixXd xn_val = x_scale.transform(x_val), yn_val = y_scale.transform(y_val);
-  const Eigen::MatrixXd xn_test = x_scale.transform(x_test), yn_test = y_scale.transform(y_test);
+  const auto scale_x = [&](const Eigen::MatrixXd& m) { return rec.input_scaling.transform(m); };
+  const auto scale_y = [&](const Eigen::MatrixXd& m) { return rec.target_scaling.transform(m); };
+  const Eigen::MatrixXd xn_train = scale_x(x_train), yn_train = scale_y(y_train);
+  const Eigen::MatrixXd xn_val = scale_x(x_val), yn_val = scale_y(y_val);
+  const Eigen::MatrixXd xn_test = scale_x(x_test), yn_test = scale_y(y_test);
 
   // Model.
   rec.model = spec.model;
@@ -126,18 +126,16 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   mlp.initialise(params, init_rng);
 
   // Training, with the test loss recorded after every epoch.
-  Rng dropout_rng(spec.seed, "dropout");
-  Rng shuffle_rng(spec.seed, "shuffle");
-  MlpRegressionObjective objective(mlp, xn_train, yn_train, dropout_rng);
   const auto mse = [&](const Eigen::VectorXd& p, const Eigen::MatrixXd& x,
                        const Eigen::MatrixXd& y) {
     if (x.cols() == 0) return std::nan("");
     return (mlp.predict(p, x) - y).array().square().mean();
   };
-  Progress progress("train " + spec.name, spec.trainer.epochs,
+  rec.trainer = trainer_name(spec.trainer);
+  Progress progress("train " + spec.name, trainer_epochs(spec.trainer),
                     options.log ? *options.log : std::cerr,
                     {options.log ? options.progress : ProgressMode::quiet, 5.0, 0.1});
-  SgdmHooks hooks;
+  TrainingHooks hooks;
   if (!rec.split.validation.empty()) {
     hooks.validation_loss = [&](const Eigen::VectorXd& p) { return mse(p, xn_val, yn_val); };
   }
@@ -148,7 +146,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
     progress.update(e.epoch, status.str());
     return true;
   };
-  rec.training = train_sgdm(objective, params, spec.trainer, shuffle_rng, hooks);
+  rec.training = train_network(spec.trainer, mlp, xn_train, yn_train, params, spec.seed, hooks);
   progress.finish();
   rec.parameters = params;
   const bool ok = rec.training.termination != Termination::diverged;
@@ -156,7 +154,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   // Evaluation in physical units.
   if (ok) {
     Eigen::MatrixXd pred = mlp.predict(params, xn_test);
-    rec.test_predictions = y_scale.inverse_transform(pred);
+    rec.test_predictions = rec.target_scaling.inverse_transform(pred);
     rec.test_targets = y_test;
     rec.metrics = regression_metrics(rec.test_predictions, rec.test_targets, spec.metrics);
   }

@@ -6,24 +6,10 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/metrics.hpp"
+#include "cnclab/experiment/spec_text.hpp"
 
 namespace cnclab {
 namespace {
-
-std::string one_of(const std::vector<std::string>& names) {
-  std::string s = "must be one of: ";
-  for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];
-  return s;
-}
-
-std::string choice(const ConfigReader& r, const std::string& key, const std::string& fallback,
-                   const std::vector<std::string>& allowed) {
-  const auto value = r.get<std::string>(key, fallback);
-  if (std::find(allowed.begin(), allowed.end(), value) == allowed.end()) {
-    r.fail(key, one_of(allowed));
-  }
-  return value;
-}
 
 Scaling read_scaling(const ConfigReader& r, const std::string& key) {
   Scaling s = Scaling::zscore;
@@ -138,19 +124,6 @@ MlpOptions read_model(const ConfigReader& r) {
   return m;
 }
 
-SgdmOptions read_trainer(const ConfigReader& r) {
-  SgdmOptions t;
-  choice(r, "type", "sgdm", {"sgdm"});
-  t.learning_rate = r.get<double>("learning_rate", t.learning_rate);
-  t.momentum = r.get<double>("momentum", t.momentum);
-  t.batch_size = r.get<std::size_t>("batch_size", t.batch_size);
-  t.epochs = r.get<std::size_t>("epochs", t.epochs);
-  t.shuffle = r.get<bool>("shuffle", t.shuffle);
-  t.early_stop_patience = r.get<std::size_t>("early_stop_patience", t.early_stop_patience);
-  r.validate([&] { t.validate(); });
-  return t;
-}
-
 LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::string>& overrides,
                                  std::optional<std::uint64_t> seed_override) {
   for (const auto& text : overrides) doc.apply(parse_override(text));
@@ -178,6 +151,11 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::str
       read_range(norm, "target_range", spec.normalisation.target_range);
   spec.model = read_model(root.section("model"));
   spec.trainer = read_trainer(root.section("trainer"));
+  if (is_levenberg_marquardt(spec.trainer) && spec.model.dropout_keep_probability < 1.0) {
+    root.section("model").section("dropout").fail(
+        "keep_probability", "must be 1 with trainer " + trainer_name(spec.trainer) +
+                                " (Levenberg-Marquardt needs a deterministic network)");
+  }
   spec.metrics = root.get<std::vector<std::string>>("metrics", spec.metrics);
   for (const auto& m : spec.metrics) {
     const auto& known = known_metrics();
@@ -292,16 +270,8 @@ std::string to_yaml(const ExperimentSpec& spec) {
   emit_initializer(out, m.biases);
   out << EndMap << EndMap;
 
-  const SgdmOptions& t = spec.trainer;
-  out << Key << "trainer" << Value << BeginMap;
-  out << Key << "type" << Value << "sgdm";
-  out << Key << "learning_rate" << Value << shortest_double(t.learning_rate);
-  out << Key << "momentum" << Value << shortest_double(t.momentum);
-  out << Key << "batch_size" << Value << t.batch_size;
-  out << Key << "epochs" << Value << t.epochs;
-  out << Key << "shuffle" << Value << t.shuffle;
-  out << Key << "early_stop_patience" << Value << t.early_stop_patience;
-  out << EndMap;
+  out << Key << "trainer" << Value;
+  emit_trainer(out, spec.trainer);
 
   out << Key << "metrics" << Value << YAML::Flow << spec.metrics;
   out << EndMap;

@@ -14,8 +14,8 @@
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"
 #include "cnclab/experiment/scaling.hpp"
+#include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/nn/mlp.hpp"
-#include "cnclab/train/sgdm.hpp"
 
 namespace cnclab {
 
@@ -36,8 +36,9 @@ DatasetSpec read_dataset_spec(const ConfigReader& dataset_section);
 
 // normalisation: {inputs: zscore|minmax|none, targets: ..., input_range:
 // [low, high], target_range: [low, high]}, fitted on the training split
-// only. zscore: seed 000 Eq. 7 (n-1 sample std). minmax: MATLAB mapminmax to
-// the range (default [-1, 1]; a sigmoid output needs one inside (0, 1)).
+// only: zscore = seed 000 Eq. 7 (n-1 sample std), minmax = MATLAB mapminmax
+// to the range (default [-1, 1], seed 002 and trainbr's usual companion; a
+// sigmoid output needs one inside (0, 1), seed 004). See scaling.hpp.
 struct NormalisationSpec {
   Scaling inputs = Scaling::zscore;
   Scaling targets = Scaling::zscore;
@@ -54,7 +55,7 @@ struct ExperimentSpec {
   NormalisationSpec normalisation;
   // model: type mlp; `inputs`/`outputs` come from the dataset at run time.
   MlpOptions model;
-  SgdmOptions trainer;  // trainer: type sgdm
+  TrainerSpec trainer;  // trainer: type sgdm | lm | trainbr (trainer_spec.hpp)
   std::vector<std::string> metrics = {"mse", "rmse", "mae", "max_abs_error", "r2"};
 
   std::filesystem::path source_file;

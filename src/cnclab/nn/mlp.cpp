@@ -193,4 +193,67 @@ double Mlp::loss_and_gradient(const Eigen::VectorXd& params,
   return loss;
 }
 
+void Mlp::forward(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                  Workspace& ws) const {
+  const std::size_t L = num_layers();
+  ws.a[0] = x;
+  for (std::size_t l = 1; l <= L; ++l) {
+    const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
+    const MapMatrix w(params.data() + weight_offset(l - 1), out, in);
+    const MapVector b(params.data() + weight_offset(l - 1) + in * out, out);
+    ws.a[l].noalias() = w * ws.a[l - 1];
+    ws.a[l].colwise() += b;
+    apply_activation(l == L ? options_.output_activation : options_.hidden_activation, ws.a[l]);
+  }
+}
+
+void Mlp::output_jacobian(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                          Workspace& ws, Eigen::Ref<Eigen::MatrixXd> outputs,
+                          Eigen::Ref<Eigen::MatrixXd> jacobian) const {
+  const std::size_t L = num_layers();
+  const Eigen::Index batch = x.cols(), n_out = sizes_.back();
+  if (x.rows() != sizes_.front() || outputs.rows() != n_out || outputs.cols() != batch ||
+      jacobian.rows() != batch * n_out ||
+      jacobian.cols() != static_cast<Eigen::Index>(num_parameters_)) {
+    throw Error("Mlp::output_jacobian: sizes do not match the network");
+  }
+  prepare(ws, batch);
+  forward(params, x, ws);
+  outputs = ws.a[L];
+  // Activations with one sample per row, so that each Jacobian column is an
+  // elementwise product of two contiguous columns.
+  std::vector<Eigen::MatrixXd> a_t(L);
+  for (std::size_t l = 0; l < L; ++l) a_t[l] = ws.a[l].transpose();
+  Eigen::MatrixXd delta_t;
+  using Strided = Eigen::Map<Eigen::VectorXd, 0, Eigen::InnerStride<>>;
+  for (Eigen::Index k = 0; k < n_out; ++k) {
+    // delta_L = e_k f_L'(z_L): the derivative of output k alone.
+    ws.delta[L].setZero();
+    ws.delta[L].row(k).setOnes();
+    multiply_derivative(options_.output_activation, ws.a[L], ws.delta[L]);
+    for (std::size_t l = L; l >= 1; --l) {
+      const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
+      const Eigen::Index offset = weight_offset(l - 1);
+      delta_t = ws.delta[l].transpose();
+      for (Eigen::Index j = 0; j < in; ++j) {
+        for (Eigen::Index i = 0; i < out; ++i) {
+          Strided col(jacobian.col(offset + j * out + i).data() + k, batch,
+                      Eigen::InnerStride<>(n_out));
+          col = delta_t.col(i).cwiseProduct(a_t[l - 1].col(j));
+        }
+      }
+      for (Eigen::Index i = 0; i < out; ++i) {
+        Strided col(jacobian.col(offset + in * out + i).data() + k, batch,
+                    Eigen::InnerStride<>(n_out));
+        col = delta_t.col(i);
+      }
+      if (l > 1) {
+        const MapMatrix w(params.data() + offset, out, in);
+        ws.delta[l - 1].noalias() = w.transpose() * ws.delta[l];
+        multiply_derivative(options_.hidden_activation, ws.a[l - 1], ws.delta[l - 1]);
+      }
+    }
+  }
+}
+
 }  // namespace cnclab

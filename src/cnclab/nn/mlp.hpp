@@ -91,7 +91,19 @@ class Mlp {
                            const Eigen::Ref<const Eigen::MatrixXd>& y, Workspace& ws,
                            Eigen::VectorXd& gradient) const;
 
+  // Evaluation-mode outputs of the batch x (written to `outputs`, n_L x b) and
+  // the exact Jacobian of every output with respect to the parameters, by one
+  // backpropagation per output unit: row s n_L + k of `jacobian`
+  // ((b n_L) x num_parameters()) is d y_k(x_s) / dw. Dropout is not applied.
+  void output_jacobian(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                       Workspace& ws, Eigen::Ref<Eigen::MatrixXd> outputs,
+                       Eigen::Ref<Eigen::MatrixXd> jacobian) const;
+
  private:
+  // Evaluation-mode forward pass of x into ws.a (ws prepared for x.cols()).
+  void forward(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
+               Workspace& ws) const;
+
   Eigen::Index weight_offset(std::size_t layer) const { return offsets_[layer]; }
 
   MlpOptions options_;

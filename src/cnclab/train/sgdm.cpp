@@ -10,20 +10,6 @@
 
 namespace cnclab {
 
-std::string to_string(Termination t) {
-  switch (t) {
-    case Termination::max_epochs:
-      return "max_epochs";
-    case Termination::early_stop:
-      return "early_stop";
-    case Termination::diverged:
-      return "diverged";
-    case Termination::stopped_by_callback:
-      return "stopped_by_callback";
-  }
-  return "?";
-}
-
 void SgdmOptions::validate() const {
   if (!(learning_rate > 0) || !std::isfinite(learning_rate)) {
     throw OptionError("learning_rate", std::to_string(learning_rate),

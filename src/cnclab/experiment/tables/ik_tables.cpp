@@ -5,6 +5,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "cnclab/core/config.hpp"
@@ -103,6 +104,12 @@ Reference read_reference(const fs::path& file) {
   return ref;
 }
 
+// An SGDM setting of the run's trainer; "-" for other trainers (lm, trainbr).
+std::string sgdm_setting(const AxisRun& r, double SgdmOptions::*field) {
+  const auto* sgdm = std::get_if<SgdmOptions>(&r.loaded.spec.trainer);
+  return sgdm ? table_number(sgdm->*field) : "-";
+}
+
 std::string integer(double v) {
   return std::to_string(static_cast<long long>(std::llround(v)));
 }
@@ -157,10 +164,10 @@ void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, std::o
       [&](const AxisRun& r) { return count(r.record.model.outputs); }, true);
   row(
       "Learning rate", "LR", "learning_rate",
-      [&](const AxisRun& r) { return table_number(r.loaded.spec.trainer.learning_rate); }, false);
+      [&](const AxisRun& r) { return sgdm_setting(r, &SgdmOptions::learning_rate); }, false);
   row(
       "Momentum parameter", "MU", "momentum",
-      [&](const AxisRun& r) { return table_number(r.loaded.spec.trainer.momentum); }, false);
+      [&](const AxisRun& r) { return sgdm_setting(r, &SgdmOptions::momentum); }, false);
   row(
       "MSE-validation", "", "mse_validation",
       [&](const AxisRun& r) { return table_number(validation_mse(r.record), 3); }, false);

@@ -1,0 +1,218 @@
+// One Levenberg-Marquardt iteration, single thread, on
+//   (a) an 85,000 x 121 Jacobian (the size of seed 002's open-loop NARX
+//       problem; a stored dense J, so only the solver's work is timed), and
+//   (b) the seed-000 network 73-28-20-1 ReLU on 13,860 samples (Jacobian by
+//       per-sample backpropagation, 2,673 parameters),
+// with the J^T J step's GFLOP/s (N W (W + 1) flops for the symmetric rank
+// updates) against Eigen's dense GEMM rate measured in the same run.
+//
+//   cnclab_bench_lm iteration [REPEATS]   the timings above (medians)
+//   cnclab_bench_lm prepare DIR           writes (b)'s data and initial weights
+//                                         for scripts/bench_lm_scipy.py
+//   cnclab_bench_lm race DIR TARGET_SSE   LM on (b) until SSE <= TARGET_SSE
+// scripts/bench_lm runs all three beside scipy.optimize.least_squares(method='lm').
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "cnclab/core/rng.hpp"
+#include "cnclab/nn/mlp.hpp"
+#include "cnclab/train/lm.hpp"
+#include "cnclab/train/mlp_residuals.hpp"
+#include "cnclab/train/normal_equations.hpp"
+
+namespace {
+using namespace cnclab;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// A stored dense Jacobian: residuals e = J w - t.
+class DenseResiduals : public ResidualObjective {
+ public:
+  DenseResiduals(Eigen::MatrixXd j, Eigen::VectorXd t) : j_(std::move(j)), t_(std::move(t)) {}
+  Eigen::Index num_residuals() const override { return j_.rows(); }
+  Eigen::Index num_parameters() const override { return j_.cols(); }
+  void evaluate(const Eigen::VectorXd& w, Eigen::Index first, Eigen::Index count,
+                Eigen::Ref<Eigen::VectorXd> e, Eigen::MatrixXd* jacobian) override {
+    e.noalias() = j_.middleRows(first, count) * w;
+    e -= t_.segment(first, count);
+    if (jacobian) *jacobian = j_.middleRows(first, count);
+  }
+
+ private:
+  Eigen::MatrixXd j_;
+  Eigen::VectorXd t_;
+};
+
+// Eigen GEMM C = A B, n x n, in GFLOP/s (2 n^3 flops).
+double gemm_gflops(int repeats) {
+  const Eigen::Index n = 1024;
+  Rng rng(1);
+  Eigen::MatrixXd a(n, n), b(n, n), c(n, n);
+  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = rng.normal();
+  for (Eigen::Index i = 0; i < b.size(); ++i) b.data()[i] = rng.normal();
+  std::vector<double> rates;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = Clock::now();
+    c.noalias() = a * b;
+    rates.push_back(2.0 * n * n * n / seconds_since(t0) / 1e9);
+  }
+  if (!c.allFinite()) std::abort();
+  return median(rates);
+}
+
+struct IterationTimes {
+  double evaluate, product, solve, trial;
+};
+
+// The work of one LM iteration: normal equations at w, one Cholesky solve of
+// (J^T J + mu I) dw = -J^T e, the sum of squares at w + dw.
+IterationTimes time_iteration(ResidualObjective& objective, const Eigen::VectorXd& w, int repeats) {
+  NormalEquationBuilder builder(objective);
+  NormalEquations ne;
+  std::vector<double> evaluate, product, solve, trial;
+  for (int r = 0; r < repeats; ++r) {
+    const NormalEquationTiming before = builder.timing();
+    if (!builder.build(w, ne)) std::abort();
+    evaluate.push_back(builder.timing().evaluate_seconds - before.evaluate_seconds);
+    product.push_back(builder.timing().product_seconds - before.product_seconds);
+    auto t0 = Clock::now();
+    Eigen::MatrixXd damped = ne.jtj;
+    damped.diagonal().array() += 1e-3;
+    const Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(damped);
+    const Eigen::VectorXd step = llt.solve(-ne.jte);
+    solve.push_back(seconds_since(t0));
+    t0 = Clock::now();
+    const double sse = builder.sum_of_squares(w + step);
+    trial.push_back(seconds_since(t0));
+    if (!std::isfinite(sse)) std::abort();
+  }
+  return {median(evaluate), median(product), median(solve), median(trial)};
+}
+
+void report(const char* name, Eigen::Index n, Eigen::Index w, const IterationTimes& t,
+            double gemm) {
+  const double flops = static_cast<double>(n) * static_cast<double>(w) * (w + 1.0);
+  const double rate = flops / t.product / 1e9;
+  std::printf(
+      "%s: N %ld W %ld  iteration %.3f s (Jacobian %.3f, J^T J + J^T e %.3f, Cholesky %.3f, "
+      "trial SSE %.3f)\n",
+      name, static_cast<long>(n), static_cast<long>(w), t.evaluate + t.product + t.solve + t.trial,
+      t.evaluate, t.product, t.solve, t.trial);
+  std::printf(
+      "%s: J^T J %.2f GFLOP/s, Eigen GEMM %.2f GFLOP/s, GEMM / J^T J = %.2fx (target <= 2x) %s\n",
+      name, rate, gemm, gemm / rate, gemm / rate <= 2.0 ? "PASS" : "FAIL");
+}
+
+// Seed-000 network with a teacher of the same shape (+ noise 0.1) as targets.
+struct Seed000Problem {
+  Mlp mlp;
+  Eigen::MatrixXd x, y;
+  Eigen::VectorXd w0;
+};
+Seed000Problem seed000_problem() {
+  constexpr Eigen::Index kSamples = 13860;  // 70 % of 19,800 (seed 000)
+  MlpOptions mo;
+  mo.inputs = 73;
+  mo.hidden = {28, 20};
+  mo.outputs = 1;
+  mo.hidden_activation = Activation::relu;
+  mo.weights = {Initializer::Kind::normal, 0.0, 0.1};
+  Seed000Problem p{Mlp(mo), Eigen::MatrixXd(73, kSamples), Eigen::MatrixXd(), Eigen::VectorXd()};
+  Rng rng(11);
+  for (Eigen::Index i = 0; i < p.x.size(); ++i) p.x.data()[i] = rng.normal();
+  Eigen::VectorXd teacher;
+  MlpOptions to = mo;
+  to.weights = {Initializer::Kind::he};
+  Mlp(to).initialise(teacher, rng);
+  p.y = p.mlp.predict(teacher, p.x);
+  for (Eigen::Index i = 0; i < p.y.size(); ++i) p.y.data()[i] += 0.1 * rng.normal();
+  p.mlp.initialise(p.w0, rng);
+  return p;
+}
+
+void write_binary(const std::filesystem::path& file, const double* data, Eigen::Index count) {
+  std::ofstream out(file, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(count * 8));
+  if (!out) {
+    std::fprintf(stderr, "cannot write %s\n", file.c_str());
+    std::exit(1);
+  }
+}
+
+int iteration(int repeats) {
+  const double gemm = gemm_gflops(repeats);
+  std::printf("Eigen GEMM 1024 x 1024: %.2f GFLOP/s (1 thread, median of %d)\n", gemm, repeats);
+  {
+    constexpr Eigen::Index kRows = 85000, kCols = 121;
+    Rng rng(2);
+    Eigen::MatrixXd j(kRows, kCols);
+    Eigen::VectorXd t(kRows), w = Eigen::VectorXd::Zero(kCols);
+    for (Eigen::Index i = 0; i < j.size(); ++i) j.data()[i] = rng.normal();
+    for (Eigen::Index i = 0; i < t.size(); ++i) t[i] = rng.normal();
+    DenseResiduals dense(std::move(j), std::move(t));
+    report("85000x121", kRows, kCols, time_iteration(dense, w, repeats), gemm);
+  }
+  const Seed000Problem p = seed000_problem();
+  MlpResidualObjective objective(p.mlp, p.x, p.y);
+  report("seed-000 73-28-20-1", p.y.cols(), p.w0.size(),
+         time_iteration(objective, p.w0, std::max(1, repeats / 2)), gemm);
+  return 0;
+}
+
+int prepare(const std::filesystem::path& dir) {
+  const Seed000Problem p = seed000_problem();
+  std::filesystem::create_directories(dir);
+  // x sample-major (N x 73, C order), the same bytes as Eigen's 73 x N.
+  write_binary(dir / "x.bin", p.x.data(), p.x.size());
+  write_binary(dir / "y.bin", p.y.data(), p.y.size());
+  write_binary(dir / "w0.bin", p.w0.data(), p.w0.size());
+  std::printf("samples %ld inputs 73 hidden 28 20 parameters %ld\n", static_cast<long>(p.x.cols()),
+              static_cast<long>(p.w0.size()));
+  return 0;
+}
+
+int race(double target_sse) {
+  const Seed000Problem p = seed000_problem();
+  MlpResidualObjective objective(p.mlp, p.x, p.y);
+  Eigen::VectorXd w = p.w0;
+  LmOptions o;  // trainlm defaults
+  o.epochs = 100;
+  LmHooks hooks;
+  hooks.on_epoch = [&](const EpochRecord&, const LmEpochRecord& lm, const Eigen::VectorXd&) {
+    return lm.sse > target_sse;
+  };
+  const auto t0 = Clock::now();
+  const Summary s = train_lm(objective, w, o, hooks);
+  const double sec = seconds_since(t0);
+  const double sse = s.lm_history.empty() ? std::nan("") : s.lm_history.back().sse;
+  std::printf("seconds %.3f sse %.9g epochs %zu reached %d\n", sec, sse, s.lm_history.size(),
+              sse <= target_sse ? 1 : 0);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string mode = argc > 1 ? argv[1] : "iteration";
+  if (mode == "iteration") return iteration(argc > 2 ? std::atoi(argv[2]) : 3);
+  if (mode == "prepare" && argc > 2) return prepare(argv[2]);
+  if (mode == "race" && argc > 3) return race(std::atof(argv[3]));
+  std::fprintf(stderr, "usage: %s iteration [REPEATS] | prepare DIR | race DIR TARGET_SSE\n",
+               argv[0]);
+  return 2;
+}

@@ -1,0 +1,33 @@
+#pragma once
+// trainer: {type: sgdm | lm | trainbr, ...}: which trainer an experiment uses
+// and its options. Keys per type (defaults in the options structs):
+//   sgdm:       learning_rate, momentum, batch_size, epochs, shuffle, early_stop_patience
+//   lm/trainbr: epochs, goal, mu, mu_dec, mu_inc, mu_max, min_gradient
+// A key of another type is an unknown key.
+#include <yaml-cpp/yaml.h>
+
+#include <cstddef>
+#include <string>
+#include <variant>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/train/lm.hpp"
+#include "cnclab/train/sgdm.hpp"
+#include "cnclab/train/trainbr.hpp"
+
+namespace cnclab {
+
+using TrainerSpec = std::variant<SgdmOptions, LmOptions, TrainbrOptions>;
+
+std::string trainer_name(const TrainerSpec& trainer);  // "sgdm", "lm" or "trainbr"
+bool is_trainer_name(const std::string& name);
+std::size_t trainer_epochs(const TrainerSpec& trainer);
+// lm and trainbr need a deterministic objective (no dropout).
+bool is_levenberg_marquardt(const TrainerSpec& trainer);
+
+// Reads and validates the `trainer` section (type defaults to sgdm).
+TrainerSpec read_trainer(const ConfigReader& r);
+// The section with every option resolved (a map value).
+void emit_trainer(YAML::Emitter& out, const TrainerSpec& trainer);
+
+}  // namespace cnclab

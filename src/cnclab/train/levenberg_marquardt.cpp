@@ -1,0 +1,199 @@
+// train_lm and train_trainbr: one damped Gauss-Newton loop; trainbr adds the
+// alpha/beta re-estimation after every accepted step (formulas in trainbr.hpp).
+#include <Eigen/Cholesky>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/train/lm.hpp"
+#include "cnclab/train/normal_equations.hpp"
+#include "cnclab/train/trainbr.hpp"
+
+namespace cnclab {
+namespace {
+
+// MATLAB trainlm/trainbr floor mu at 1e-20 after a successful step.
+constexpr double kMuFloor = 1e-20;
+
+std::string text(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+void check_finite_positive(const char* field, double v) {
+  if (!(v > 0) || !std::isfinite(v)) {
+    throw OptionError(field, text(v), "must be a finite number > 0");
+  }
+}
+
+Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& params,
+                            const LmOptions& o, bool bayesian, const LmHooks& hooks,
+                            const char* name) {
+  o.validate();
+  if (params.size() != objective.num_parameters()) {
+    throw Error(std::string(name) + ": " + std::to_string(params.size()) +
+                " parameters given, objective has " + std::to_string(objective.num_parameters()));
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const Eigen::Index nw = objective.num_parameters();
+  const double n = static_cast<double>(objective.num_residuals());
+  NormalEquationBuilder builder(objective, static_cast<Eigen::Index>(o.block_rows));
+  NormalEquations ne;
+  Summary summary;
+  if (!params.allFinite() || !builder.build(params, ne)) {
+    summary.termination = Termination::diverged;
+    summary.message = "residuals or Jacobian not finite at the initial parameters";
+    return summary;
+  }
+  double ssw = params.squaredNorm();
+  BayesianHyperparameters reg;  // lm: alpha 0, beta 1 throughout
+  reg.gamma = static_cast<double>(nw);
+  if (bayesian) {
+    reg.beta = ne.sse == 0 ? 1.0 : (n - reg.gamma) / (2.0 * ne.sse);
+    if (!(reg.beta > 0)) reg.beta = 1.0;
+    reg.alpha = ssw == 0 ? 1.0 : reg.gamma / (2.0 * ssw);
+  }
+  double f = reg.beta * ne.sse + reg.alpha * ssw;
+  double mu = o.mu;
+
+  Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(nw);
+  Eigen::MatrixXd damped(nw, nw);
+  Eigen::VectorXd rhs(nw), step(nw), trial(nw);
+  const auto stop = [&](Termination t, std::string message) {
+    summary.termination = t;
+    summary.message = std::move(message);
+    return summary;
+  };
+
+  for (std::size_t epoch = 1;; ++epoch) {
+    const double gradient = 2.0 * ne.jte.norm();
+    const std::string after = " after " + std::to_string(epoch - 1) + " epochs";
+    if (f <= o.goal) return stop(Termination::goal, "performance goal met" + after);
+    if (gradient < o.min_gradient) {
+      return stop(Termination::min_gradient, "minimum gradient reached" + after);
+    }
+    if (epoch > o.epochs) return stop(Termination::max_epochs, "maximum epoch reached" + after);
+
+    // One accepted step, raising mu until F decreases.
+    rhs = -(reg.beta * ne.jte + reg.alpha * params);
+    bool accepted = false;
+    double sse_new = 0, ssw_new = 0;
+    while (mu <= o.mu_max) {
+      damped.triangularView<Eigen::Lower>() = reg.beta * ne.jtj;
+      damped.diagonal().array() += mu + reg.alpha;
+      llt.compute(damped);
+      if (llt.info() == Eigen::Success) {
+        step = llt.solve(rhs);
+        if (step.allFinite()) {
+          trial = params + step;
+          sse_new = builder.sum_of_squares(trial);
+          ssw_new = trial.squaredNorm();
+          const double f_new = reg.beta * sse_new + reg.alpha * ssw_new;
+          if (std::isfinite(f_new) && f_new < f) {
+            accepted = true;
+            break;
+          }
+        }
+      }
+      mu *= o.mu_inc;
+    }
+    if (!accepted) {
+      return stop(Termination::mu_max, "mu exceeded mu_max without a decrease of the objective" +
+                                           after + " (converged to rounding or stuck)");
+    }
+    params.swap(trial);
+    ssw = ssw_new;
+    mu = std::max(mu * o.mu_dec, kMuFloor);
+    if (!builder.build(params, ne)) {
+      return stop(Termination::diverged, "Jacobian not finite in epoch " + std::to_string(epoch));
+    }
+    if (bayesian && !reestimate_hyperparameters(reg, ne.jtj, ne.sse, ssw, n)) {
+      ++summary.beta_guard_count;
+    }
+    f = reg.beta * ne.sse + reg.alpha * ssw;
+
+    EpochRecord record;
+    record.epoch = epoch;
+    record.train_loss = ne.sse / n;
+    record.validation_loss = hooks.validation_loss ? hooks.validation_loss(params) : std::nan("");
+    record.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    LmEpochRecord lm;
+    lm.sse = ne.sse;
+    lm.ssw = ssw;
+    lm.alpha = reg.alpha;
+    lm.beta = reg.beta;
+    lm.gamma = reg.gamma;
+    lm.mu = mu;
+    lm.gradient = 2.0 * ne.jte.norm();
+    summary.history.push_back(record);
+    summary.lm_history.push_back(lm);
+    if (hooks.on_epoch && !hooks.on_epoch(record, lm, params)) {
+      return stop(Termination::stopped_by_callback,
+                  "stopped by callback after epoch " + std::to_string(epoch));
+    }
+  }
+}
+
+}  // namespace
+
+void LmOptions::validate() const {
+  if (epochs < 1) throw OptionError("epochs", "0", "must be at least 1");
+  if (!(goal >= 0) || !std::isfinite(goal)) {
+    throw OptionError("goal", text(goal), "must be a finite number >= 0");
+  }
+  check_finite_positive("mu", mu);
+  check_finite_positive("mu_max", mu_max);
+  if (mu > mu_max) throw OptionError("mu", text(mu), "must not exceed mu_max = " + text(mu_max));
+  if (!(mu_dec > 0 && mu_dec < 1)) throw OptionError("mu_dec", text(mu_dec), "must be in (0, 1)");
+  if (!(mu_inc > 1) || !std::isfinite(mu_inc)) {
+    throw OptionError("mu_inc", text(mu_inc), "must be a finite number > 1");
+  }
+  if (!(min_gradient >= 0) || !std::isfinite(min_gradient)) {
+    throw OptionError("min_gradient", text(min_gradient), "must be a finite number >= 0");
+  }
+}
+
+double effective_parameters(const Eigen::MatrixXd& jtj_lower, double alpha, double beta) {
+  const Eigen::Index w = jtj_lower.rows();
+  Eigen::MatrixXd a(w, w);
+  a.triangularView<Eigen::Lower>() = beta * jtj_lower;
+  a.diagonal().array() += alpha;
+  Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(a);
+  if (llt.info() != Eigen::Success) return std::nan("");
+  // A^-1 = L^-T L^-1, so tr(A^-1) = ||L^-1||_F^2.
+  Eigen::MatrixXd l_inv = Eigen::MatrixXd::Identity(w, w);
+  llt.matrixL().solveInPlace(l_inv);
+  return static_cast<double>(w) - alpha * l_inv.squaredNorm();
+}
+
+bool reestimate_hyperparameters(BayesianHyperparameters& h, const Eigen::MatrixXd& jtj_lower,
+                                double sse, double ssw, double n) {
+  const double w = static_cast<double>(jtj_lower.rows());
+  const double gamma = effective_parameters(jtj_lower, h.alpha, h.beta);
+  if (!std::isfinite(gamma)) return true;  // keep alpha, beta: factorisation failed
+  h.gamma = std::min(std::max(gamma, 0.0), w);
+  h.alpha = ssw == 0 ? 1.0 : h.gamma / (2.0 * ssw);
+  if (sse == 0) {
+    h.beta = 1.0;
+  } else if (n - h.gamma > 0) {
+    h.beta = (n - h.gamma) / (2.0 * sse);
+  } else {
+    return false;  // beta guard: keep the previous beta
+  }
+  return true;
+}
+
+Summary train_lm(ResidualObjective& objective, Eigen::VectorXd& params, const LmOptions& options,
+                 const LmHooks& hooks) {
+  return levenberg_marquardt(objective, params, options, false, hooks, "lm");
+}
+
+Summary train_trainbr(ResidualObjective& objective, Eigen::VectorXd& params,
+                      const TrainbrOptions& options, const LmHooks& hooks) {
+  return levenberg_marquardt(objective, params, options, true, hooks, "trainbr");
+}
+
+}  // namespace cnclab

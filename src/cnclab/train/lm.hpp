@@ -1,0 +1,50 @@
+#pragma once
+// Levenberg-Marquardt on a residual objective, with MATLAB trainlm's
+// semantics and defaults (Hagan & Menhaj 1994; MATLAB Deep Learning Toolbox
+// trainlm):
+//   solve (J^T J + mu I) dw = -J^T e by Cholesky; accept w + dw if the sum of
+//   squares E_D = e^T e decreases (then mu <- mu * mu_dec, floored at 1e-20),
+//   else mu <- mu * mu_inc and solve again, up to mu_max.
+// A step whose factorisation fails or whose objective is NaN/Inf counts as a
+// failed step (mu is raised); non-finite values never reach the parameters.
+// Stops (checked before every epoch, in MATLAB's order): F <= goal,
+// 2 ||J^T e|| < min_gradient, epochs done; and when no step with mu <= mu_max
+// decreases F (termination mu_max).
+#include <Eigen/Core>
+#include <cstddef>
+#include <functional>
+
+#include "cnclab/train/residual_objective.hpp"
+#include "cnclab/train/summary.hpp"
+
+namespace cnclab {
+
+struct LmOptions {
+  std::size_t epochs = 1000;  // maximum number of accepted steps (trainlm: 1000)
+  double goal = 0;            // stop when F <= goal; lm: F = E_D (sum of squares) (trainlm: 0)
+  double mu = 1e-3;           // initial damping mu (trainlm: 0.001)
+  double mu_dec = 0.1;        // mu <- mu * mu_dec after a successful step, in (0, 1) (trainlm: 0.1)
+  double mu_inc = 10;         // mu <- mu * mu_inc after a failed step, > 1 (trainlm: 10)
+  double mu_max = 1e10;       // stop when mu exceeds this (trainlm: 1e10)
+  double min_gradient = 1e-7;  // stop when 2 ||J^T e|| < min_gradient (trainlm: 1e-7)
+  // Rows of J per symmetric rank update; 0 = automatic (about 8 MB of J).
+  std::size_t block_rows = 0;
+
+  // All finite; epochs >= 1; goal, min_gradient >= 0; 0 < mu <= mu_max;
+  // 0 < mu_dec < 1 < mu_inc.
+  void validate() const;
+};
+
+struct LmHooks {
+  // Loss on held-out data at the end of each epoch (stored in EpochRecord).
+  std::function<double(const Eigen::VectorXd& params)> validation_loss;
+  // Called after every epoch; returning false stops training.
+  std::function<bool(const EpochRecord&, const LmEpochRecord&, const Eigen::VectorXd& params)>
+      on_epoch;
+};
+
+// Minimises E_D = e^T e over `params` (updated in place).
+Summary train_lm(ResidualObjective& objective, Eigen::VectorXd& params, const LmOptions& options,
+                 const LmHooks& hooks = {});
+
+}  // namespace cnclab
