@@ -9,7 +9,9 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/commands.hpp"
+#include "cnclab/experiment/compare.hpp"
 #include "cnclab/experiment/dataset_commands.hpp"
+#include "cnclab/experiment/sweep_command.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
 
 namespace {
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
   run->add_option("--out", common.results_dir, "Results folder")->capture_default_str();
   run->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")->capture_default_str();
   run->add_flag("--quiet,-q", common.quiet, "No progress output");
+  run->add_flag("--regenerate", common.regenerate, "Regenerate the dataset even when cached");
   run->footer(
       "Example:\n  cnclab run experiments/friedman/friedman1_mlp.yaml trainer.learning_rate=1e-3 "
       "model.hidden=[32,16] --seed 7\nWrites results/<name>/<name>-seed<N>-<hash>.h5 atomically.");
@@ -71,9 +74,67 @@ int main(int argc, char** argv) {
   reproduce->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")
       ->capture_default_str();
   reproduce->add_flag("--quiet,-q", common.quiet, "No progress output");
+  reproduce->add_flag("--force", common.force,
+                      "Run every experiment even if its result is current");
+  reproduce->add_flag("--regenerate", common.regenerate, "Regenerate datasets even when cached");
   reproduce->footer(
       "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
-      "experiments/friedman");
+      "experiments/friedman\n"
+      "Experiments run upstream first (needs:, init_from:); a result whose resolved config and "
+      "upstream results are unchanged is reused. Each line says ran/reused and why.");
+
+  cnclab::SweepCommandOptions sweep_options;
+  std::vector<std::string> sweep_words;
+  auto* sweep = app.add_subcommand(
+      "sweep", "Run many trials of an experiment (grid or random search, repeats), in parallel");
+  sweep->add_option("experiment", experiment, "Experiment YAML file")->check(CLI::ExistingFile);
+  sweep->add_option("parameters", sweep_words,
+                    "key=value overrides and swept keys: key=v1,v2,...  key=choice(a,b)  "
+                    "key=int_range(lo,hi[,step])  key=uniform(lo,hi)  key=log_uniform(lo,hi)");
+  sweep->add_option("--jobs,-j", sweep_options.jobs,
+                    "Trials at once (default: the number of cores this process may use)");
+  sweep->add_option("--shard", sweep_options.shard,
+                    "K/N: run only shard K of N (trials K, K+N, ...), e.g. one per Slurm task");
+  sweep->add_option("--dir", sweep_options.dir,
+                    "Sweep folder (default: <out>/<name>/sweep-<plan hash>)");
+  sweep->add_option("--repeats", sweep_options.repeats, "Runs per point with derived seeds");
+  sweep->add_option("--trials", sweep_options.trials, "Random search: number of points");
+  sweep->add_option("--method", sweep_options.method, "grid or random");
+  sweep->add_option("--objective", sweep_options.objective,
+                    "METRIC[:min|max] to rank trials by (default: first metric)");
+  sweep->add_option("--sweep-seed", sweep_options.sweep_seed,
+                    "Seed of the random search (default: the experiment seed)");
+  sweep->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
+  sweep->add_option("--out", sweep_options.common.results_dir, "Results folder")
+      ->capture_default_str();
+  sweep->add_option("--data-dir", sweep_options.common.datasets_dir, "Dataset cache folder")
+      ->capture_default_str();
+  sweep->add_flag("--regenerate", sweep_options.common.regenerate,
+                  "Regenerate the datasets even when cached");
+  sweep->add_flag("--quiet,-q", sweep_options.common.quiet, "No progress output");
+  sweep->footer(
+      "Examples:\n"
+      "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
+      "model.dropout.keep_probability=0.8,0.9,1.0 trainer.epochs=50 --repeats 3\n"
+      "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
+      "'trainer.learning_rate=log_uniform(1e-4,1e-1)' --trials 20 --objective rmse:min\n"
+      "Re-running the same command resumes: trials with a result are skipped.\n"
+      "Exit codes: 0 all trials complete, 1 some failed, 2 bad sweep, 128+N interrupted by "
+      "signal N.");
+  std::string merge_dir;
+  auto* merge =
+      sweep->add_subcommand("merge", "Build summary.h5 of a sweep folder from its trials");
+  merge->add_option("dir", merge_dir, "Sweep folder")->required()->check(CLI::ExistingDirectory);
+  merge->footer("Example:\n  cnclab sweep merge results/friedman1_mlp/sweep-1a2b3c4d");
+
+  std::string compare_format = "table";
+  auto* compare = app.add_subcommand(
+      "compare", "Runs side by side: the config keys that differ and the metrics with deltas");
+  compare->add_option("runs", paths, "Result files, run folders or sweep folders")->required();
+  compare->add_option("--format", compare_format, "table, md, csv or json")->capture_default_str();
+  compare->footer(
+      "Examples:\n  cnclab compare results/friedman1_mlp/a.h5 results/friedman1_mlp/b.h5\n"
+      "  cnclab compare results/friedman1_mlp/sweep-1a2b3c4d --format md");
 
   auto* dataset = app.add_subcommand("dataset", "Generate or inspect a dataset file");
   dataset->require_subcommand(1);
@@ -138,6 +199,13 @@ int main(int argc, char** argv) {
     if (*validate) return cnclab::validate_command(experiment, overrides, seed, std::cout);
     if (*show) return cnclab::show_command(paths, std::cout);
     if (*reproduce) return cnclab::reproduce_command(paths, common, std::cout, std::cerr);
+    if (*compare) return cnclab::compare_command(paths, compare_format, std::cout);
+    if (*merge) return cnclab::sweep_merge_command(merge_dir, std::cout);
+    if (*sweep) {
+      if (experiment.empty()) throw cnclab::ConfigError("sweep: an experiment file is required");
+      return cnclab::sweep_command(experiment, sweep_words, seed, sweep_options, std::cout,
+                                   std::cerr);
+    }
     if (*generate) {
       return cnclab::dataset_generate_command(
           experiment, overrides,

@@ -152,7 +152,8 @@ TEST_F(Cli, TrainbrExperimentValidatesWithMatlabDefaultsAndRuns) {
 }
 
 TEST_F(Cli, HelpExplainsWithExample) {
-  for (const char* sub : {"run", "validate", "show", "reproduce", "version"}) {
+  for (const char* sub :
+       {"run", "validate", "show", "reproduce", "sweep", "sweep merge", "compare", "version"}) {
     const Result r = cnclab(std::string(sub) + " --help");
     EXPECT_EQ(r.code, 0) << sub;
     EXPECT_NE(r.out.find("Example"), std::string::npos) << sub << r.out;

@@ -5,18 +5,12 @@
 // recognisably partial (temporary name) and rejected by the readers and by
 // `cnclab show`. Also: a disk-full write (RLIMIT_FSIZE) leaves the previous
 // result intact.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <thread>
 
 #include "cnclab/core/error.hpp"
@@ -24,15 +18,20 @@
 #include "cnclab/data/dataset_file.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "common/process.hpp"
 #include "common/temp_dir.hpp"
-
-extern char** environ;
 
 namespace cnclab {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::slurp;
 using testing::TempDir;
+using testing::wait_exit;
+
+pid_t spawn(const std::vector<std::string>& args) {
+  return testing::spawn_quiet(args);
+}
 
 const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
 const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
@@ -43,27 +42,6 @@ constexpr int kKills = 60;
 std::vector<std::string> run_args(const fs::path& out, const fs::path& data) {
   return {kCnclab,   "run",   kExperiment,  "trainer.epochs=40", "dataset.options.samples=3000",
           "--quiet", "--out", out.string(), "--data-dir",        data.string()};
-}
-
-pid_t spawn(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  EXPECT_EQ(rc, 0);
-  return pid;
-}
-
-int wait_exit(pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
 }
 
 std::vector<fs::path> files_under(const fs::path& dir) {
@@ -119,6 +97,7 @@ TEST(CrashConsistency, KilledRunsNeverLeaveAFileThatLooksCompleteButIsNot) {
   for (const auto& entry : fs::directory_iterator(dir.path())) {
     if (entry.path().filename().string().find("data") == std::string::npos) continue;
     for (const auto& f : files_under(entry.path())) {
+      if (f.extension() == ".lock") continue;  // the cache's empty lock files
       if (is_partial_path(f)) {
         ++datasets.partial;
         EXPECT_THROW(read_dataset(f), IoError) << f;
@@ -142,13 +121,6 @@ TEST(CrashConsistency, KilledRunsNeverLeaveAFileThatLooksCompleteButIsNot) {
     EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 1);
     break;
   }
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 TEST(CrashConsistency, DiskFullWriteKeepsThePreviousResult) {

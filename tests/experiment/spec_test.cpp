@@ -75,6 +75,25 @@ TEST(Spec, InitializerKeysDependOnType) {
             std::string::npos);
 }
 
+TEST(Spec, GraphKeysAndSweepBlock) {
+  // Upstream files must exist; the message names the key.
+  EXPECT_NE(error_of(kMinimal + "needs: [nowhere.yaml]\n")
+                .find("needs = [nowhere.yaml]: no experiment file"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal + "init_from: {experiment: nowhere.yaml}\n")
+                .find("init_from.experiment = nowhere.yaml: no experiment file"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal + "init_from: {experimnt: a.yaml}\n")
+                .find("init_from.experiment: is required"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal + "needs: other.yaml\n").find("expected a list"), std::string::npos);
+  // The sweep block belongs to `cnclab sweep`: not part of a run's config.
+  const auto with_sweep =
+      parse_experiment(kMinimal + "sweep: {repeats: 3, parameters: {seed: [1, 2]}}\n", "e.yaml");
+  EXPECT_EQ(with_sweep.resolved_yaml, parse_experiment(kMinimal, "e.yaml").resolved_yaml);
+  EXPECT_EQ(with_sweep.resolved_yaml.find("sweep"), std::string::npos);
+}
+
 TEST(Spec, LevenbergMarquardtTrainersWithMatlabDefaults) {
   const auto lm = parse_experiment(kMinimal + "trainer: {type: lm}\n", "e.yaml");
   const auto& l = std::get<LmOptions>(lm.spec.trainer);

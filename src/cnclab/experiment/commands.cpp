@@ -1,28 +1,18 @@
 #include "cnclab/experiment/commands.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <iomanip>
-#include <numbers>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/tables/tables.hpp"
 #include "cnclab/experiment/trochoid_job.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/provenance.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
-namespace {
-
-// One line of `reproduce`'s summary.
-struct ReproduceRow {
-  std::string name, status, detail, file;
-};
-
 std::string metrics_line(const std::map<std::string, double>& metrics) {
   std::string s;
   for (const auto& [k, v] : metrics) s += (s.empty() ? "" : "  ") + k + " " + format_metric(v);
@@ -35,30 +25,11 @@ RunOptions run_options(const CommandOptions& options, std::ostream& log) {
   r.datasets_dir = options.datasets_dir;
   r.progress = options.quiet ? ProgressMode::quiet : ProgressMode::automatic;
   r.log = options.quiet ? nullptr : &log;
+  r.regenerate_dataset = options.regenerate;
   return r;
 }
 
-struct GcodeOutputs {
-  ReproduceRow row;
-  std::string report;
-};
-
-// results/<name>/<name>.nc, <name>-points.tsv and <name>-report.txt, each
-// written atomically.
-GcodeOutputs write_gcode_outputs(const TrochoidJob& job, const CommandOptions& options) {
-  const TrochoidOutcome outcome = run_trochoid_job(job);
-  const fs::path dir = options.results_dir / job.name;
-  const fs::path nc = dir / (job.name + ".nc");
-  write_text_atomically(nc, outcome.program.text);
-  write_text_atomically(dir / (job.name + "-points.tsv"), outcome.point_table);
-  write_text_atomically(dir / (job.name + "-report.txt"), outcome.report);
-  char detail[160];
-  std::snprintf(detail, sizeof detail,
-                "G-code: %zu points; max radial engagement %.1f deg in the loops (slotting 180)",
-                outcome.groove.points.size(),
-                outcome.max_engagement_rad * 180.0 / std::numbers::pi);
-  return {{job.name, "ok", detail, nc.string()}, outcome.report};
-}
+namespace {
 
 // A gcode job has no random streams: --seed would silently do nothing.
 bool is_gcode_job(const fs::path& experiment, std::optional<std::uint64_t> seed) {
@@ -73,10 +44,10 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
                 std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
                 std::ostream& log) {
   if (is_gcode_job(experiment, seed)) {
-    const GcodeOutputs written =
-        write_gcode_outputs(load_trochoid_job(experiment, overrides), options);
-    if (!options.quiet) out << written.report << "\n";
-    out << written.row.file << "\n";
+    const TrochoidFiles written =
+        write_trochoid_outputs(load_trochoid_job(experiment, overrides), options.results_dir);
+    if (!options.quiet) out << written.outcome.report << "\n";
+    out << written.program.string() << "\n";
     return 0;
   }
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed);
@@ -144,51 +115,6 @@ int gcode_command(const std::string& toolpath, const fs::path& config, const fs:
   write_text_atomically(output, outcome.program.text);
   out << outcome.report << "\nG-code written to " << output.string() << "\n";
   return 0;
-}
-
-int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
-                      std::ostream& out, std::ostream& log) {
-  const auto files = find_experiments(paths);
-  if (files.empty()) throw ConfigError("reproduce: no experiment files found");
-  std::vector<ReproduceRow> rows;
-  std::string reports;
-  int exit_code = 0;
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    if (!options.quiet) {
-      log << "[" << i + 1 << "/" << files.size() << "] " << files[i].string() << "\n";
-    }
-    try {
-      if (experiment_kind(files[i]) == "gcode") {
-        const GcodeOutputs written = write_gcode_outputs(load_trochoid_job(files[i]), options);
-        rows.push_back(written.row);
-        reports += "\n== " + written.row.name + " ==\n" + written.report;
-        continue;
-      }
-      const LoadedExperiment loaded = load_experiment(files[i]);
-      const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
-      rows.push_back({loaded.spec.name, outcome.ok ? "ok" : "FAILED",
-                      outcome.ok ? metrics_line(outcome.metrics) : outcome.message,
-                      outcome.result_file.string()});
-      if (!outcome.ok) exit_code = std::max(exit_code, 1);
-    } catch (const ConfigError& e) {
-      rows.push_back({files[i].string(), "CONFIG ERROR", e.what(), ""});
-      exit_code = 2;
-    } catch (const Error& e) {
-      rows.push_back({files[i].string(), "ERROR", e.what(), ""});
-      exit_code = std::max(exit_code, 1);
-    }
-  }
-  out << "\n== cnclab reproduce: " << rows.size() << " experiment(s) ==\n";
-  for (const auto& row : rows) {
-    out << std::left << std::setw(28) << row.name << " " << std::setw(8) << row.status << " "
-        << row.detail << "\n";
-    if (!row.file.empty()) out << std::string(38, ' ') << row.file << "\n";
-  }
-  out << reports;
-  TablesOptions tables;
-  tables.results_dir = options.results_dir;
-  print_available_tables(tables, out);
-  return exit_code;
 }
 
 int version_command(std::ostream& out) {

@@ -4,6 +4,7 @@
 // ConfigError (exit 2), other problems cnclab::Error (exit 1).
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -15,6 +16,8 @@ struct CommandOptions {
   std::filesystem::path results_dir = "results";
   std::filesystem::path datasets_dir = "datasets";
   bool quiet = false;
+  bool regenerate = false;  // --regenerate: generate datasets even when cached
+  bool force = false;       // reproduce --force: run even when the result is current
 };
 
 int run_command(const std::filesystem::path& experiment, const std::vector<std::string>& overrides,
@@ -24,6 +27,9 @@ int validate_command(const std::filesystem::path& experiment,
                      const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed,
                      std::ostream& out);
 int show_command(const std::vector<std::string>& result_files, std::ostream& out);
+// Runs the experiments under `paths` and the ones they need, upstream first
+// (experiment_graph.hpp); reuses every result whose resolved config and
+// upstream results are unchanged; prints per experiment ran/reused and why.
 int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
                       std::ostream& out, std::ostream& log);
 int version_command(std::ostream& out);
@@ -32,6 +38,13 @@ int version_command(std::ostream& out);
 int gcode_command(const std::string& toolpath, const std::filesystem::path& config,
                   const std::filesystem::path& output, const std::vector<std::string>& overrides,
                   std::ostream& out);
+
+// The runner options a command's options imply (progress and notes to `log`
+// unless quiet).
+struct RunOptions;
+RunOptions run_options(const CommandOptions& options, std::ostream& log);
+// "mse 1.2  rmse 1.1 ...": a result's metrics on one line.
+std::string metrics_line(const std::map<std::string, double>& metrics);
 
 // Experiment YAML files under `paths` (files as given, folders recursively),
 // sorted; a missing path is a ConfigError.

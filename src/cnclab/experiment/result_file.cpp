@@ -159,6 +159,18 @@ void write_result(const fs::path& path, const RunRecord& r) {
     f.set_attribute("/metrics", "units", target_units + " (squared for mse; r2 is 1)");
     for (const auto& [name, value] : r.metrics) f.set_attribute("/metrics", name, value);
 
+    if (!r.upstream.empty()) {
+      std::vector<std::string> experiments, files, identities;
+      for (const auto& u : r.upstream) {
+        experiments.push_back(u.experiment);
+        files.push_back(u.result_file);
+        identities.push_back(u.identity);
+      }
+      f.write_strings("/upstream/experiments", experiments);
+      f.write_strings("/upstream/result_files", files);
+      f.write_strings("/upstream/identities", identities);
+    }
+
     mark_complete(f);  // last
     f.close();
     out.commit();
@@ -169,8 +181,49 @@ void write_result(const fs::path& path, const RunRecord& r) {
 }
 
 namespace {
+
 RunRecord read_result_in_process(const std::filesystem::path& path);
+
+std::map<std::string, double> read_metrics(const H5File& f) {
+  std::map<std::string, double> metrics;
+  for (const auto& name : f.attribute_names("/metrics")) {
+    if (name != "units") metrics[name] = f.attribute_double("/metrics", name);
+  }
+  return metrics;
+}
+
+std::vector<UpstreamRef> read_upstream(const H5File& f) {
+  std::vector<UpstreamRef> out;
+  if (!f.exists("/upstream")) return out;
+  const auto experiments = f.read_strings("/upstream/experiments");
+  const auto files = f.read_strings("/upstream/result_files");
+  const auto identities = f.read_strings("/upstream/identities");
+  if (files.size() != experiments.size() || identities.size() != experiments.size()) {
+    throw IoError(f.path().string() + ": /upstream: lists of different lengths");
+  }
+  for (std::size_t i = 0; i < experiments.size(); ++i) {
+    out.push_back({experiments[i], files[i], identities[i]});
+  }
+  return out;
+}
+
+ResultStatus read_status_in_process(const std::filesystem::path& path) {
+  const H5File f = H5File::open_read(path);
+  require_format(f, kResultFormat, kResultFormatVersion);
+  ResultStatus s;
+  s.status = f.attribute_string("/", "status");
+  s.failure_reason = f.attribute_string("/provenance", "failure_reason");
+  s.metrics = read_metrics(f);
+  s.upstream = read_upstream(f);
+  return s;
+}
+
 }  // namespace
+
+ResultStatus read_result_status(const std::filesystem::path& path) {
+  probe_in_child(path, [&] { read_status_in_process(path); });
+  return read_status_in_process(path);
+}
 
 RunRecord read_result(const std::filesystem::path& path) {
   probe_in_child(path, [&] { read_result_in_process(path); });
@@ -248,9 +301,8 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   r.test_loss = f.read_vector("/history/test_loss");
   r.test_predictions = f.read_matrix("/test/predictions");
   r.test_targets = f.read_matrix("/test/targets");
-  for (const auto& name : f.attribute_names("/metrics")) {
-    if (name != "units") r.metrics[name] = f.attribute_double("/metrics", name);
-  }
+  r.metrics = read_metrics(f);
+  r.upstream = read_upstream(f);
   return r;
 }
 }  // namespace

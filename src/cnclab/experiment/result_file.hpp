@@ -5,7 +5,9 @@
 // `complete` = 1 is the last thing written, so a file without it (or with a
 // partial name) is never taken for a result.
 #include <filesystem>
+#include <map>
 #include <ostream>
+#include <string>
 
 #include "cnclab/experiment/run_record.hpp"
 
@@ -19,6 +21,17 @@ void write_result(const std::filesystem::path& path, const RunRecord& record);
 // Reads and checks a result file: format, version, completeness, shapes.
 // Throws IoError naming the file and the object on anything else.
 RunRecord read_result(const std::filesystem::path& path);
+
+// What sweeps need of each trial: a result's status and metrics, checked
+// like read_result (safe read, format, version, completeness) but without
+// reading its arrays (several times faster).
+struct ResultStatus {
+  std::string status;          // "complete" | "failed"
+  std::string failure_reason;  // failed only
+  std::map<std::string, double> metrics;
+  std::vector<UpstreamRef> upstream;  // the upstream results it was made from
+};
+ResultStatus read_result_status(const std::filesystem::path& path);
 
 // Human-readable summary for `cnclab show`.
 void print_result(const RunRecord& record, std::ostream& out);

@@ -14,6 +14,13 @@
 
 namespace cnclab {
 
+// An upstream result this run depended on (needs / init_from) when it ran.
+struct UpstreamRef {
+  std::string experiment;   // the upstream experiment file, as resolved
+  std::string result_file;  // its result file
+  std::string identity;     // result_identity() of that result (upstream.hpp)
+};
+
 struct RunRecord {
   std::string experiment;     // spec.name
   std::string resolved_yaml;  // the full resolved config
@@ -35,6 +42,7 @@ struct RunRecord {
   Eigen::MatrixXd test_predictions;  // physical units, one sample per column
   Eigen::MatrixXd test_targets;
   std::map<std::string, double> metrics;
+  std::vector<UpstreamRef> upstream;  // empty without needs / init_from
 };
 
 }  // namespace cnclab

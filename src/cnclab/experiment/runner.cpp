@@ -13,6 +13,7 @@
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/training.hpp"
+#include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/provenance.hpp"
 
 namespace cnclab {
@@ -75,13 +76,27 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   rec.provenance = make_provenance(spec.seed);
   for (const char* stream : kStreams)
     rec.provenance.derived_seeds[stream] = derive_seed(spec.seed, stream);
-  if (spec.dataset.seed) rec.provenance.derived_seeds["generator"] = *spec.dataset.seed;
+  rec.provenance.derived_seeds["generator"] = generator_seed(spec);
 
   check_run_memory(spec);
 
+  // Upstream results (needs, init_from) first: a missing one stops the run
+  // before any work.
+  std::optional<UpstreamResult> init_source;
+  for (const auto& file : upstream_files(spec)) {
+    UpstreamResult up = load_upstream(file, options.results_dir);
+    rec.upstream.push_back({file.string(), up.result_file.string(), result_identity(up.record)});
+    if (spec.init_from && file == spec.init_from->resolved_file) init_source = std::move(up);
+  }
+  if (init_source && init_source->record.provenance.status != "complete") {
+    throw Error("init_from: " + init_source->result_file.string() + " is a failed run (" +
+                init_source->record.provenance.failure_reason + "); nothing to start from");
+  }
+
   // Dataset (generated or reused from the cache).
-  const CachedDataset cached = obtain_dataset(
-      spec.dataset, rec.provenance.derived_seeds["generator"], options.datasets_dir, options.log);
+  const CachedDataset cached =
+      obtain_dataset(spec.dataset, rec.provenance.derived_seeds["generator"], options.datasets_dir,
+                     options.log, options.regenerate_dataset);
   const Dataset data = select_targets(cached.dataset, spec.dataset.targets);
   rec.dataset_file = cached.path.string();
   rec.dataset_hash = cached.content_hash;
@@ -123,7 +138,13 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   const Mlp mlp(rec.model);
   Rng init_rng(spec.seed, "init");
   Eigen::VectorXd params;
-  mlp.initialise(params, init_rng);
+  if (init_source) {
+    // Fine-tuning: start from the upstream network's trained parameters.
+    check_same_network(init_source->record.model, rec.model, init_source->result_file);
+    params = init_source->record.parameters;
+  } else {
+    mlp.initialise(params, init_rng);
+  }
 
   // Training, with the test loss recorded after every epoch.
   const auto mse = [&](const Eigen::VectorXd& p, const Eigen::MatrixXd& x,
@@ -166,7 +187,8 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   rec.provenance.failure_reason = ok ? "" : rec.training.message;
 
   RunOutcome outcome;
-  outcome.result_file = result_path(experiment, options.results_dir);
+  outcome.result_file = options.result_file.empty() ? result_path(experiment, options.results_dir)
+                                                    : options.result_file;
   write_result(outcome.result_file, rec);
   outcome.ok = ok;
   outcome.message = rec.training.message;

@@ -16,6 +16,11 @@ struct RunOptions {
   std::filesystem::path datasets_dir = "datasets";
   ProgressMode progress = ProgressMode::automatic;
   std::ostream* log = nullptr;  // progress and notes; nullptr = silent
+  // Generate the dataset even when the cache holds it (`--regenerate`).
+  bool regenerate_dataset = false;
+  // Where to write the result; empty = result_path(experiment, results_dir).
+  // Upstream results (needs, init_from) are always looked up in results_dir.
+  std::filesystem::path result_file;
 };
 
 struct RunOutcome {

@@ -124,9 +124,40 @@ MlpOptions read_model(const ConfigReader& r) {
   return m;
 }
 
-LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::string>& overrides,
-                                 std::optional<std::uint64_t> seed_override) {
-  for (const auto& text : overrides) doc.apply(parse_override(text));
+// An upstream experiment file named at `key`, relative to the experiment's
+// folder `base`; it must exist.
+std::filesystem::path upstream_file(const ConfigReader& r, const std::string& key,
+                                    const std::string& text, const std::filesystem::path& base) {
+  const std::filesystem::path path =
+      std::filesystem::path(text).is_absolute() ? std::filesystem::path(text) : base / text;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    r.fail(key, "no experiment file " + path.string());
+  }
+  return path.lexically_normal();
+}
+
+void read_graph(const ConfigReader& root, const std::filesystem::path& base, ExperimentSpec& spec) {
+  spec.needs = root.get<std::vector<std::string>>("needs", {});
+  for (const auto& text : spec.needs) {
+    spec.needs_files.push_back(upstream_file(root, "needs", text, base));
+  }
+  if (root.has("init_from")) {
+    const ConfigReader init = root.section("init_from");
+    InitFromSpec from;
+    from.experiment = init.require<std::string>("experiment");
+    from.resolved_file = upstream_file(init, "experiment", from.experiment, base);
+    spec.init_from = from;
+  }
+  // The sweep block is read by `cnclab sweep` (sweep_spec.hpp); a run of the
+  // file runs its base configuration.
+  root.raw("sweep");
+}
+
+LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override>& overrides,
+                                 std::optional<std::uint64_t> seed_override,
+                                 const std::filesystem::path& base) {
+  for (const auto& override : overrides) doc.apply(override);
   if (seed_override) doc.apply(parse_override("seed=" + std::to_string(*seed_override)));
 
   const ConfigReader root = doc.root();
@@ -163,6 +194,7 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<std::str
       root.fail("metrics", "unknown metric '" + m + "'; " + one_of(known));
     }
   }
+  read_graph(root, base, spec);
   doc.check_all_consumed();
   return {spec, to_yaml(spec)};
 }
@@ -177,6 +209,12 @@ void emit_initializer(YAML::Emitter& out, const Initializer& init) {
     out << YAML::Key << "high" << YAML::Value << shortest_double(init.high);
   }
   out << YAML::EndMap;
+}
+
+std::vector<Override> parse_overrides(const std::vector<std::string>& texts) {
+  std::vector<Override> out;
+  for (const auto& text : texts) out.push_back(parse_override(text));
+  return out;
 }
 
 }  // namespace
@@ -194,18 +232,34 @@ std::string read_experiment_name(const ConfigReader& root) {
 }
 
 LoadedExperiment load_experiment(const std::filesystem::path& file,
-                                 const std::vector<std::string>& overrides,
+                                 const std::vector<Override>& overrides,
                                  std::optional<std::uint64_t> seed_override) {
   ConfigDocument doc = ConfigDocument::load(file);
-  LoadedExperiment loaded = read_experiment(doc, overrides, seed_override);
+  LoadedExperiment loaded = read_experiment(doc, overrides, seed_override, file.parent_path());
   loaded.spec.source_file = file;
   return loaded;
+}
+
+LoadedExperiment load_experiment(const std::filesystem::path& file,
+                                 const std::vector<std::string>& overrides,
+                                 std::optional<std::uint64_t> seed_override) {
+  return load_experiment(file, parse_overrides(overrides), seed_override);
 }
 
 LoadedExperiment parse_experiment(const std::string& yaml_text, const std::string& origin,
                                   const std::vector<std::string>& overrides) {
   ConfigDocument doc = ConfigDocument::parse(yaml_text, origin);
-  return read_experiment(doc, overrides, std::nullopt);
+  return read_experiment(doc, parse_overrides(overrides), std::nullopt, ".");
+}
+
+std::vector<std::filesystem::path> upstream_files(const ExperimentSpec& spec) {
+  std::vector<std::filesystem::path> out = spec.needs_files;
+  if (spec.init_from) out.push_back(spec.init_from->resolved_file);
+  std::vector<std::filesystem::path> unique;
+  for (const auto& p : out) {
+    if (std::find(unique.begin(), unique.end(), p) == unique.end()) unique.push_back(p);
+  }
+  return unique;
 }
 
 std::string to_yaml(const ExperimentSpec& spec) {
@@ -274,6 +328,13 @@ std::string to_yaml(const ExperimentSpec& spec) {
   emit_trainer(out, spec.trainer);
 
   out << Key << "metrics" << Value << YAML::Flow << spec.metrics;
+  // Emitted only when set, so experiments without them keep their identity.
+  if (!spec.needs.empty()) out << Key << "needs" << Value << YAML::Flow << spec.needs;
+  if (spec.init_from) {
+    out << Key << "init_from" << Value << BeginMap;
+    out << Key << "experiment" << Value << spec.init_from->experiment;
+    out << EndMap;
+  }
   out << EndMap;
   return std::string(out.c_str()) + "\n";
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/core/override.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"
 #include "cnclab/experiment/scaling.hpp"
@@ -46,6 +47,17 @@ struct NormalisationSpec {
   std::array<double, 2> target_range = {-1.0, 1.0};  // minmax only
 };
 
+// init_from: {experiment: FILE}: start training from the network parameters
+// another experiment's result holds (fine-tuning, transfer learning). The
+// upstream result is the one `cnclab run FILE` writes into the same results
+// folder; its network must have the same layer sizes and activations. The
+// normaliser is refitted on this experiment's training split (a `keep` choice
+// can be added here as another key).
+struct InitFromSpec {
+  std::string experiment;               // as written: path relative to this file
+  std::filesystem::path resolved_file;  // the upstream experiment file
+};
+
 struct ExperimentSpec {
   std::string name;
   std::string description;
@@ -57,6 +69,13 @@ struct ExperimentSpec {
   MlpOptions model;
   TrainerSpec trainer;  // trainer: type sgdm | lm | trainbr (trainer_spec.hpp)
   std::vector<std::string> metrics = {"mse", "rmse", "mae", "max_abs_error", "r2"};
+  // needs: [FILE, ...]: experiments whose results this one depends on (paths
+  // relative to the experiment file given, also when the key comes from an
+  // include). `cnclab reproduce` runs them first and re-runs
+  // this one when their results change. init_from's experiment is implied.
+  std::vector<std::string> needs;
+  std::vector<std::filesystem::path> needs_files;  // resolved paths of `needs`
+  std::optional<InitFromSpec> init_from;
 
   std::filesystem::path source_file;
 };
@@ -75,6 +94,14 @@ struct LoadedExperiment {
 LoadedExperiment load_experiment(const std::filesystem::path& file,
                                  const std::vector<std::string>& overrides = {},
                                  std::optional<std::uint64_t> seed_override = std::nullopt);
+
+// The same with already parsed overrides (sweep trials).
+LoadedExperiment load_experiment(const std::filesystem::path& file,
+                                 const std::vector<Override>& overrides,
+                                 std::optional<std::uint64_t> seed_override);
+
+// The upstream experiment files (needs and init_from), without duplicates.
+std::vector<std::filesystem::path> upstream_files(const ExperimentSpec& spec);
 
 // The same from YAML text (tests and fuzzing); `origin` names it in messages.
 LoadedExperiment parse_experiment(const std::string& yaml_text, const std::string& origin,

@@ -11,8 +11,9 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/spec.hpp"
-#include "cnclab/experiment/tables/text_table.hpp"
+#include "cnclab/experiment/text_table.hpp"
 #include "cnclab/experiment/trochoid_table3.hpp"
+#include "cnclab/io/atomic_file.hpp"
 #include "cnclab/kinematics/engagement.hpp"
 
 namespace cnclab {
@@ -212,6 +213,15 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
   if (job.report.compare_with) compare_with_table3(*job.report.compare_with, g.radius, out);
   res.report = out.str();
   return res;
+}
+
+TrochoidFiles write_trochoid_outputs(const TrochoidJob& job, const fs::path& results_dir) {
+  TrochoidFiles files{results_dir / job.name / (job.name + ".nc"), run_trochoid_job(job)};
+  const fs::path dir = results_dir / job.name;
+  write_text_atomically(files.program, files.outcome.program.text);
+  write_text_atomically(dir / (job.name + "-points.tsv"), files.outcome.point_table);
+  write_text_atomically(dir / (job.name + "-report.txt"), files.outcome.report);
+  return files;
 }
 
 }  // namespace cnclab

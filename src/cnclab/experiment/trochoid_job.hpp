@@ -72,4 +72,14 @@ struct TrochoidOutcome {
 // Computes everything; writes nothing.
 TrochoidOutcome run_trochoid_job(const TrochoidJob& job);
 
+struct TrochoidFiles {
+  std::filesystem::path program;  // results/<name>/<name>.nc
+  TrochoidOutcome outcome;
+};
+
+// Runs the job and writes results/<name>/<name>.nc, <name>-points.tsv and
+// <name>-report.txt, each atomically (what `run` and `reproduce` do).
+TrochoidFiles write_trochoid_outputs(const TrochoidJob& job,
+                                     const std::filesystem::path& results_dir);
+
 }  // namespace cnclab

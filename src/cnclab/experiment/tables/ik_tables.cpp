@@ -13,7 +13,7 @@
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/tables/text_table.hpp"
+#include "cnclab/experiment/text_table.hpp"
 #include "cnclab/kinematics/joint_error.hpp"
 
 namespace cnclab {

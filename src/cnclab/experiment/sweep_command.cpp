@@ -1,0 +1,226 @@
+#include "cnclab/experiment/sweep_command.hpp"
+
+#include <sched.h>
+
+#include <map>
+#include <set>
+#include <thread>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/experiment/dataset_cache.hpp"
+#include "cnclab/experiment/experiment_graph.hpp"
+#include "cnclab/experiment/metrics.hpp"
+#include "cnclab/experiment/sweep_plan.hpp"
+#include "cnclab/experiment/sweep_summary.hpp"
+#include "cnclab/experiment/trial_pool.hpp"
+#include "cnclab/experiment/upstream.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+SweepSpec resolve_spec(const fs::path& experiment, const SweepArguments& args,
+                       const SweepCommandOptions& o) {
+  SweepSpec spec = read_sweep_block(experiment, args.overrides);
+  // A plain command-line value fixes a key the block sweeps.
+  for (const auto& text : args.overrides) {
+    const std::string key = parse_override(text).dotted_key();
+    std::erase_if(spec.parameters, [&](const SweepParameter& p) { return p.key == key; });
+  }
+  for (const auto& p : args.parameters) spec.set(p);
+  if (o.repeats) spec.repeats = *o.repeats;
+  if (o.trials) spec.trials = *o.trials;
+  if (o.sweep_seed) spec.seed = *o.sweep_seed;
+  if (o.objective) spec.objective = parse_objective(*o.objective);
+  if (o.method) {
+    if (*o.method != "grid" && *o.method != "random") {
+      throw ConfigError("--method " + *o.method + ": must be one of: grid, random");
+    }
+    spec.method = *o.method == "grid" ? SweepMethod::grid : SweepMethod::random;
+  }
+  return spec;
+}
+
+std::string trial_text(const SweepPlan& plan, const PlannedTrial& t) {
+  std::string s;
+  for (std::size_t k = 0; k < plan.keys.size(); ++k) {
+    s += (k ? " " : "") + plan.keys[k] + "=" + t.values[k];
+  }
+  return s + (plan.repeats > 1 ? " repeat " + std::to_string(t.repeat) : "");
+}
+
+// --regenerate: regenerates every dataset the trials need once, here, before
+// the trials start (they then hit the cache). Without it the trials obtain
+// their datasets themselves, in parallel, each missing one produced once
+// under the cache's lock. A dataset that cannot be made is left to the
+// trials, which record the error.
+void regenerate_datasets(const SweepPlan& plan, const std::vector<std::size_t>& todo,
+                         const SweepCommandOptions& o, std::ostream* log) {
+  std::set<std::string> seen;
+  for (std::size_t i : todo) {
+    const ExperimentSpec& spec = plan.trials[i].experiment->spec;
+    const std::uint64_t seed = generator_seed(spec);
+    const std::string key = spec.dataset.generator->name() +
+                            spec.dataset.generator->options_yaml() + std::to_string(seed);
+    if (!seen.insert(key).second) continue;
+    try {
+      obtain_dataset(spec.dataset, seed, o.common.datasets_dir, log, true);
+    } catch (const Error&) {
+    }
+  }
+}
+
+std::vector<TrialOutcome> read_outcomes(const fs::path& dir, const SweepPlan& plan) {
+  std::vector<TrialOutcome> out;
+  for (const auto& t : plan.trials) out.push_back(read_trial_outcome(dir, t));
+  return out;
+}
+
+// Cores this process may run on (the affinity mask: what Slurm or taskset
+// grants), at least 1.
+std::size_t available_cores() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) {
+    return static_cast<std::size_t>(std::max(1, CPU_COUNT(&set)));
+  }
+  return std::max<std::size_t>(1, std::thread::hardware_concurrency());
+}
+
+// Trials with init_from/needs whose upstream results changed since they ran
+// are run again (the experiment graph's rule, experiment_graph.hpp); their
+// outcome is reset to missing. Returns how many.
+std::size_t invalidate_stale(const SweepPlan& plan, const std::vector<std::size_t>& mine,
+                             const fs::path& results_dir, std::vector<TrialOutcome>& outcomes) {
+  std::map<fs::path, std::optional<CurrentUpstream>> current;  // per upstream file
+  std::size_t stale = 0;
+  for (std::size_t i : mine) {
+    if (!outcomes[i].done()) continue;
+    std::vector<CurrentUpstream> upstream;
+    for (const auto& file : upstream_files(plan.trials[i].experiment->spec)) {
+      auto it = current.find(file);
+      if (it == current.end()) {
+        std::optional<CurrentUpstream> now;
+        try {
+          const UpstreamResult up = load_upstream(file, results_dir);
+          now = CurrentUpstream{up.experiment.spec.name, result_identity(up.record)};
+        } catch (const IoError&) {
+          // Missing upstream: keep the trial's result (a re-run could only fail).
+        }
+        it = current.emplace(file, now).first;
+      }
+      if (it->second) upstream.push_back(*it->second);
+    }
+    if (!upstream.empty() && !staleness(outcomes[i].upstream, upstream).empty()) {
+      outcomes[i] = TrialOutcome{};
+      ++stale;
+    }
+  }
+  return stale;
+}
+
+int summary_exit_code(const SweepSummary& s) {
+  return s.failed + s.errors + s.missing == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
+                  std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
+                  std::ostream& out, std::ostream& log) {
+  const SweepArguments args = split_sweep_arguments(words);
+  const SweepSpec spec = resolve_spec(experiment, args, o);
+  const auto [shard, shards] =
+      o.shard.empty() ? std::pair<std::size_t, std::size_t>{1, 1} : parse_shard(o.shard);
+  SweepPlan plan = plan_sweep(experiment, args.overrides, seed, spec);
+  const fs::path dir =
+      o.dir.empty() ? o.common.results_dir / plan.experiment / ("sweep-" + plan.hash().substr(0, 8))
+                    : o.dir;
+  store_plan(dir, plan);
+
+  std::vector<TrialOutcome> outcomes = read_outcomes(dir, plan);
+  const std::vector<std::size_t> mine = shard_trials(plan.trials.size(), shard, shards);
+  const std::size_t stale = invalidate_stale(plan, mine, o.common.results_dir, outcomes);
+  std::vector<std::size_t> todo;
+  for (std::size_t i : mine) {
+    if (!outcomes[i].done()) todo.push_back(i);
+  }
+  const std::size_t jobs = o.jobs > 0 ? o.jobs : available_cores();
+  std::ostream* note = o.common.quiet ? nullptr : &log;
+  if (note) {
+    *note << "sweep " << dir.string() << ": " << plan.trials.size() << " trials";
+    if (shards > 1) *note << ", shard " << shard << "/" << shards << " has " << mine.size();
+    if (plan.merged_duplicates)
+      *note << " (" << plan.merged_duplicates << " duplicate samples merged)";
+    if (stale) *note << "; " << stale << " to run again (upstream results changed)";
+    *note << "; " << mine.size() - todo.size() << " already done, running " << todo.size()
+          << " with " << std::min(jobs, std::max<std::size_t>(todo.size(), 1)) << " job(s)\n";
+  }
+  if (o.common.regenerate) regenerate_datasets(plan, todo, o, note);
+
+  std::vector<TrialJob> pool_jobs;
+  for (std::size_t i : todo) {
+    pool_jobs.push_back({&*plan.trials[i].experiment, trial_result_path(dir, plan.trials[i].id),
+                         trial_error_path(dir, plan.trials[i].id)});
+  }
+  PoolOptions pool;
+  pool.jobs = jobs;
+  pool.run.results_dir = o.common.results_dir;
+  pool.run.datasets_dir = o.common.datasets_dir;
+  std::size_t finished = 0;
+  const int stopped = run_trial_pool(pool_jobs, pool, [&](std::size_t job, const TrialExit& exit) {
+    const std::size_t i = todo[job];
+    if (exit.kind == TrialExit::Kind::interrupted) return;
+    outcomes[i] = read_trial_outcome(dir, plan.trials[i]);
+    if (outcomes[i].done()) {
+      std::error_code ec;
+      fs::remove(trial_error_path(dir, plan.trials[i].id), ec);  // a stale note of an earlier try
+    }
+    ++finished;
+    if (!note) return;
+    const TrialOutcome& r = outcomes[i];
+    *note << "[" << finished << "/" << todo.size() << "] " << plan.trials[i].id << " "
+          << trial_text(plan, plan.trials[i]) << ": ";
+    if (r.status == TrialOutcome::Status::complete) {
+      const auto it = r.metrics.find(plan.objective.metric);
+      *note << plan.objective.metric << " "
+            << (it == r.metrics.end() ? std::string("?") : format_metric(it->second)) << "\n";
+    } else {
+      *note << to_string(r.status) << ": " << (r.reason.empty() ? exit.message : r.reason) << "\n";
+    }
+  });
+  if (stopped != 0) {
+    out << "interrupted by signal " << stopped << ": " << finished << " of " << todo.size()
+        << " trials finished; run the same command again to resume (finished trials are kept)\n";
+    return 128 + stopped;
+  }
+
+  if (shards > 1) {
+    std::size_t ok = 0, bad = 0;
+    for (std::size_t i : mine) (outcomes[i].status == TrialOutcome::Status::complete ? ok : bad)++;
+    out << "shard " << shard << "/" << shards << " of " << dir.string() << ": " << ok
+        << " complete, " << bad << " failed; when every shard is done: cnclab sweep merge "
+        << dir.string() << "\n";
+    return bad == 0 ? 0 : 1;
+  }
+  const SweepSummary summary = summarize(plan, outcomes);
+  write_summary(dir / "summary.h5", plan, outcomes, summary);
+  print_summary(out, plan, outcomes, summary, dir);
+  out << "summary: " << (dir / "summary.h5").string() << "\n";
+  return summary_exit_code(summary);
+}
+
+int sweep_merge_command(const fs::path& dir, std::ostream& out) {
+  const SweepPlan plan = load_plan(dir);
+  const std::vector<TrialOutcome> outcomes = read_outcomes(dir, plan);
+  const SweepSummary summary = summarize(plan, outcomes);
+  write_summary(dir / "summary.h5", plan, outcomes, summary);
+  print_summary(out, plan, outcomes, summary, dir);
+  if (summary.missing) {
+    out << summary.missing << " trial(s) have no result yet: run the missing shards (or the "
+        << "sweep without --shard) into " << dir.string() << ", then merge again\n";
+  }
+  out << "summary: " << (dir / "summary.h5").string() << "\n";
+  return summary_exit_code(summary);
+}
+
+}  // namespace cnclab

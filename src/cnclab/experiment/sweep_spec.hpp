@@ -1,0 +1,101 @@
+#pragma once
+// What a sweep varies and how: the `sweep:` block of an experiment file and
+// the same on the command line. Grammar of a parameter's values (the text
+// after `key=` on the command line, or a YAML string in the block):
+//
+//   v1,v2,...            a list: every value in a grid, one of them at random
+//   choice(v1,v2,...)    the same, written as a function
+//   int_range(lo,hi)     integers lo..hi inclusive; int_range(lo,hi,step)
+//   uniform(lo,hi)       a real number drawn uniformly from [lo, hi)   (random only)
+//   log_uniform(lo,hi)   exp(uniform(ln lo, ln hi)), 0 < lo < hi      (random only)
+//
+// Each value is YAML (as for overrides): 1e-4 is a number, [28,20] a list.
+// Commas inside [...], {...}, (...) or quotes do not separate values, so
+// `model.hidden=[28,20],[32,16]` is two values and `model.hidden=[28,20]` one
+// (a plain override). Quote a string that holds a top-level comma:
+// `description='a, b'`. In the YAML block a YAML list gives the values
+// directly: `model.hidden: [[28, 20], [32, 16]]`.
+#include <yaml-cpp/yaml.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cnclab/core/rng.hpp"
+
+namespace cnclab {
+
+struct SweepParameter {
+  enum class Kind { values, int_range, uniform, log_uniform };
+  std::string key;   // dotted config key, e.g. trainer.learning_rate
+  std::string text;  // the values as written, for messages
+  Kind kind = Kind::values;
+  std::vector<YAML::Node> values;              // Kind::values
+  std::int64_t first = 0, last = 0, step = 1;  // Kind::int_range (inclusive)
+  double low = 0, high = 0;                    // uniform, log_uniform
+
+  // values and int_range can be enumerated (grid); the others only sampled.
+  bool enumerable() const { return kind == Kind::values || kind == Kind::int_range; }
+  std::vector<YAML::Node> enumerate() const;
+  // One value drawn with `rng` (uniformly among the enumerable values).
+  YAML::Node sample(Rng& rng) const;
+};
+
+// Parses the values of `key` (grammar above). A single plain value is not a
+// sweep: nullopt. ConfigError naming key and text on an empty list, unknown
+// function, bad bounds (log range with lo <= 0, lo >= hi, step < 1).
+std::optional<SweepParameter> parse_sweep_values(const std::string& key, const std::string& text);
+
+enum class SweepMethod { grid, random };
+
+// The quantity a sweep ranks trials by.
+struct Objective {
+  std::string metric;     // a name from the experiment's `metrics`
+  bool maximize = false;  // false: lower is better
+};
+
+struct SweepSpec {
+  // grid: the cartesian product of the enumerable parameters (first
+  // parameter varies slowest). random: `trials` points, each value drawn from
+  // its own stream derive_seed(seed, "sweep/<key>/<sample index>"), so adding
+  // a parameter or more trials never changes the values drawn before.
+  // Default: random when a parameter is continuous or trials is set, else grid.
+  std::optional<SweepMethod> method;
+  std::size_t trials = 0;             // random: number of points (>= 1)
+  std::optional<std::uint64_t> seed;  // random: sampling seed; default: the experiment seed
+  // Runs per point: repeat 0 uses the trial's own seed, repeat r >= 1 the
+  // seed derive_seed(seed, "repeat/<r>"), so raising `repeats` keeps (and
+  // resumes past) the runs already done. Points report mean ± std (n - 1).
+  std::size_t repeats = 1;
+  // Default: the experiment's first metric, maximised if it is r2.
+  std::optional<Objective> objective;
+  std::vector<SweepParameter> parameters;  // in order of appearance
+
+  SweepMethod resolved_method() const;
+  // ConfigError on: no parameters, repeats 0, random without trials, a
+  // continuous parameter in a grid.
+  void validate() const;
+  // Adds or replaces (same key, keeping its position) a parameter.
+  void set(SweepParameter parameter);
+};
+
+// "rmse", "rmse:min", "r2:max"; ConfigError otherwise.
+Objective parse_objective(const std::string& text);
+
+// Command-line words after the experiment file: `key=value` with one plain
+// value are overrides, with a sweep grammar value sweep parameters.
+struct SweepArguments {
+  std::vector<std::string> overrides;
+  std::vector<SweepParameter> parameters;
+};
+SweepArguments split_sweep_arguments(const std::vector<std::string>& words);
+
+// The `sweep:` block of `file` (after includes and the plain `overrides`, so
+// `sweep.repeats=3` works); an absent block gives an empty spec. Strict:
+// unknown keys and bad values are ConfigErrors naming file:line:col.
+SweepSpec read_sweep_block(const std::filesystem::path& file,
+                           const std::vector<std::string>& overrides);
+
+}  // namespace cnclab

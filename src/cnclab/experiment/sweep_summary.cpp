@@ -1,0 +1,310 @@
+#include "cnclab/experiment/sweep_summary.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/experiment/metrics.hpp"
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/text_table.hpp"
+#include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/file_format.hpp"
+#include "cnclab/io/h5.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kSummaryFormat = "cnclab-sweep-summary";
+constexpr int kSummaryVersion = 1;
+const double kNaN = std::nan("");
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  std::string s = ss.str();
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
+  return s;
+}
+
+double metric_or_nan(const std::map<std::string, double>& m, const std::string& name) {
+  const auto it = m.find(name);
+  return it == m.end() ? kNaN : it->second;
+}
+
+// True if a ranks before b under the objective (NaN last).
+bool better(double a, double b, bool maximize) {
+  if (std::isnan(b)) return !std::isnan(a);
+  if (std::isnan(a)) return false;
+  return maximize ? a > b : a < b;
+}
+
+bool parse_number(const std::string& s, double& v) {
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  return ec == std::errc() && ptr == s.data() + s.size() && !s.empty();
+}
+
+// A column of YAML value texts: numbers when all are, else the texts.
+void write_values(H5File& f, const std::string& name, const std::vector<std::string>& texts) {
+  std::vector<double> numbers;
+  for (const auto& t : texts) {
+    double v = 0;
+    if (!parse_number(t, v)) {
+      f.write_strings(name, texts);
+      return;
+    }
+    numbers.push_back(v);
+  }
+  f.write_vector(name, numbers);
+}
+
+std::string mean_std_text(const PointStats& p, const std::string& metric) {
+  const double mean = metric_or_nan(p.mean, metric);
+  if (std::isnan(mean)) return "—";
+  const double sd = metric_or_nan(p.std, metric);
+  return format_metric(mean) + (std::isnan(sd) ? "" : " ± " + format_metric(sd));
+}
+
+}  // namespace
+
+std::string to_string(TrialOutcome::Status status) {
+  switch (status) {
+    case TrialOutcome::Status::complete:
+      return "complete";
+    case TrialOutcome::Status::failed:
+      return "failed";
+    case TrialOutcome::Status::error:
+      return "error";
+    case TrialOutcome::Status::missing:
+      return "missing";
+  }
+  return "?";
+}
+
+TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) {
+  TrialOutcome o;
+  const fs::path result = trial_result_path(dir, trial.id);
+  std::error_code ec;
+  if (fs::exists(result, ec)) {
+    try {
+      ResultStatus r = read_result_status(result);
+      o.result_file = fs::relative(result, dir, ec).string();
+      o.upstream = std::move(r.upstream);
+      if (r.status == "complete") {
+        o.status = TrialOutcome::Status::complete;
+        o.metrics = std::move(r.metrics);
+      } else {
+        o.status = TrialOutcome::Status::failed;
+        o.reason = r.failure_reason;
+      }
+      return o;
+    } catch (const IoError& e) {
+      o.reason = std::string("unreadable result: ") + e.what();
+      return o;  // missing: run again
+    }
+  }
+  const fs::path note = trial_error_path(dir, trial.id);
+  if (fs::exists(note, ec)) {
+    o.status = TrialOutcome::Status::error;
+    o.reason = read_text(note);
+  }
+  return o;
+}
+
+SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& outcomes) {
+  SweepSummary s;
+  std::map<std::size_t, PointStats> points;
+  const std::string& objective = plan.objective.metric;
+  for (std::size_t i = 0; i < plan.trials.size(); ++i) {
+    const PlannedTrial& t = plan.trials[i];
+    const TrialOutcome& o = outcomes[i];
+    PointStats& p = points[t.point];
+    p.point = t.point;
+    p.values = t.values;
+    p.trials.push_back(i);
+    switch (o.status) {
+      case TrialOutcome::Status::complete:
+        ++s.complete, ++p.complete;
+        if (s.best_trial < 0 ||
+            better(
+                metric_or_nan(o.metrics, objective),
+                metric_or_nan(outcomes[static_cast<std::size_t>(s.best_trial)].metrics, objective),
+                plan.objective.maximize)) {
+          s.best_trial = static_cast<std::ptrdiff_t>(i);
+        }
+        break;
+      case TrialOutcome::Status::failed:
+        ++s.failed, ++p.failed;
+        break;
+      case TrialOutcome::Status::error:
+        ++s.errors, ++p.failed;
+        break;
+      case TrialOutcome::Status::missing:
+        ++s.missing, ++p.missing;
+        break;
+    }
+  }
+  for (auto& [index, p] : points) {
+    for (const auto& metric : plan.metrics) {
+      double sum = 0, sum_sq = 0;
+      std::size_t n = 0;
+      for (std::size_t i : p.trials) {
+        if (outcomes[i].status != TrialOutcome::Status::complete) continue;
+        const double v = metric_or_nan(outcomes[i].metrics, metric);
+        sum += v;
+        ++n;
+      }
+      if (n == 0) continue;
+      const double mean = sum / static_cast<double>(n);
+      for (std::size_t i : p.trials) {
+        if (outcomes[i].status != TrialOutcome::Status::complete) continue;
+        const double d = metric_or_nan(outcomes[i].metrics, metric) - mean;
+        sum_sq += d * d;
+      }
+      p.mean[metric] = mean;
+      p.std[metric] = n >= 2 ? std::sqrt(sum_sq / static_cast<double>(n - 1)) : kNaN;
+    }
+    s.points.push_back(p);
+  }
+  std::stable_sort(s.points.begin(), s.points.end(), [&](const PointStats& a, const PointStats& b) {
+    return better(metric_or_nan(a.mean, objective), metric_or_nan(b.mean, objective),
+                  plan.objective.maximize);
+  });
+  return s;
+}
+
+void write_summary(const fs::path& file, const SweepPlan& plan,
+                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& s) {
+  AtomicOutput out(file);
+  try {
+    H5File f = H5File::create(out.temp_path());
+    write_format(f, kSummaryFormat, kSummaryVersion);
+    f.set_attribute("/", "experiment", plan.experiment);
+    f.set_attribute("/", "method", plan.method);
+    f.set_attribute("/", "repeats", static_cast<std::int64_t>(plan.repeats));
+    f.set_attribute("/", "objective_metric", plan.objective.metric);
+    f.set_attribute("/", "objective_mode", plan.objective.maximize ? "max" : "min");
+    f.set_attribute("/", "plan_hash", plan.hash());
+    f.set_attribute("/", "trials", static_cast<std::int64_t>(plan.trials.size()));
+    f.set_attribute("/", "complete_trials", static_cast<std::int64_t>(s.complete));
+    f.set_attribute("/", "failed", static_cast<std::int64_t>(s.failed));
+    f.set_attribute("/", "errors", static_cast<std::int64_t>(s.errors));
+    f.set_attribute("/", "missing", static_cast<std::int64_t>(s.missing));
+    if (s.best_trial >= 0) {
+      f.set_attribute("/", "best_trial", plan.trials[static_cast<std::size_t>(s.best_trial)].id);
+    }
+    f.write_string("/plan", plan.to_yaml());
+
+    std::vector<std::string> id, status, reason, result, seed;
+    std::vector<std::int64_t> point, repeat;
+    for (std::size_t i = 0; i < plan.trials.size(); ++i) {
+      const PlannedTrial& t = plan.trials[i];
+      id.push_back(t.id);
+      status.push_back(to_string(outcomes[i].status));
+      reason.push_back(outcomes[i].reason);
+      result.push_back(outcomes[i].result_file);
+      seed.push_back(std::to_string(t.seed));
+      point.push_back(static_cast<std::int64_t>(t.point));
+      repeat.push_back(static_cast<std::int64_t>(t.repeat));
+    }
+    f.write_strings("/trials/id", id);
+    f.write_strings("/trials/status", status);
+    f.write_strings("/trials/reason", reason);
+    f.write_strings("/trials/result_file", result);
+    f.write_strings("/trials/seed", seed);
+    f.write_int64s("/trials/point", point);
+    f.write_int64s("/trials/repeat", repeat);
+    for (std::size_t k = 0; k < plan.keys.size(); ++k) {
+      std::vector<std::string> texts;
+      for (const auto& t : plan.trials) texts.push_back(t.values[k]);
+      write_values(f, "/trials/parameters/" + plan.keys[k], texts);
+    }
+    for (const auto& metric : plan.metrics) {
+      std::vector<double> v;
+      for (const auto& o : outcomes) v.push_back(metric_or_nan(o.metrics, metric));
+      f.write_vector("/trials/metrics/" + metric, v);
+    }
+
+    std::vector<std::int64_t> p_index, p_complete, p_failed;
+    for (const auto& p : s.points) {
+      p_index.push_back(static_cast<std::int64_t>(p.point));
+      p_complete.push_back(static_cast<std::int64_t>(p.complete));
+      p_failed.push_back(static_cast<std::int64_t>(p.failed));
+    }
+    f.write_int64s("/points/point", p_index);
+    f.write_int64s("/points/complete", p_complete);
+    f.write_int64s("/points/failed", p_failed);
+    for (std::size_t k = 0; k < plan.keys.size(); ++k) {
+      std::vector<std::string> texts;
+      for (const auto& p : s.points) texts.push_back(p.values[k]);
+      write_values(f, "/points/parameters/" + plan.keys[k], texts);
+    }
+    for (const auto& metric : plan.metrics) {
+      std::vector<double> mean, sd;
+      for (const auto& p : s.points) {
+        mean.push_back(metric_or_nan(p.mean, metric));
+        sd.push_back(metric_or_nan(p.std, metric));
+      }
+      f.write_vector("/points/metrics/" + metric + "/mean", mean);
+      f.write_vector("/points/metrics/" + metric + "/std", sd);
+    }
+    mark_complete(f);  // last
+    f.close();
+    out.commit();
+  } catch (const IoError& e) {
+    throw IoError(file.string() + ": sweep summary not written: " + std::string(e.what()));
+  }
+}
+
+void print_summary(std::ostream& out, const SweepPlan& plan,
+                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& s,
+                   const fs::path& dir) {
+  const std::string& objective = plan.objective.metric;
+  TextTable table;
+  table.header = {"rank"};
+  for (const auto& k : plan.keys) table.header.push_back(k);
+  table.header.push_back(objective + (plan.objective.maximize ? " (max)" : " (min)"));
+  table.header.push_back("ok/runs");
+  for (const auto& m : plan.metrics) {
+    if (m != objective) table.header.push_back(m);
+  }
+  for (std::size_t r = 0; r < s.points.size(); ++r) {
+    const PointStats& p = s.points[r];
+    std::vector<std::string> row = {std::to_string(r + 1)};
+    row.insert(row.end(), p.values.begin(), p.values.end());
+    row.push_back(mean_std_text(p, objective));
+    row.push_back(std::to_string(p.complete) + "/" + std::to_string(p.trials.size()));
+    for (const auto& m : plan.metrics) {
+      if (m != objective) row.push_back(mean_std_text(p, m));
+    }
+    table.rows.push_back(std::move(row));
+  }
+  out << "== sweep " << plan.experiment << ": " << plan.trials.size() << " trials ("
+      << s.points.size() << " points x " << plan.repeats << " repeats, " << plan.method << "); "
+      << s.complete << " complete, " << s.failed + s.errors << " failed";
+  if (s.missing) out << ", " << s.missing << " not run";
+  out << " ==\n";
+  table.print_aligned(out);
+  for (std::size_t i = 0; i < plan.trials.size(); ++i) {
+    const auto st = outcomes[i].status;
+    if (st == TrialOutcome::Status::failed || st == TrialOutcome::Status::error) {
+      std::string values;
+      for (std::size_t k = 0; k < plan.keys.size(); ++k) {
+        values += (k ? " " : "") + plan.keys[k] + "=" + plan.trials[i].values[k];
+      }
+      out << "FAILED trial " << plan.trials[i].id << " (" << values << ", repeat "
+          << plan.trials[i].repeat << "): " << outcomes[i].reason << "\n";
+    }
+  }
+  if (s.best_trial >= 0) {
+    const auto i = static_cast<std::size_t>(s.best_trial);
+    out << "best trial: " << (dir / outcomes[i].result_file).string() << "  " << objective << " "
+        << format_metric(metric_or_nan(outcomes[i].metrics, objective)) << "\n";
+  }
+}
+
+}  // namespace cnclab

@@ -1,0 +1,75 @@
+#pragma once
+// What a sweep produced: each trial's outcome read from the sweep folder, the
+// points (parameter combinations) aggregated over repeats and ranked by the
+// objective, the summary HDF5 file and the table printed at the end.
+//
+// summary.h5 (h5py: f["trials/metrics/rmse"][:]):
+//   /                  attrs format = "cnclab-sweep-summary", format_version = 1,
+//                      experiment, method, repeats, objective_metric,
+//                      objective_mode (min|max), plan_hash, counts trials,
+//                      complete_trials, failed, errors, missing; best_trial (id, when
+//                      any trial completed); complete = 1 (written last)
+//   /plan              the sweep plan (sweep.yaml text)
+//   /trials/{id, status, reason, result_file, seed}   strings, one per trial (plan order)
+//   /trials/{point, repeat}                           int64
+//   /trials/parameters/<key>   float64 when every value is a number, else strings (YAML)
+//   /trials/metrics/<metric>   float64, NaN where the trial has no metrics
+//   /points/...                one row per point, ranked by the objective (best first):
+//                              point, parameters/<key>, complete, failed,
+//                              metrics/<metric>/{mean, std} (std over repeats, n - 1; NaN if n < 2)
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cnclab/experiment/run_record.hpp"
+#include "cnclab/experiment/sweep_plan.hpp"
+
+namespace cnclab {
+
+struct TrialOutcome {
+  // complete / failed: a result file with that status; error: no result but
+  // a note why (exception, crash); missing: not run yet (or unreadable).
+  enum class Status { complete, failed, error, missing };
+  Status status = Status::missing;
+  std::string reason;                     // failed/error: why; missing: unreadable result
+  std::map<std::string, double> metrics;  // complete only
+  std::string result_file;                // relative to the sweep folder; "" if none
+  std::vector<UpstreamRef> upstream;      // upstream results the trial was made from
+
+  // A complete result exists (status complete or failed): resume skips it.
+  bool done() const { return status == Status::complete || status == Status::failed; }
+};
+std::string to_string(TrialOutcome::Status status);
+
+// Reads the trial's result status (read_result_status) or error note from `dir`.
+TrialOutcome read_trial_outcome(const std::filesystem::path& dir, const PlannedTrial& trial);
+
+struct PointStats {
+  std::size_t point = 0;
+  std::vector<std::string> values;                    // per swept key
+  std::vector<std::size_t> trials;                    // indices into plan.trials
+  std::size_t complete = 0, failed = 0, missing = 0;  // failed includes errors
+  std::map<std::string, double> mean, std;            // over complete repeats
+};
+
+struct SweepSummary {
+  std::vector<PointStats> points;  // best first; points without results last
+  std::size_t complete = 0, failed = 0, errors = 0, missing = 0;
+  std::ptrdiff_t best_trial = -1;  // index into plan.trials; -1: none complete
+};
+
+SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& outcomes);
+
+// Written atomically (layout above).
+void write_summary(const std::filesystem::path& file, const SweepPlan& plan,
+                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary);
+
+// The ranked table, failures and the best trial, for people.
+void print_summary(std::ostream& out, const SweepPlan& plan,
+                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary,
+                   const std::filesystem::path& dir);
+
+}  // namespace cnclab

@@ -1,0 +1,48 @@
+#pragma once
+// Runs sweep trials in parallel, each in its own forked child process:
+// single-threaded, isolated (a crash, an abort or an out-of-memory kill ends
+// that trial only) and bit-identical to running the trial alone, because a
+// trial's numbers depend only on its resolved config.
+//
+// Interruption: SIGINT and SIGTERM are received synchronously by the pool
+// (blocked and waited for with sigtimedwait, so no handler and no global
+// flag); the pool forwards SIGTERM to the running trials, waits for them and
+// reports the signal. Their temporaries are partial files (never read as
+// results), so a re-run resumes with nothing lost or duplicated. Children die
+// with the parent (PR_SET_PDEATHSIG), so `kill -9` of the sweep leaves no
+// trial running.
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cnclab/experiment/runner.hpp"
+#include "cnclab/experiment/spec.hpp"
+
+namespace cnclab {
+
+struct TrialJob {
+  const LoadedExperiment* experiment = nullptr;
+  std::filesystem::path result_file;  // where the trial's result goes
+  std::filesystem::path error_file;   // written when the trial stops without a result
+};
+
+// How a child ended.
+struct TrialExit {
+  enum class Kind { result, error, interrupted } kind = Kind::result;
+  std::string message;  // error: the exception text or the signal that killed it
+};
+
+struct PoolOptions {
+  std::size_t jobs = 1;  // trials at once (>= 1)
+  RunOptions run;        // results_dir, datasets_dir; log and result_file are set per trial
+};
+
+// Runs `jobs` and calls `on_done` in the parent as each trial ends. Returns 0
+// when all ran, or the number of the signal (SIGINT, SIGTERM) that stopped
+// the sweep early; trials not started then are simply not run.
+int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options,
+                   const std::function<void(std::size_t job, const TrialExit&)>& on_done);
+
+}  // namespace cnclab

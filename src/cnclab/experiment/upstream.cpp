@@ -1,0 +1,67 @@
+#include "cnclab/experiment/upstream.hpp"
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/hash.hpp"
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/runner.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+std::span<const double> values(const Eigen::VectorXd& v) {
+  return {v.data(), static_cast<std::size_t>(v.size())};
+}
+
+std::string network_text(const MlpOptions& m) {
+  std::string s = std::to_string(m.inputs);
+  for (auto h : m.hidden) s += "-" + std::to_string(h);
+  s += "-" + std::to_string(m.outputs);
+  return s + " (" + to_string(m.hidden_activation) + "/" + to_string(m.output_activation) + ")";
+}
+
+}  // namespace
+
+std::string result_identity(const RunRecord& r) {
+  Hasher h;
+  h.add(r.config_hash).add(std::string_view("\n")).add(r.provenance.status);
+  for (const Eigen::VectorXd* v : {&r.parameters, &r.input_scaling.mean, &r.input_scaling.std,
+                                   &r.target_scaling.mean, &r.target_scaling.std}) {
+    h.add(static_cast<std::uint64_t>(v->size())).add(values(*v));
+  }
+  return h.hex();
+}
+
+UpstreamResult load_upstream(const fs::path& experiment_file, const fs::path& results_dir) {
+  UpstreamResult up{load_experiment(experiment_file), {}, {}};
+  up.result_file = result_path(up.experiment, results_dir);
+  std::error_code ec;
+  if (!fs::exists(up.result_file, ec)) {
+    throw IoError("upstream experiment " + experiment_file.string() + " has no result " +
+                  up.result_file.string() + " yet; `cnclab reproduce` runs upstream experiments " +
+                  "first, or run `cnclab run " + experiment_file.string() + "`");
+  }
+  try {
+    up.record = read_result(up.result_file);
+  } catch (const IoError& e) {
+    throw IoError("upstream experiment " + experiment_file.string() +
+                  ": result unreadable: " + e.what());
+  }
+  return up;
+}
+
+void check_same_network(const MlpOptions& upstream, const MlpOptions& ours,
+                        const fs::path& upstream_result) {
+  const bool same = upstream.inputs == ours.inputs && upstream.outputs == ours.outputs &&
+                    upstream.hidden == ours.hidden &&
+                    upstream.hidden_activation == ours.hidden_activation &&
+                    upstream.output_activation == ours.output_activation;
+  if (!same) {
+    throw ConfigError("init_from: " + upstream_result.string() + " holds a network " +
+                      network_text(upstream) + " but this experiment builds " + network_text(ours) +
+                      "; model.hidden and the activations must match to start from its "
+                      "parameters (and the dataset its inputs/outputs)");
+  }
+}
+
+}  // namespace cnclab

@@ -1,0 +1,117 @@
+// Aggregation over repeats (mean and sample std by hand), ranking by the
+// objective, and the summary file read back through h5 reads.
+#include "cnclab/experiment/sweep_summary.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "cnclab/io/h5.hpp"
+#include "common/temp_dir.hpp"
+
+namespace cnclab {
+namespace {
+
+constexpr double kTol = 1e-12;
+
+// 3 points x 2 repeats over one key; metric "rmse".
+SweepPlan plan_of(bool maximize) {
+  SweepPlan plan;
+  plan.experiment = "e";
+  plan.method = "grid";
+  plan.repeats = 2;
+  plan.objective = {"rmse", maximize};
+  plan.keys = {"trainer.learning_rate"};
+  plan.metrics = {"rmse", "mae"};
+  const char* values[] = {"0.1", "0.01", "0.001"};
+  for (std::size_t p = 0; p < 3; ++p) {
+    for (std::size_t r = 0; r < 2; ++r) {
+      PlannedTrial t;
+      t.point = p;
+      t.repeat = r;
+      t.seed = 42 + r;
+      t.values = {values[p]};
+      t.id = std::string(15, '0') + std::to_string(2 * p + r);
+      plan.trials.push_back(t);
+    }
+  }
+  return plan;
+}
+
+TrialOutcome complete(double rmse, double mae) {
+  TrialOutcome o;
+  o.status = TrialOutcome::Status::complete;
+  o.metrics = {{"rmse", rmse}, {"mae", mae}};
+  o.result_file = "trials/x.h5";
+  return o;
+}
+
+TrialOutcome failed(const std::string& why) {
+  TrialOutcome o;
+  o.status = TrialOutcome::Status::failed;
+  o.reason = why;
+  return o;
+}
+
+std::vector<TrialOutcome> outcomes() {
+  return {complete(2.0, 1.0), complete(4.0, 3.0),  // point 0: rmse mean 3, std sqrt(2)
+          complete(1.0, 0.5), complete(1.5, 0.7),  // point 1: mean 1.25, std sqrt(0.125)
+          failed("diverged"), TrialOutcome{}};     // point 2: failed + missing
+}
+
+TEST(SweepSummary, MeanAndSampleStdOverRepeatsAndRanking) {
+  const SweepPlan plan = plan_of(false);
+  const SweepSummary s = summarize(plan, outcomes());
+  EXPECT_EQ(s.complete, 4u);
+  EXPECT_EQ(s.failed, 1u);
+  EXPECT_EQ(s.missing, 1u);
+  ASSERT_EQ(s.points.size(), 3u);
+  EXPECT_EQ(s.points[0].point, 1u);  // lowest mean rmse first
+  EXPECT_NEAR(s.points[0].mean.at("rmse"), 1.25, kTol);
+  EXPECT_NEAR(s.points[0].std.at("rmse"), std::sqrt(0.125), kTol);
+  EXPECT_EQ(s.points[1].point, 0u);
+  EXPECT_NEAR(s.points[1].mean.at("rmse"), 3.0, kTol);
+  EXPECT_NEAR(s.points[1].std.at("rmse"), std::sqrt(2.0), kTol);
+  EXPECT_NEAR(s.points[1].mean.at("mae"), 2.0, kTol);
+  EXPECT_EQ(s.points[2].point, 2u);  // no results: last
+  EXPECT_EQ(s.points[2].failed, 1u);
+  EXPECT_EQ(s.best_trial, 2);  // rmse 1.0
+
+  const SweepSummary max = summarize(plan_of(true), outcomes());
+  EXPECT_EQ(max.points[0].point, 0u);
+  EXPECT_EQ(max.points[2].point, 2u);  // still last when maximising
+  EXPECT_EQ(max.best_trial, 1);        // rmse 4.0
+}
+
+TEST(SweepSummary, FileHoldsTheTableInPlanAndRankOrder) {
+  testing::TempDir dir;
+  const SweepPlan plan = plan_of(false);
+  const auto o = outcomes();
+  const SweepSummary s = summarize(plan, o);
+  write_summary(dir / "summary.h5", plan, o, s);
+  const H5File f = H5File::open_read(dir / "summary.h5");
+  EXPECT_EQ(f.attribute_string("/", "format"), "cnclab-sweep-summary");
+  EXPECT_EQ(f.attribute_int("/", "failed"), 1);
+  EXPECT_EQ(f.attribute_int("/", "missing"), 1);
+  EXPECT_EQ(f.attribute_string("/", "best_trial"), plan.trials[2].id);
+  EXPECT_EQ(f.read_strings("/trials/status"),
+            (std::vector<std::string>{"complete", "complete", "complete", "complete", "failed",
+                                      "missing"}));
+  const auto rmse = f.read_vector("/trials/metrics/rmse");
+  EXPECT_EQ(rmse[3], 1.5);
+  EXPECT_TRUE(std::isnan(rmse[4]));
+  EXPECT_EQ(f.read_vector("/trials/parameters/trainer.learning_rate")[2], 0.01);
+  EXPECT_EQ(f.read_int64s("/points/point"), (std::vector<std::int64_t>{1, 0, 2}));
+  EXPECT_NEAR(f.read_vector("/points/metrics/rmse/std")[1], std::sqrt(2.0), kTol);
+
+  std::ostringstream table;
+  print_summary(table, plan, o, s, "sweep");
+  const std::string text = table.str();
+  EXPECT_NE(text.find("1.25 ± 0.353553"), std::string::npos) << text;
+  EXPECT_NE(text.find("FAILED trial"), std::string::npos) << text;
+  EXPECT_LT(text.find("0.01 "), text.find("0.1 ")) << text;  // ranked
+}
+
+}  // namespace
+}  // namespace cnclab
