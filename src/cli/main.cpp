@@ -1,6 +1,7 @@
 // cnclab command line: CLI11 wiring only; the work is in the library.
 // Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 #include "cnclab/experiment/compare.hpp"
 #include "cnclab/experiment/dataset_commands.hpp"
 #include "cnclab/experiment/sweep_command.hpp"
+#include "cnclab/experiment/tables/tables.hpp"
 
 namespace {
 
@@ -157,6 +159,31 @@ int main(int argc, char** argv) {
   dataset_show->add_option("file", experiment, "Dataset HDF5 file")->required();
   dataset_show->footer("Example:\n  cnclab dataset show datasets/step_error_surface1.h5");
 
+  std::string toolpath;
+  std::filesystem::path gcode_output;
+  auto* gcode = app.add_subcommand("gcode", "Write a tool path as an ISO 6983 (G-code) program");
+  gcode->add_option("toolpath", toolpath, "Tool path type: trochoid")->required();
+  gcode->add_option("config", experiment, "Tool path YAML (kind: gcode)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  gcode->add_option("overrides", overrides, "Config overrides key=value");
+  gcode->add_option("-o,--output", gcode_output, "G-code file to write (atomically)")->required();
+  gcode->footer(
+      "Example:\n  cnclab gcode trochoid experiments/trochoid/groove_table2.yaml -o groove.nc");
+
+  std::string table;
+  cnclab::TablesOptions tables_options;
+  auto* tables = app.add_subcommand(
+      "tables", "Print a paper's tables from result files beside the paper's numbers");
+  tables->add_option("table", table, "Table name (none: list the tables)");
+  tables->add_option("--results", tables_options.results_dir, "Results folder")
+      ->capture_default_str();
+  tables->add_option("--experiments", tables_options.experiments_dir, "Experiments folder")
+      ->capture_default_str();
+  tables->add_option("--reference", tables_options.reference_dir, "Paper numbers folder")
+      ->capture_default_str();
+  tables->footer("Example:\n  cnclab tables ik    # seed 004 Table 5 and the machine-space error");
+
   auto* version = app.add_subcommand("version", "Print version, git commit and library versions");
   version->footer("Example:\n  cnclab version");
 
@@ -186,6 +213,10 @@ int main(int argc, char** argv) {
           std::cout);
     }
     if (*dataset_show) return cnclab::dataset_show_command(experiment, std::cout);
+    if (*gcode) {
+      return cnclab::gcode_command(toolpath, experiment, gcode_output, overrides, std::cout);
+    }
+    if (*tables) return cnclab::tables_command(table, tables_options, std::cout);
     if (*version) return cnclab::version_command(std::cout);
   } catch (const cnclab::ConfigError& e) {
     std::cerr << "cnclab: error: " << e.what() << "\n";

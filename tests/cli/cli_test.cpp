@@ -292,4 +292,95 @@ TEST_F(Cli, VersionNamesLibraries) {
   }
 }
 
+const std::string kGroove = CNCLAB_SOURCE_DIR "/experiments/trochoid/groove_table2.yaml";
+
+// The first line of `text` containing `key`, with runs of spaces collapsed.
+std::string words_of_line(const std::string& text, const std::string& key) {
+  const auto at = text.find(key);
+  if (at == std::string::npos) return "";
+  const auto begin = text.rfind('\n', at) + 1;
+  std::istringstream line(text.substr(begin, text.find('\n', at) - begin));
+  std::string word, out;
+  while (line >> word) out += (out.empty() ? "" : " ") + word;
+  return out;
+}
+
+TEST_F(Cli, GcodeTrochoidWritesACompleteProgramAtomically) {
+  const Result r =
+      cnclab("gcode trochoid " + kGroove + " trochoid.groove_length=40 report.compare_with=" +
+             CNCLAB_SOURCE_DIR "/results/reference/trochoid_table3.csv -o g.nc");
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  const std::string nc = slurp(dir_ / "g.nc");
+  EXPECT_EQ(nc.rfind("%\nO1004", 0), 0u) << nc.substr(0, 80);
+  EXPECT_NE(nc.find("G21 G17 G90 G94"), std::string::npos);
+  EXPECT_NE(nc.find("G00 Z5.000 (safe retract)"), std::string::npos);
+  EXPECT_NE(nc.find("M30\n%\n"), std::string::npos);
+  EXPECT_NE(r.out.find("trochoid radius R = (W - D)/2 = 4 mm"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("trochoidal loops:"), std::string::npos) << r.out;
+  EXPECT_EQ(outputs().size(), 1u);  // g.nc only: no temporaries left
+  const Result v = cnclab("validate " + kGroove + " trochoid.step=1.2");
+  EXPECT_EQ(v.code, 0) << v.err;
+  EXPECT_NE(v.out.find("step: 1.2"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("kind: gcode"), std::string::npos) << v.out;
+}
+
+TEST_F(Cli, DegenerateGrooveIsAUsageErrorAndWritesNothing) {
+  expect_one_line_error(
+      cnclab("gcode trochoid " + kGroove + " trochoid.cutter_diameter=30 -o g.nc"), 2,
+      "trochoid.cutter_diameter = 30: must be smaller than groove_width 28");
+  expect_one_line_error(cnclab("gcode trochoid " + kGroove + " trochoid.step=0 -o g.nc"), 2,
+                        "trochoid.step = 0");
+  expect_one_line_error(cnclab("gcode helix " + kGroove + " -o g.nc"), 2, "unknown tool path");
+  EXPECT_TRUE(outputs().empty());
+}
+
+// Five tiny axis networks on a 3^5 grid, then `tables ik` reads their results
+// with the paper's reference numbers.
+TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
+  fs::create_directories(dir_ / "experiments/ik");
+  fs::create_directories(dir_ / "experiments/trochoid");
+  for (const char* axis : {"X", "Y", "Z", "A", "C"}) {
+    const std::string lower(1, static_cast<char>(axis[0] - 'A' + 'a'));
+    write("experiments/ik/ik_" + lower + ".yaml",
+          "name: ik_" + lower +
+              "\nseed: 4\n"
+              "dataset: {generator: ik_samples, targets: [" +
+              axis +
+              "], options: {values_per_input: 3}}\n"
+              "split: {train_count: 100, test_count: 100}\n"
+              "normalisation: {inputs: minmax, targets: minmax, target_range: [0.1, 0.9]}\n"
+              "model: {hidden: [6, 4], hidden_activation: sigmoid, output_activation: sigmoid}\n"
+              "trainer: {learning_rate: 0.3, momentum: 0.5, epochs: 3}\n");
+  }
+  write("experiments/trochoid/g.yaml", "include: " + kGroove +
+                                           "\nname: g\ntrochoid: {groove_length: 40}\n"
+                                           "report: {compare_with: " CNCLAB_SOURCE_DIR
+                                           "/results/reference/trochoid_table3.csv}\n");
+  const Result r = cnclab("reproduce experiments --quiet");
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_TRUE(fs::exists(dir_ / "results/g/g.nc"));
+  EXPECT_TRUE(fs::exists(dir_ / "results/g/g-points.tsv"));
+  EXPECT_NE(r.out.find("Table 3 IS Eq. 6"), std::string::npos) << r.out;
+  // No reference folder in the working directory: the table is skipped with a note.
+  EXPECT_NE(r.out.find("(table ik not printed"), std::string::npos) << r.out;
+
+  const Result t = cnclab("tables ik --reference " CNCLAB_SOURCE_DIR "/results/reference");
+  ASSERT_EQ(t.code, 0) << t.err << t.out;
+  EXPECT_NE(t.out.find("Seed 004 Table 5"), std::string::npos) << t.out;
+  EXPECT_EQ(words_of_line(t.out, "Training set"),
+            "Dataset Training set 100 1042 100 1042 100 1042 100 100");
+  EXPECT_EQ(words_of_line(t.out, "Validation set"), "Validation set 43 348 43 348 43 348 43 43");
+  EXPECT_NE(t.out.find("adds up to 2432"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("Machine-space error"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("(n = 100,"), std::string::npos) << t.out;
+
+  expect_one_line_error(cnclab("tables nosuch"), 2, "unknown table 'nosuch'; known: ik");
+  const Result list = cnclab("tables");
+  EXPECT_EQ(list.code, 0);
+  EXPECT_EQ(list.out.rfind("ik  seed 004 Table 5", 0), 0u) << list.out;
+  fs::remove_all(dir_ / "results/ik_c");
+  expect_one_line_error(cnclab("tables ik --reference " CNCLAB_SOURCE_DIR "/results/reference"), 1,
+                        "no result for experiments/ik/ik_c.yaml");
+}
+
 }  // namespace

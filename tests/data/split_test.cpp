@@ -88,3 +88,56 @@ TEST(Split, OptionsValidated) {
 
 }  // namespace
 }  // namespace cnclab
+
+namespace cnclab {
+namespace {
+
+SplitOptions counts(std::optional<std::size_t> train, std::optional<std::size_t> validation,
+                    std::optional<std::size_t> test) {
+  SplitOptions o;
+  o.train_count = train;
+  o.validation_count = validation;
+  o.test_count = test;
+  return o;
+}
+
+// Seed 004 Sec. 4.2: 1042 training, 1040 test, the rest (1043) validation.
+TEST(SplitCounts, Seed004TextGivesTheRestToValidation) {
+  Rng rng(1);
+  const Split s = make_random_split(3125, counts(1042, std::nullopt, 1040), rng);
+  EXPECT_EQ(s.train.size(), 1042u);
+  EXPECT_EQ(s.test.size(), 1040u);
+  EXPECT_EQ(s.validation.size(), 1043u);
+  expect_partition(s, 3125);
+}
+
+TEST(SplitCounts, AbsentPartTakesTheRest) {
+  Rng rng(2);
+  const Split a = make_random_split(10, counts(4, 3, std::nullopt), rng);
+  EXPECT_EQ(a.validation.size(), 3u);
+  EXPECT_EQ(a.test.size(), 3u);
+  const Split b = make_random_split(10, counts(4, std::nullopt, std::nullopt), rng);
+  EXPECT_EQ(b.validation.size(), 0u);
+  EXPECT_EQ(b.test.size(), 6u);
+  const Split c = make_random_split(10, counts(4, 5, 1), rng);
+  EXPECT_EQ(c.test.size(), 1u);
+  expect_partition(c, 10);
+}
+
+// Table 5's 1042 / 1042 / 348 adds up to 2432, not 3125: refused.
+TEST(SplitCounts, CountsThatDoNotFitAreErrorsNamingTheCount) {
+  try {
+    counts(1042, 348, 1042).validate_for(3125);
+    FAIL();
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "test_count");
+    EXPECT_NE(std::string(e.what()).find("2432 for 3125 samples"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(counts(2000, std::nullopt, 2000).validate_for(3125), OptionError);
+  EXPECT_THROW(counts(0, std::nullopt, 1).validate(), OptionError);
+  EXPECT_THROW(counts(std::nullopt, std::nullopt, 5).validate(), OptionError);
+  EXPECT_NO_THROW(counts(3125, std::nullopt, std::nullopt).validate_for(3125));
+}
+
+}  // namespace
+}  // namespace cnclab

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "cnclab/core/error.hpp"
+
 namespace cnclab {
 namespace {
 
@@ -24,6 +26,24 @@ TEST(Metrics, PerfectPredictionHasR2One) {
   const auto m = regression_metrics(y, y, {"r2", "mse"});
   EXPECT_DOUBLE_EQ(m.at("r2"), 1.0);
   EXPECT_DOUBLE_EQ(m.at("mse"), 0.0);
+}
+
+// 21 values 0..20: rank 0.95 * 20 = 19 exactly -> 19; 11 values 0..10: rank
+// 9.5 -> 9.5 (halfway between 9 and 10), as numpy.percentile(x, 95).
+TEST(ErrorSummary, PercentileMeanMaxByHand) {
+  std::vector<double> a;
+  for (int i = 20; i >= 0; --i) a.push_back(i);
+  const ErrorSummary s = summarize_errors(a);
+  EXPECT_EQ(s.count, 21u);
+  EXPECT_DOUBLE_EQ(s.mean, 10.0);
+  EXPECT_DOUBLE_EQ(s.p95, 19.0);
+  EXPECT_DOUBLE_EQ(s.max, 20.0);
+  std::vector<double> b;
+  for (int i = 0; i <= 10; ++i) b.push_back(i);
+  EXPECT_DOUBLE_EQ(summarize_errors(b).p95, 9.5);
+  EXPECT_DOUBLE_EQ(summarize_errors({3.0}).p95, 3.0);
+  EXPECT_TRUE(std::isnan(summarize_errors({}).mean));
+  EXPECT_THROW(summarize_errors({1.0, std::nan("")}), Error);
 }
 
 }  // namespace

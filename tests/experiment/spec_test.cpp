@@ -156,3 +156,43 @@ TEST(Spec, NormalisationMinMax) {
 
 }  // namespace
 }  // namespace cnclab
+
+namespace cnclab {
+namespace {
+
+const std::string kIk = "name: ik\nseed: 1\ndataset:\n  generator: ik_samples\n";
+
+TEST(SpecIk, TargetsCountsAndMinmaxReadAndRoundTrip) {
+  const auto a = parse_experiment(kIk +
+                                      "  targets: [X]\nsplit:\n  train_count: 1042\n"
+                                      "  test_count: 1040\nnormalisation:\n  targets: minmax\n"
+                                      "  target_range: [0.1, 0.9]\n",
+                                  "e.yaml");
+  EXPECT_EQ(a.spec.dataset.targets, std::vector<std::string>{"X"});
+  EXPECT_EQ(a.spec.split.train_count, 1042u);
+  EXPECT_EQ(a.spec.split.test_count, 1040u);
+  EXPECT_FALSE(a.spec.split.validation_count.has_value());
+  EXPECT_EQ(a.spec.normalisation.targets, Scaling::minmax);
+  EXPECT_EQ(a.spec.normalisation.target_range[0], 0.1);
+  const auto b = parse_experiment(a.resolved_yaml, "resolved.yaml");
+  EXPECT_EQ(a.resolved_yaml, b.resolved_yaml);
+}
+
+TEST(SpecIk, SplitAndRangeMistakesAreErrors) {
+  // Table 5's counts do not add up to the 3125 samples of the grid.
+  EXPECT_NE(error_of(kIk, {"split.train_count=1042", "split.validation_count=348",
+                           "split.test_count=1042"})
+                .find("split.test_count = 1042"),
+            std::string::npos);
+  EXPECT_NE(error_of(kIk, {"split.train_count=1042", "split.train=0.5"}).find("either fractions"),
+            std::string::npos);
+  EXPECT_NE(error_of(kIk, {"split.test_count=10"}).find("needs train_count"), std::string::npos);
+  EXPECT_NE(error_of(kIk, {"normalisation.targets=minmax", "normalisation.target_range=[1, 0]"})
+                .find("low < high"),
+            std::string::npos);
+  EXPECT_NE(error_of(kIk, {"normalisation.target_range=[0, 1]"}).find("applies to minmax only"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace cnclab

@@ -20,4 +20,10 @@ std::string shortest_double(double x) {
   return buf;
 }
 
+std::string fixed_decimals(double x, int decimals) {
+  char buf[384];  // %f of the largest double needs 309 digits before the point
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
+  return buf;
+}
+
 }  // namespace cnclab

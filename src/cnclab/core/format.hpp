@@ -9,4 +9,7 @@ namespace cnclab {
 // below 1e15 keep their digits: 2000 -> "2000".
 std::string shortest_double(double x);
 
+// printf's %.<decimals>f: fixed_decimals(-4.00004, 3) -> "-4.000".
+std::string fixed_decimals(double x, int decimals);
+
 }  // namespace cnclab

@@ -1,5 +1,6 @@
 #include "cnclab/data/dataset.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "cnclab/core/error.hpp"
@@ -73,6 +74,35 @@ std::string Dataset::content_hash() const {
     h.add(std::span<const double>(metadata.data(), static_cast<std::size_t>(metadata.size())));
   }
   return h.hex();
+}
+
+Dataset select_targets(const Dataset& d, const std::vector<std::string>& names) {
+  if (names.empty()) return d;
+  std::string available;
+  for (const auto& n : d.target_names) available += (available.empty() ? "" : ", ") + n;
+  std::vector<Eigen::Index> rows;
+  for (const auto& name : names) {
+    const auto it = std::find(d.target_names.begin(), d.target_names.end(), name);
+    if (it == d.target_names.end()) {
+      throw ConfigError("dataset.targets: '" + name + "' is not a target of this dataset (" +
+                        d.generator + " targets: " + available + ")");
+    }
+    const auto row = static_cast<Eigen::Index>(it - d.target_names.begin());
+    if (std::find(rows.begin(), rows.end(), row) != rows.end()) {
+      throw ConfigError("dataset.targets: '" + name + "' is listed twice");
+    }
+    rows.push_back(row);
+  }
+  Dataset out = d;
+  out.targets.resize(static_cast<Eigen::Index>(rows.size()), d.targets.cols());
+  out.target_names.clear();
+  out.target_units.clear();
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    out.targets.row(static_cast<Eigen::Index>(k)) = d.targets.row(rows[k]);
+    out.target_names.push_back(d.target_names[static_cast<std::size_t>(rows[k])]);
+    out.target_units.push_back(d.target_units[static_cast<std::size_t>(rows[k])]);
+  }
+  return out;
 }
 
 }  // namespace cnclab

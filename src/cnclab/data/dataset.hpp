@@ -40,4 +40,9 @@ struct Dataset {
   std::string content_hash() const;
 };
 
+// The dataset with only the named targets, in the order given (one network
+// per output, seed 004 Table 5). Throws ConfigError naming an unknown or
+// repeated name and the available ones. Empty `names`: all targets.
+Dataset select_targets(const Dataset& dataset, const std::vector<std::string>& names);
+
 }  // namespace cnclab

@@ -1,6 +1,7 @@
 #include "cnclab/data/generator.hpp"
 
 #include "cnclab/data/friedman1.hpp"
+#include "cnclab/data/ik_samples.hpp"
 #include "cnclab/data/step_error.hpp"
 
 namespace cnclab {
@@ -11,6 +12,9 @@ std::vector<GeneratorEntry> builtin_generators() {
       {"step_error",
        "step errors of an iso-parametric ball-end tool path on a NURBS surface (seed 000)",
        read_step_error},
+      {"ik_samples",
+       "TTTRR five-axis inverse kinematics: tool poses -> joints X, Y, Z, A, C (seed 004)",
+       read_ik_samples},
   };
 }
 

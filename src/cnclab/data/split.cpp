@@ -3,12 +3,22 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
 
 #include "cnclab/core/error.hpp"
 
 namespace cnclab {
 
 void SplitOptions::validate() const {
+  if (uses_counts()) {
+    if (*train_count < 1) throw OptionError("train_count", "0", "must be at least 1");
+    return;
+  }
+  if (validation_count || test_count) {
+    const char* field = validation_count ? "validation_count" : "test_count";
+    throw OptionError(field, std::to_string(validation_count ? *validation_count : *test_count),
+                      "needs train_count (counts replace the fractions)");
+  }
   if (!(train_fraction > 0.0 && train_fraction <= 1.0)) {
     throw OptionError("train_fraction", std::to_string(train_fraction), "must be in (0, 1]");
   }
@@ -22,16 +32,60 @@ void SplitOptions::validate() const {
   }
 }
 
+void SplitOptions::validate_for(std::size_t n) const {
+  validate();
+  if (!uses_counts()) return;
+  const std::size_t given = *train_count + validation_count.value_or(0) + test_count.value_or(0);
+  const std::string rule =
+      "train_count + validation_count + test_count = " + std::to_string(given) + " for " +
+      std::to_string(n) + " samples";
+  if (given > n) {
+    const char* field = test_count         ? "test_count"
+                        : validation_count ? "validation_count"
+                                           : "train_count";
+    throw OptionError(field,
+                      std::to_string(test_count         ? *test_count
+                                     : validation_count ? *validation_count
+                                                        : *train_count),
+                      rule + ": more than the samples");
+  }
+  if (validation_count && test_count && given != n) {
+    throw OptionError("test_count", std::to_string(*test_count),
+                      rule +
+                          ": with all three counts given they must add up to the samples "
+                          "(leave one out to give it the rest)");
+  }
+}
+
+SplitOptions::Sizes SplitOptions::sizes(std::size_t n) const {
+  validate_for(n);
+  Sizes s;
+  if (uses_counts()) {
+    s.train = *train_count;
+    if (validation_count) {
+      s.validation = *validation_count;
+      s.test = n - s.train - s.validation;
+    } else {
+      s.test = test_count.value_or(n - s.train);
+      s.validation = n - s.train - s.test;
+    }
+    return s;
+  }
+  s.train =
+      std::min(n, static_cast<std::size_t>(std::llround(train_fraction * static_cast<double>(n))));
+  s.validation = std::min(
+      n - s.train,
+      static_cast<std::size_t>(std::llround(validation_fraction * static_cast<double>(n))));
+  s.test = n - s.train - s.validation;
+  return s;
+}
+
 Split make_random_split(std::size_t n, const SplitOptions& options, Rng& rng) {
-  options.validate();
+  const SplitOptions::Sizes sizes = options.sizes(n);
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
   rng.shuffle(order);
-  const auto n_train = std::min(
-      n, static_cast<std::size_t>(std::llround(options.train_fraction * static_cast<double>(n))));
-  const auto n_val = std::min(
-      n - n_train,
-      static_cast<std::size_t>(std::llround(options.validation_fraction * static_cast<double>(n))));
+  const std::size_t n_train = sizes.train, n_val = sizes.validation;
   Split s;
   s.train.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n_train));
   s.validation.assign(order.begin() + static_cast<std::ptrdiff_t>(n_train),

@@ -1,6 +1,7 @@
 #pragma once
 // Random train / validation / test splits of sample indices.
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "cnclab/core/rng.hpp"
@@ -11,7 +12,26 @@ struct SplitOptions {
   double train_fraction = 0.7;       // share of all samples used for training (seed 000: 70 %)
   double validation_fraction = 0.0;  // share held out of training for early stopping
   // test = the rest. validate(): train in (0, 1], validation in [0, 1), sum <= 1.
+  //
+  // Counts instead of fractions (seed 004 Sec. 4.2: 1042 training, 1040 test,
+  // the rest validation). Setting train_count selects counts and the
+  // fractions are unused. Of validation_count and test_count at most one may
+  // be absent and takes the rest (both absent: no validation, test = rest);
+  // when all three are given they must add up to the sample count.
+  std::optional<std::size_t> train_count = std::nullopt;
+  std::optional<std::size_t> validation_count = std::nullopt;
+  std::optional<std::size_t> test_count = std::nullopt;
+
+  bool uses_counts() const { return train_count.has_value(); }
   void validate() const;
+  // validate() and, with counts, that they fit n samples (OptionError naming
+  // the count).
+  void validate_for(std::size_t n) const;
+  // The part sizes for n samples: {train, validation, test}.
+  struct Sizes {
+    std::size_t train = 0, validation = 0, test = 0;
+  };
+  Sizes sizes(std::size_t n) const;
 };
 
 struct Split {
@@ -19,12 +39,13 @@ struct Split {
 };
 
 // A uniformly random partition: one Fisher-Yates shuffle of 0..n-1 with
-// `rng` (n - 1 draws of rng.below), cut into
+// `rng` (n - 1 draws of rng.below), cut into SplitOptions::sizes(n): with
+// fractions
 //   n_train      = round(train_fraction * n),
 //   n_validation = min(round(validation_fraction * n), n - n_train),
 //   n_test       = n - n_train - n_validation,
-// with round = std::llround (halves away from zero). Deterministic given the
-// rng state; each part is sorted ascending.
+// with round = std::llround (halves away from zero); with counts as given.
+// Deterministic given the rng state; each part is sorted ascending.
 Split make_random_split(std::size_t n, const SplitOptions& options, Rng& rng);
 
 }  // namespace cnclab

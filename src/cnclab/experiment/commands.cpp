@@ -1,13 +1,14 @@
 #include "cnclab/experiment/commands.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <iomanip>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
+#include "cnclab/experiment/trochoid_job.hpp"
+#include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/provenance.hpp"
 
 namespace cnclab {
@@ -28,9 +29,27 @@ RunOptions run_options(const CommandOptions& options, std::ostream& log) {
   return r;
 }
 
+namespace {
+
+// A gcode job has no random streams: --seed would silently do nothing.
+bool is_gcode_job(const fs::path& experiment, std::optional<std::uint64_t> seed) {
+  if (experiment_kind(experiment) != "gcode") return false;
+  if (seed) throw ConfigError("--seed: " + experiment.string() + " is a gcode job (no seed)");
+  return true;
+}
+
+}  // namespace
+
 int run_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                 std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
                 std::ostream& log) {
+  if (is_gcode_job(experiment, seed)) {
+    const TrochoidFiles written =
+        write_trochoid_outputs(load_trochoid_job(experiment, overrides), options.results_dir);
+    if (!options.quiet) out << written.outcome.report << "\n";
+    out << written.program.string() << "\n";
+    return 0;
+  }
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed);
   const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
   if (!outcome.ok) {
@@ -45,6 +64,11 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
 
 int validate_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                      std::optional<std::uint64_t> seed, std::ostream& out) {
+  if (is_gcode_job(experiment, seed)) {
+    out << "# " << experiment.string() << ": valid; resolved configuration:\n"
+        << to_yaml(load_trochoid_job(experiment, overrides));
+    return 0;
+  }
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed);
   out << "# " << experiment.string() << ": valid; resolved configuration:\n"
       << loaded.resolved_yaml;
@@ -80,6 +104,17 @@ std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
   std::sort(files.begin(), files.end());
   files.erase(std::unique(files.begin(), files.end()), files.end());
   return files;
+}
+
+int gcode_command(const std::string& toolpath, const fs::path& config, const fs::path& output,
+                  const std::vector<std::string>& overrides, std::ostream& out) {
+  if (toolpath != "trochoid") {
+    throw ConfigError("gcode: unknown tool path '" + toolpath + "'; known: trochoid");
+  }
+  const TrochoidOutcome outcome = run_trochoid_job(load_trochoid_job(config, overrides));
+  write_text_atomically(output, outcome.program.text);
+  out << outcome.report << "\nG-code written to " << output.string() << "\n";
+  return 0;
 }
 
 int version_command(std::ostream& out) {

@@ -33,6 +33,11 @@ int show_command(const std::vector<std::string>& result_files, std::ostream& out
 int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
                       std::ostream& out, std::ostream& log);
 int version_command(std::ostream& out);
+// `cnclab gcode trochoid CONFIG.yaml -o FILE.nc`: the tool path of a `kind:
+// gcode` file written atomically to `output`, its report printed.
+int gcode_command(const std::string& toolpath, const std::filesystem::path& config,
+                  const std::filesystem::path& output, const std::vector<std::string>& overrides,
+                  std::ostream& out);
 
 // The runner options a command's options imply (progress and notes to `log`
 // unless quiet).

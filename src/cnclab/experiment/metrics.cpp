@@ -1,5 +1,6 @@
 #include "cnclab/experiment/metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -47,6 +48,29 @@ std::map<std::string, double> regression_metrics(const Eigen::MatrixXd& predicti
     }
   }
   return out;
+}
+
+ErrorSummary summarize_errors(std::vector<double> e) {
+  ErrorSummary s;
+  s.count = e.size();
+  if (e.empty()) {
+    s.mean = s.p95 = s.max = NAN;
+    return s;
+  }
+  for (double v : e) {
+    if (std::isnan(v))
+      throw Error("error summary: NaN among " + std::to_string(e.size()) + " errors");
+  }
+  std::sort(e.begin(), e.end());
+  double sum = 0;
+  for (double v : e) sum += v;
+  s.mean = sum / static_cast<double>(e.size());
+  s.max = e.back();
+  const double rank = 0.95 * static_cast<double>(e.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(rank));
+  const std::size_t hi = std::min(lo + 1, e.size() - 1);
+  s.p95 = e[lo] + (rank - static_cast<double>(lo)) * (e[hi] - e[lo]);
+  return s;
 }
 
 std::string format_metric(double value) {

@@ -19,6 +19,15 @@ std::map<std::string, double> regression_metrics(const Eigen::MatrixXd& predicti
                                                  const Eigen::MatrixXd& targets,
                                                  const std::vector<std::string>& names);
 
+// Summary of a sample of non-negative errors (tool-tip distances, ...).
+struct ErrorSummary {
+  std::size_t count = 0;
+  double mean = 0, p95 = 0, max = 0;  // NaN when count = 0
+};
+// p95: linear interpolation between order statistics at rank 0.95 (n - 1)
+// (numpy's default 'linear' percentile). Throws cnclab::Error on a NaN.
+ErrorSummary summarize_errors(std::vector<double> errors);
+
 // A metric or loss for people to read: 6 significant digits ("%.6g").
 std::string format_metric(double value);
 

@@ -1,6 +1,8 @@
 // `cnclab reproduce`: the experiment graph, upstream first, reusing current
 // results (DVC-style stage caching; see experiment_graph.hpp).
+#include <cstdio>
 #include <iomanip>
+#include <numbers>
 #include <optional>
 
 #include "cnclab/core/error.hpp"
@@ -9,6 +11,8 @@
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
+#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/experiment/trochoid_job.hpp"
 #include "cnclab/experiment/upstream.hpp"
 
 namespace cnclab {
@@ -29,8 +33,19 @@ struct NodeState {
 
 int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
                       std::ostream& out, std::ostream& log) {
-  const auto files = find_experiments(paths);
-  if (files.empty()) throw ConfigError("reproduce: no experiment files found");
+  const auto found = find_experiments(paths);
+  if (found.empty()) throw ConfigError("reproduce: no experiment files found");
+  // `kind: gcode` jobs (trochoid_job.hpp) take no part in the training graph;
+  // a file whose kind cannot be read stays in it, to be reported there.
+  std::vector<fs::path> files, gcode_jobs;
+  for (const auto& file : found) {
+    bool gcode = false;
+    try {
+      gcode = experiment_kind(file) == "gcode";
+    } catch (const ConfigError&) {
+    }
+    (gcode ? gcode_jobs : files).push_back(file);
+  }
   const std::vector<GraphNode> graph = load_graph(files);
   std::vector<NodeState> state(graph.size());
   std::vector<Row> rows;
@@ -114,6 +129,28 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
       exit_code = std::max(exit_code, 1);
     }
   }
+  // G-code jobs take seconds and write text files: always re-run.
+  std::string reports;
+  for (const auto& file : gcode_jobs) {
+    if (!options.quiet) log << "[gcode] " << file.string() << "\n";
+    try {
+      const TrochoidJob job = load_trochoid_job(file);
+      const TrochoidFiles written = write_trochoid_outputs(job, options.results_dir);
+      char detail[160];
+      std::snprintf(detail, sizeof detail,
+                    "%zu points; max radial engagement %.1f deg in the loops (slotting 180)",
+                    written.outcome.groove.points.size(),
+                    written.outcome.max_engagement_rad * 180.0 / std::numbers::pi);
+      rows.push_back({job.name, "ran", "gcode job", detail, written.program.string()});
+      reports += "\n== " + job.name + " ==\n" + written.outcome.report;
+    } catch (const ConfigError& e) {
+      rows.push_back({file.string(), "CONFIG ERROR", "gcode job", e.what(), ""});
+      exit_code = 2;
+    } catch (const Error& e) {
+      rows.push_back({file.string(), "ERROR", "gcode job", e.what(), ""});
+      exit_code = std::max(exit_code, 1);
+    }
+  }
   out << "\n== cnclab reproduce: " << rows.size() << " experiment(s) ==\n";
   for (const auto& row : rows) {
     out << std::left << std::setw(28) << row.name << " " << std::setw(12) << row.action << " "
@@ -121,6 +158,10 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
     if (!row.detail.empty()) out << std::string(30, ' ') << row.detail << "\n";
     if (!row.file.empty()) out << std::string(30, ' ') << row.file << "\n";
   }
+  out << reports;
+  TablesOptions tables;
+  tables.results_dir = options.results_dir;
+  print_available_tables(tables, out);
   return exit_code;
 }
 

@@ -37,8 +37,11 @@ void write_scaling(H5File& f, const std::string& g, const ScalingRecord& s,
     f.write_vector(g + "/mean", to_std(s.mean), units);
     f.write_vector(g + "/std", to_std(s.std), units);
   } else if (s.method == Scaling::minmax) {
-    // y = 2 (x - min) / (max - min) - 1; constant features (min = max): y = x.
-    f.set_attribute(g, "formula", "mapminmax to [-1, 1]");
+    // y = (y_max - y_min) (x - min) / (max - min) + y_min; constant features
+    // (min = max): y = x.
+    f.set_attribute(g, "formula", "mapminmax to [y_min, y_max]");
+    f.set_attribute(g, "y_min", s.y_min);
+    f.set_attribute(g, "y_max", s.y_max);
     f.write_vector(g + "/min", to_std(s.min), units);
     f.write_vector(g + "/max", to_std(s.max), units);
   }
@@ -56,6 +59,9 @@ ScalingRecord read_scaling(const H5File& f, const std::string& g) {
   } else if (s.method == Scaling::minmax) {
     s.min = to_eigen(f.read_vector(g + "/min"));
     s.max = to_eigen(f.read_vector(g + "/max"));
+    // Results written before the range was configurable used [-1, 1].
+    if (f.has_attribute(g, "y_min")) s.y_min = f.attribute_double(g, "y_min");
+    if (f.has_attribute(g, "y_max")) s.y_max = f.attribute_double(g, "y_max");
   }
   return s;
 }

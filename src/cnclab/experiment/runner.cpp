@@ -36,7 +36,9 @@ Eigen::MatrixXd columns(const Eigen::MatrixXd& m, const std::vector<std::size_t>
 // the network's parameters four times (parameters, velocity, gradient, best),
 // and one activation per unit and evaluated sample.
 void check_run_memory(const ExperimentSpec& spec) {
-  const auto [samples, inputs, outputs] = spec.dataset.generator->shape();
+  const auto [samples, inputs, all_outputs] = spec.dataset.generator->shape();
+  const std::size_t outputs =
+      spec.dataset.targets.empty() ? all_outputs : spec.dataset.targets.size();
   const double n = static_cast<double>(samples);
   const double values = static_cast<double>(inputs + outputs);
   double parameters = 0, units = static_cast<double>(inputs + outputs);
@@ -95,7 +97,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   const CachedDataset cached =
       obtain_dataset(spec.dataset, rec.provenance.derived_seeds["generator"], options.datasets_dir,
                      options.log, options.regenerate_dataset);
-  const Dataset& data = cached.dataset;
+  const Dataset data = select_targets(cached.dataset, spec.dataset.targets);
   rec.dataset_file = cached.path.string();
   rec.dataset_hash = cached.content_hash;
   rec.input_names = data.input_names;
@@ -119,8 +121,9 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   Eigen::MatrixXd y_test = columns(data.targets, rec.split.test);
 
   // Normalisation, fitted on the training split only (scaling.hpp).
-  rec.input_scaling = ScalingRecord::fit(spec.normalisation.inputs, x_train);
-  rec.target_scaling = ScalingRecord::fit(spec.normalisation.targets, y_train);
+  const NormalisationSpec& norm = spec.normalisation;
+  rec.input_scaling = ScalingRecord::fit(norm.inputs, x_train, norm.input_range);
+  rec.target_scaling = ScalingRecord::fit(norm.targets, y_train, norm.target_range);
   const auto scale_x = [&](const Eigen::MatrixXd& m) { return rec.input_scaling.transform(m); };
   const auto scale_y = [&](const Eigen::MatrixXd& m) { return rec.target_scaling.transform(m); };
   const Eigen::MatrixXd xn_train = scale_x(x_train), yn_train = scale_y(y_train);

@@ -1,6 +1,5 @@
 #include "cnclab/experiment/scaling.hpp"
 
-#include "cnclab/nn/minmax.hpp"
 #include "cnclab/nn/zscore.hpp"
 
 namespace cnclab {
@@ -27,7 +26,8 @@ bool parse_scaling(const std::string& text, Scaling& s) {
   return false;
 }
 
-ScalingRecord ScalingRecord::fit(Scaling method, const Eigen::MatrixXd& train) {
+ScalingRecord ScalingRecord::fit(Scaling method, const Eigen::MatrixXd& train,
+                                 const std::array<double, 2>& range) {
   ScalingRecord r;
   r.method = method;
   if (method == Scaling::zscore) {
@@ -36,10 +36,12 @@ ScalingRecord ScalingRecord::fit(Scaling method, const Eigen::MatrixXd& train) {
     r.mean = z.mean();
     r.std = z.std();
   } else if (method == Scaling::minmax) {
-    MinMaxNormaliser m;
+    MinMaxNormaliser m(range[0], range[1]);
     m.fit(train);
     r.min = m.x_min();
     r.max = m.x_max();
+    r.y_min = range[0];
+    r.y_max = range[1];
   }
   return r;
 }
@@ -49,7 +51,7 @@ Eigen::MatrixXd ScalingRecord::transform(const Eigen::MatrixXd& data) const {
     case Scaling::zscore:
       return ZScoreNormaliser(mean, std).transform(data);
     case Scaling::minmax:
-      return MinMaxNormaliser(min, max).transform(data);
+      return MinMaxNormaliser(min, max, y_min, y_max).transform(data);
     case Scaling::none:
       break;
   }
@@ -61,7 +63,7 @@ Eigen::MatrixXd ScalingRecord::inverse_transform(const Eigen::MatrixXd& scaled) 
     case Scaling::zscore:
       return ZScoreNormaliser(mean, std).inverse_transform(scaled);
     case Scaling::minmax:
-      return MinMaxNormaliser(min, max).inverse_transform(scaled);
+      return MinMaxNormaliser(min, max, y_min, y_max).inverse_transform(scaled);
     case Scaling::none:
       break;
   }

@@ -17,6 +17,14 @@ Scaling read_scaling(const ConfigReader& r, const std::string& key) {
   return s;
 }
 
+std::array<double, 2> read_range(const ConfigReader& r, const std::string& key,
+                                 std::array<double, 2> fallback) {
+  if (!r.has(key)) return fallback;
+  const auto v = r.require<std::vector<double>>(key);
+  if (v.size() != 2 || !(v[0] < v[1])) r.fail(key, "must be a list [low, high] with low < high");
+  return {v[0], v[1]};
+}
+
 Activation read_activation(const ConfigReader& r, const std::string& key, Activation fallback) {
   const auto text = r.get<std::string>(key, to_string(fallback));
   try {
@@ -51,18 +59,27 @@ DatasetSpec read_dataset_spec(const ConfigReader& r) {
   DatasetSpec spec;
   spec.generator = read_generator(r);
   spec.seed = r.optional<std::uint64_t>("seed");
+  spec.targets = r.get<std::vector<std::string>>("targets", spec.targets);
   return spec;
 }
 
 namespace {
 
-SplitOptions read_split(const ConfigReader& r) {
+SplitOptions read_split(const ConfigReader& r, std::size_t samples) {
   SplitOptions s;
+  s.train_count = r.optional<std::size_t>("train_count");
+  s.validation_count = r.optional<std::size_t>("validation_count");
+  s.test_count = r.optional<std::size_t>("test_count");
+  if (s.train_count || s.validation_count || s.test_count) {
+    for (const char* key : {"train", "validation"}) {
+      if (r.has(key)) r.fail(key, "give either fractions (train, validation) or counts, not both");
+    }
+  }
   s.train_fraction = r.get<double>("train", s.train_fraction);
   s.validation_fraction = r.get<double>("validation", s.validation_fraction);
   r.validate([&] {
     try {
-      s.validate();
+      s.validate_for(samples);
     } catch (const OptionError& e) {
       // SplitOptions names its fields *_fraction; the YAML keys are shorter.
       const std::string key = e.field() == "train_fraction"        ? "train"
@@ -145,21 +162,24 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
 
   const ConfigReader root = doc.root();
   ExperimentSpec spec;
-  spec.name = root.require<std::string>("name");
-  for (char c : spec.name) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '_' || c == '-' || c == '.';
-    if (!ok || spec.name.front() == '.') {
-      root.fail("name", "must be a file-name-safe identifier (letters, digits, '_', '-', '.')");
-    }
+  if (root.get<std::string>("kind", "train") != "train") {
+    root.fail("kind", "must be train here (gcode files are run by their own reader)");
   }
+  spec.name = read_experiment_name(root);
   spec.description = root.get<std::string>("description", "");
   spec.seed = root.require<std::uint64_t>("seed");
   spec.dataset = read_dataset_spec(root.section("dataset"));
-  spec.split = read_split(root.section("split"));
+  spec.split = read_split(root.section("split"), spec.dataset.generator->shape().samples);
   const ConfigReader norm = root.section("normalisation");
   spec.normalisation.inputs = read_scaling(norm, "inputs");
   spec.normalisation.targets = read_scaling(norm, "targets");
+  for (const auto& [key, scaling] : {std::pair{"input_range", spec.normalisation.inputs},
+                                     std::pair{"target_range", spec.normalisation.targets}}) {
+    if (norm.has(key) && scaling != Scaling::minmax) norm.fail(key, "applies to minmax only");
+  }
+  spec.normalisation.input_range = read_range(norm, "input_range", spec.normalisation.input_range);
+  spec.normalisation.target_range =
+      read_range(norm, "target_range", spec.normalisation.target_range);
   spec.model = read_model(root.section("model"));
   spec.trainer = read_trainer(root.section("trainer"));
   if (is_levenberg_marquardt(spec.trainer) && spec.model.dropout_keep_probability < 1.0) {
@@ -198,6 +218,18 @@ std::vector<Override> parse_overrides(const std::vector<std::string>& texts) {
 }
 
 }  // namespace
+
+std::string read_experiment_name(const ConfigReader& root) {
+  const auto name = root.require<std::string>("name");
+  for (char c : name) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    if (!ok || name.front() == '.') {
+      root.fail("name", "must be a file-name-safe identifier (letters, digits, '_', '-', '.')");
+    }
+  }
+  return name;
+}
 
 LoadedExperiment load_experiment(const std::filesystem::path& file,
                                  const std::vector<Override>& overrides,
@@ -241,17 +273,38 @@ std::string to_yaml(const ExperimentSpec& spec) {
   out << Key << "dataset" << Value << BeginMap;
   out << Key << "generator" << Value << spec.dataset.generator->name();
   if (spec.dataset.seed) out << Key << "seed" << Value << *spec.dataset.seed;
+  if (!spec.dataset.targets.empty()) {
+    out << Key << "targets" << Value << YAML::Flow << spec.dataset.targets;
+  }
   out << Key << "options" << Value << YAML::Load(spec.dataset.generator->options_yaml());
   out << EndMap;
 
+  const SplitOptions& split = spec.split;
   out << Key << "split" << Value << BeginMap;
-  out << Key << "train" << Value << shortest_double(spec.split.train_fraction);
-  out << Key << "validation" << Value << shortest_double(spec.split.validation_fraction);
+  if (split.uses_counts()) {
+    out << Key << "train_count" << Value << *split.train_count;
+    if (split.validation_count)
+      out << Key << "validation_count" << Value << *split.validation_count;
+    if (split.test_count) out << Key << "test_count" << Value << *split.test_count;
+  } else {
+    out << Key << "train" << Value << shortest_double(split.train_fraction);
+    out << Key << "validation" << Value << shortest_double(split.validation_fraction);
+  }
   out << EndMap;
 
+  const NormalisationSpec& norm = spec.normalisation;
+  const auto range = [](const std::array<double, 2>& r) {
+    return std::vector<std::string>{shortest_double(r[0]), shortest_double(r[1])};
+  };
   out << Key << "normalisation" << Value << BeginMap;
-  out << Key << "inputs" << Value << to_string(spec.normalisation.inputs);
-  out << Key << "targets" << Value << to_string(spec.normalisation.targets);
+  out << Key << "inputs" << Value << to_string(norm.inputs);
+  out << Key << "targets" << Value << to_string(norm.targets);
+  if (norm.inputs == Scaling::minmax) {
+    out << Key << "input_range" << Value << YAML::Flow << range(norm.input_range);
+  }
+  if (norm.targets == Scaling::minmax) {
+    out << Key << "target_range" << Value << YAML::Flow << range(norm.target_range);
+  }
   out << EndMap;
 
   const MlpOptions& m = spec.model;

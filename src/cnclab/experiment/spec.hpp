@@ -2,6 +2,7 @@
 // An experiment: what `cnclab run` reads from YAML. Every section maps onto a
 // typed options struct of the module that uses it; reading is strict (see
 // core/config.hpp) and validate() of each struct runs with the YAML location.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cnclab/core/config.hpp"
 #include "cnclab/core/override.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"
@@ -25,18 +27,24 @@ struct DatasetSpec {
   std::shared_ptr<const DatasetGenerator> generator;
   // Generator seed; absent = derived from the experiment seed ("generator").
   std::optional<std::uint64_t> seed;
+  // targets: [X] - the generator's targets the model learns, in this order;
+  // empty = all. One network per output (seed 004 Table 5) selects one.
+  std::vector<std::string> targets;
 };
 
 // Reads a `dataset` section (strict; `cnclab dataset generate` and experiments).
 DatasetSpec read_dataset_spec(const ConfigReader& dataset_section);
 
-// normalisation: {inputs: zscore|minmax|none, targets: zscore|minmax|none},
-// fitted on the training split only: zscore = seed 000 Eq. 7 (n-1 sample
-// std), minmax = MATLAB mapminmax to [-1, 1] (seed 002, trainbr's usual
-// companion). See scaling.hpp.
+// normalisation: {inputs: zscore|minmax|none, targets: ..., input_range:
+// [low, high], target_range: [low, high]}, fitted on the training split
+// only: zscore = seed 000 Eq. 7 (n-1 sample std), minmax = MATLAB mapminmax
+// to the range (default [-1, 1], seed 002 and trainbr's usual companion; a
+// sigmoid output needs one inside (0, 1), seed 004). See scaling.hpp.
 struct NormalisationSpec {
   Scaling inputs = Scaling::zscore;
   Scaling targets = Scaling::zscore;
+  std::array<double, 2> input_range = {-1.0, 1.0};   // minmax only: [low, high], low < high
+  std::array<double, 2> target_range = {-1.0, 1.0};  // minmax only
 };
 
 // init_from: {experiment: FILE}: start training from the network parameters
@@ -100,5 +108,9 @@ LoadedExperiment parse_experiment(const std::string& yaml_text, const std::strin
                                   const std::vector<std::string>& overrides = {});
 
 std::string to_yaml(const ExperimentSpec& spec);
+
+// The required `name` key of an experiment file: a file-name-safe identifier
+// (letters, digits, '_', '-', '.'; no leading '.'), else ConfigError.
+std::string read_experiment_name(const ConfigReader& root);
 
 }  // namespace cnclab

@@ -1,6 +1,8 @@
 #include "cnclab/experiment/text_table.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 namespace cnclab {
 namespace {
@@ -66,6 +68,13 @@ void TextTable::print_csv(std::ostream& out) const {
   };
   line(header);
   for (const auto& row : rows) line(row);
+}
+
+std::string table_number(double value, int digits) {
+  if (std::isnan(value)) return "-";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, value);
+  return buf;
 }
 
 }  // namespace cnclab

@@ -1,6 +1,7 @@
 #pragma once
 // A table of text cells rendered for a terminal (aligned columns), as
-// Markdown or as CSV (RFC 4180 quoting). Shared by `sweep` and `compare`.
+// Markdown or as CSV (RFC 4180 quoting). Shared by `sweep`, `compare` and
+// `tables`.
 #include <ostream>
 #include <string>
 #include <vector>
@@ -15,5 +16,8 @@ struct TextTable {
   void print_markdown(std::ostream& out) const;
   void print_csv(std::ostream& out) const;
 };
+
+// Numbers for paper tables: %.*g with `digits` significant digits; NaN as "-".
+std::string table_number(double value, int digits = 4);
 
 }  // namespace cnclab

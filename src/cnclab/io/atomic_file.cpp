@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <fstream>
 #include <string_view>
 
 #include "cnclab/core/error.hpp"
@@ -96,6 +97,17 @@ bool is_partial_path(const fs::path& path) {
   const std::string_view pid = rest.substr(0, dash), tag = rest.substr(dash + 1);
   return std::all_of(pid.begin(), pid.end(), is_digit) && tag.size() == 16 &&
          std::all_of(tag.begin(), tag.end(), is_hex);
+}
+
+void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
+  AtomicOutput out(path);
+  {
+    std::ofstream f(out.temp_path(), std::ios::binary);
+    f << text;
+    f.flush();
+    if (!f) throw IoError(path.string() + ": write failed (" + out.temp_path().string() + ")");
+  }
+  out.commit();
 }
 
 }  // namespace cnclab

@@ -13,6 +13,7 @@
 // out.commit(). Leaving the scope without commit() removes the temporary, so
 // an abandoned or failed write leaves the previous file at `path` untouched.
 #include <filesystem>
+#include <string>
 
 namespace cnclab {
 
@@ -37,6 +38,11 @@ class AtomicOutput {
   std::filesystem::path temp_;
   bool committed_ = false;
 };
+
+// Writes `text` to `path` through an AtomicOutput (G-code, reports, tables).
+// Throws IoError naming the file; the previous file, if any, is untouched on
+// failure.
+void write_text_atomically(const std::filesystem::path& path, const std::string& text);
 
 // True if the file name has the temporary's pattern above.
 bool is_partial_path(const std::filesystem::path& path);

@@ -1,21 +1,31 @@
 #include "cnclab/nn/minmax.hpp"
 
 #include <cmath>
+#include <string>
 
 #include "cnclab/core/error.hpp"
 
 namespace cnclab {
 
-MinMaxNormaliser::MinMaxNormaliser(Eigen::VectorXd x_min, Eigen::VectorXd x_max)
-    : x_min_(std::move(x_min)), x_max_(std::move(x_max)) {
-  if (x_min_.size() != x_max_.size()) throw Error("min-max: x_min and x_max sizes differ");
-  for (Eigen::Index i = 0; i < x_min_.size(); ++i) {
-    if (!std::isfinite(x_min_[i]) || !std::isfinite(x_max_[i]) || !(x_min_[i] <= x_max_[i])) {
-      throw Error("min-max: feature " + std::to_string(i) + " has range [" +
-                  std::to_string(x_min_[i]) + ", " + std::to_string(x_max_[i]) +
-                  "] (must be finite with min <= max)");
+MinMaxNormaliser::MinMaxNormaliser(double y_min, double y_max) : y_min_(y_min), y_max_(y_max) {
+  if (!std::isfinite(y_min) || !std::isfinite(y_max) || !(y_min < y_max)) {
+    throw Error("min-max: range [" + std::to_string(y_min) + ", " + std::to_string(y_max) +
+                "] must be finite with y_min < y_max");
+  }
+}
+
+MinMaxNormaliser::MinMaxNormaliser(Eigen::VectorXd x_min, Eigen::VectorXd x_max, double y_min,
+                                   double y_max)
+    : MinMaxNormaliser(y_min, y_max) {
+  if (x_min.size() != x_max.size()) throw Error("min-max: min and max sizes differ");
+  for (Eigen::Index i = 0; i < x_min.size(); ++i) {
+    if (!std::isfinite(x_min[i]) || !std::isfinite(x_max[i]) || !(x_min[i] <= x_max[i])) {
+      throw Error("min-max: feature " + std::to_string(i) + " has min " + std::to_string(x_min[i]) +
+                  " and max " + std::to_string(x_max[i]) + " (must be finite with min <= max)");
     }
   }
+  x_min_ = std::move(x_min);
+  x_max_ = std::move(x_max);
   set_gain();
 }
 
@@ -32,17 +42,17 @@ void MinMaxNormaliser::fit(const Eigen::MatrixXd& data) {
 }
 
 void MinMaxNormaliser::set_gain() {
-  const Eigen::Index n = x_min_.size();
-  gain_.resize(n);
-  offset_.resize(n);
+  gain_.resize(x_min_.size());
+  offset_.resize(x_min_.size());
   constant_.clear();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (x_max_[i] > x_min_[i]) {
-      gain_[i] = (kYMax - kYMin) / (x_max_[i] - x_min_[i]);
+  for (Eigen::Index i = 0; i < x_min_.size(); ++i) {
+    const double span = x_max_[i] - x_min_[i];
+    if (span > 0) {
+      gain_[i] = (y_max_ - y_min_) / span;
       offset_[i] = x_min_[i];
     } else {
       gain_[i] = 1.0;
-      offset_[i] = kYMin;
+      offset_[i] = y_min_;
       constant_.push_back(i);
     }
   }
@@ -57,12 +67,12 @@ void MinMaxNormaliser::check_rows(const Eigen::MatrixXd& data) const {
 
 Eigen::MatrixXd MinMaxNormaliser::transform(const Eigen::MatrixXd& data) const {
   check_rows(data);
-  return ((data.colwise() - offset_).array().colwise() * gain_.array()) + kYMin;
+  return ((data.colwise() - offset_).array().colwise() * gain_.array()) + y_min_;
 }
 
 Eigen::MatrixXd MinMaxNormaliser::inverse_transform(const Eigen::MatrixXd& scaled) const {
   check_rows(scaled);
-  return ((scaled.array() - kYMin).colwise() / gain_.array()).matrix().colwise() + offset_;
+  return ((scaled.array() - y_min_).colwise() / gain_.array()).matrix().colwise() + offset_;
 }
 
 }  // namespace cnclab

@@ -1,0 +1,46 @@
+#pragma once
+// `cnclab tables NAME`: the papers' tables regenerated from result files and
+// printed beside the papers' own numbers (results/reference/). Adding a
+// table: write its printer in its own file and list it in builtin_tables().
+#include <filesystem>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cnclab/core/error.hpp"
+
+namespace cnclab {
+
+struct TablesOptions {
+  std::filesystem::path results_dir = "results";              // where `run`/`reproduce` wrote
+  std::filesystem::path experiments_dir = "experiments";      // the experiment YAML files
+  std::filesystem::path reference_dir = "results/reference";  // transcribed paper numbers
+};
+
+// A table's input results do not exist yet (run the experiments first).
+class MissingResults : public IoError {
+ public:
+  using IoError::IoError;
+};
+
+struct TableEntry {
+  std::string name;     // `cnclab tables <name>`
+  std::string summary;  // one line
+  // Prints the table(s); throws MissingResults when results are absent.
+  std::function<void(const TablesOptions&, std::ostream&)> print;
+};
+
+// The built-in tables in a fixed order; a new list each call.
+std::vector<TableEntry> builtin_tables();
+
+// Prints table `name`; an empty name lists the tables. Unknown names are
+// ConfigErrors listing the known ones. Returns the exit code (0).
+int tables_command(const std::string& name, const TablesOptions& options, std::ostream& out);
+
+// Prints every table whose results exist; a table whose inputs are missing
+// or unusable gets a one-line note instead (what `cnclab reproduce` ends
+// with).
+void print_available_tables(const TablesOptions& options, std::ostream& out);
+
+}  // namespace cnclab

@@ -1,0 +1,85 @@
+#pragma once
+// The trochoidal groove G-code job (seed 004 Sec. 3, Tables 2-3): a
+// non-training experiment (`kind: gcode`) that makes the tool path, writes
+// the ISO 6983 program and reports the point table (Table 3's layout), the
+// radial engagement against slotting, and how Table 3 relates to Eq. 6.
+//
+// YAML (experiments/trochoid/groove_table2.yaml):
+//   kind: gcode
+//   name: trochoid_groove_table2
+//   description: ...
+//   toolpath: trochoid            # the only path type so far
+//   trochoid: {cutter_diameter, groove_width, groove_length, step, chord_tolerance}
+//   program: {program_number, title, feed, plunge_feed, spindle_speed, safe_z, cut_z,
+//             line_increment, decimals}
+//   report: {table_rows, engagement_spacing, engagement_every,
+//            compare_with: results/reference/trochoid_table3.csv}
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cnclab/kinematics/gcode.hpp"
+#include "cnclab/kinematics/trochoid.hpp"
+
+namespace cnclab {
+
+struct TrochoidReportOptions {
+  std::size_t table_rows = 12;  // point-table rows printed (Table 3 shows 12); all go to the file
+  double engagement_spacing = 0.05;  // path resampling for the engagement [mm]: overestimate
+                                     // <= 2 asin(s / D) (0.29 deg for s = 0.05, D = 20)
+  double engagement_every = 0.5;     // evaluate the engagement every this much path [mm]
+  // Table 3 transcribed (CSV: t,x,y,line,coordinates), relative to the
+  // working directory; absent = no comparison.
+  std::optional<std::filesystem::path> compare_with;
+  void validate() const;
+};
+
+struct TrochoidJob {
+  std::string name;  // file-name-safe; outputs results/<name>/<name>.nc etc.
+  std::string description;
+  TrochoidGrooveOptions groove;
+  GcodeOptions program;
+  TrochoidReportOptions report;
+  std::filesystem::path source_file;
+};
+
+// The `kind:` of an experiment file: "train" (default) or "gcode". Throws
+// ConfigError for unreadable YAML or another value.
+std::string experiment_kind(const std::filesystem::path& file);
+
+// Reads a `kind: gcode` file strictly (unknown keys are errors), applying
+// `key=value` overrides first.
+TrochoidJob load_trochoid_job(const std::filesystem::path& file,
+                              const std::vector<std::string>& overrides = {});
+
+// The resolved job, defaults included, as YAML that loads back to the same
+// job (what `cnclab validate` prints).
+std::string to_yaml(const TrochoidJob& job);
+
+struct TrochoidOutcome {
+  TrochoidGroove groove;
+  GcodeProgram program;
+  double max_engagement_rad = 0;    // steady state: the N loops
+  double entry_engagement_rad = 0;  // start circle, after the plunge
+  double exit_engagement_rad = 0;   // end circle
+  std::string point_table;          // the full point table (TSV)
+  std::string report;               // what is printed
+};
+
+// Computes everything; writes nothing.
+TrochoidOutcome run_trochoid_job(const TrochoidJob& job);
+
+struct TrochoidFiles {
+  std::filesystem::path program;  // results/<name>/<name>.nc
+  TrochoidOutcome outcome;
+};
+
+// Runs the job and writes results/<name>/<name>.nc, <name>-points.tsv and
+// <name>-report.txt, each atomically (what `run` and `reproduce` do).
+TrochoidFiles write_trochoid_outputs(const TrochoidJob& job,
+                                     const std::filesystem::path& results_dir);
+
+}  // namespace cnclab

@@ -1,0 +1,77 @@
+// A per-axis IK run through the runner: target selection, count split and
+// min-max target scaling recorded in the result and recomputed here from the
+// dataset independently.
+#include <gtest/gtest.h>
+
+#include "cnclab/data/dataset_file.hpp"
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/runner.hpp"
+#include "common/temp_dir.hpp"
+
+namespace cnclab {
+namespace {
+
+const char* kYaml = R"(name: ik_tiny
+seed: 8
+dataset: {generator: ik_samples, targets: [C], options: {values_per_input: 3}}
+split: {train_count: 120, test_count: 60}
+normalisation: {inputs: minmax, targets: minmax, target_range: [0.1, 0.9]}
+model: {hidden: [5, 4], hidden_activation: sigmoid, output_activation: sigmoid}
+trainer: {learning_rate: 0.3, momentum: 0.5, epochs: 3}
+)";
+
+TEST(IkRun, OneAxisWithCountSplitAndMinMaxTargets) {
+  testing::TempDir dir;
+  RunOptions o;
+  o.results_dir = dir / "results";
+  o.datasets_dir = dir / "datasets";
+  const RunOutcome outcome = run_experiment(parse_experiment(kYaml, "ik_tiny.yaml"), o);
+  ASSERT_TRUE(outcome.ok) << outcome.message;
+  const RunRecord r = read_result(outcome.result_file);
+  EXPECT_EQ(r.target_names, std::vector<std::string>{"C"});
+  EXPECT_EQ(r.target_units, std::vector<std::string>{"rad"});
+  EXPECT_EQ(r.split.train.size(), 120u);
+  EXPECT_EQ(r.split.test.size(), 60u);
+  EXPECT_EQ(r.split.validation.size(), 243u - 180u);
+  EXPECT_EQ(r.model.outputs, 1u);
+  EXPECT_EQ(r.target_scaling.method, Scaling::minmax);
+  EXPECT_EQ(r.input_scaling.method, Scaling::minmax);
+  EXPECT_EQ(r.target_scaling.y_min, 0.1);
+  EXPECT_EQ(r.target_scaling.y_max, 0.9);
+
+  // The recorded min and max are those of C (row 4) over the training
+  // samples of the dataset file.
+  const Dataset d = read_dataset(r.dataset_file);
+  double lo = 1e300, hi = -1e300;
+  for (std::size_t j : r.split.train) {
+    lo = std::min(lo, d.targets(4, static_cast<Eigen::Index>(j)));
+    hi = std::max(hi, d.targets(4, static_cast<Eigen::Index>(j)));
+  }
+  ASSERT_EQ(r.target_scaling.min.size(), 1);
+  EXPECT_EQ(r.target_scaling.min[0], lo);
+  EXPECT_EQ(r.target_scaling.max[0], hi);
+  // Test targets are C of the test samples, in rad.
+  for (std::size_t k = 0; k < r.split.test.size(); ++k) {
+    ASSERT_EQ(r.test_targets(0, static_cast<Eigen::Index>(k)),
+              d.targets(4, static_cast<Eigen::Index>(r.split.test[k])));
+  }
+  // The recorded scaling maps the training extremes to the range ends.
+  Eigen::MatrixXd ends(1, 2);
+  ends << lo, hi;
+  const Eigen::MatrixXd mapped = r.target_scaling.transform(ends);
+  EXPECT_NEAR(mapped(0, 0), 0.1, 1e-12);
+  EXPECT_NEAR(mapped(0, 1), 0.9, 1e-12);
+}
+
+TEST(IkRun, UnknownTargetIsAConfigError) {
+  testing::TempDir dir;
+  RunOptions o;
+  o.results_dir = dir / "results";
+  o.datasets_dir = dir / "datasets";
+  const auto loaded = parse_experiment(kYaml, "ik_tiny.yaml", {"dataset.targets=[B]"});
+  EXPECT_THROW(run_experiment(loaded, o), ConfigError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "results"));
+}
+
+}  // namespace
+}  // namespace cnclab
