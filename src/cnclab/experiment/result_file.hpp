@@ -1,5 +1,5 @@
 #pragma once
-// The HDF5 result file of one run (layout in docs/result-format.md).
+// The HDF5 result file of one run (layout: README.md, "Where results go").
 //
 // Written under a partial name and renamed when complete; the root attribute
 // `complete` = 1 is the last thing written, so a file without it (or with a
