@@ -68,7 +68,7 @@ TEST(Split, EveryIndexIsEquallyLikelyInTraining) {
 }
 
 TEST(Split, OptionsValidated) {
-  EXPECT_THROW((SplitOptions{0.0, 0.0}.validate()), OptionError);
+  EXPECT_NO_THROW((SplitOptions{0.0, 0.0}.validate()));  // evaluation only: all samples test
   EXPECT_THROW((SplitOptions{-0.1, 0.0}.validate()), OptionError);
   EXPECT_THROW((SplitOptions{1.2, 0.0}.validate()), OptionError);
   EXPECT_THROW((SplitOptions{std::nan(""), 0.0}.validate()), OptionError);
@@ -83,7 +83,10 @@ TEST(Split, OptionsValidated) {
   EXPECT_NO_THROW((SplitOptions{0.8, 0.2}.validate()));
   EXPECT_NO_THROW((SplitOptions{}.validate()));
   Rng rng(1);
-  EXPECT_THROW(make_random_split(10, {0.0, 0.0}, rng), OptionError);
+  EXPECT_THROW(make_random_split(10, {-0.1, 0.0}, rng), OptionError);
+  const Split all_test = make_random_split(10, {0.0, 0.0}, rng);
+  EXPECT_TRUE(all_test.train.empty());
+  EXPECT_EQ(all_test.test.size(), 10u);
 }
 
 }  // namespace
@@ -134,7 +137,10 @@ TEST(SplitCounts, CountsThatDoNotFitAreErrorsNamingTheCount) {
     EXPECT_NE(std::string(e.what()).find("2432 for 3125 samples"), std::string::npos) << e.what();
   }
   EXPECT_THROW(counts(2000, std::nullopt, 2000).validate_for(3125), OptionError);
-  EXPECT_THROW(counts(0, std::nullopt, 1).validate(), OptionError);
+  // No training samples is a valid split (evaluation-only experiments); it
+  // still has to fit the samples.
+  EXPECT_NO_THROW(counts(0, std::nullopt, 1).validate_for(1));
+  EXPECT_THROW(counts(0, std::nullopt, 2).validate_for(1), OptionError);
   EXPECT_THROW(counts(std::nullopt, std::nullopt, 5).validate(), OptionError);
   EXPECT_NO_THROW(counts(3125, std::nullopt, std::nullopt).validate_for(3125));
 }

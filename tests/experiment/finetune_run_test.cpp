@@ -27,12 +27,12 @@ model: {hidden: [8], hidden_activation: tanh, init: {weights: {type: xavier}}}
 trainer: {learning_rate: 0.01, momentum: 0.9, batch_size: 10, epochs: 20}
 )";
 
-std::string downstream(const std::string& extra) {
+std::string downstream(const std::string& extra, int epochs = 5) {
   return "name: down\nseed: 6\n"
          "dataset: {generator: friedman1, seed: 99, options: {samples: 300, inputs: 6}}\n"
          "model: {hidden: [8], hidden_activation: tanh}\n"
-         "trainer: {learning_rate: 0.01, momentum: 0.9, batch_size: 10, epochs: 5}\n" +
-         extra;
+         "trainer: {learning_rate: 0.01, momentum: 0.9, batch_size: 10, epochs: " +
+         std::to_string(epochs) + "}\n" + extra;
 }
 
 struct Fixture {
@@ -88,9 +88,8 @@ TEST(FineTune, KeepReusesTheUpstreamScalingExactlyAndRefitFitsTheNewTrainingSpli
 
 TEST(FineTune, EvaluationOnlyRunKeepsTheUpstreamParametersBitForBitAndTestsOnAllSamples) {
   Fixture f;
-  const RunRecord eval =
-      f.run(downstream("init_from: {experiment: up.yaml, normaliser: keep}\nsplit: {train: 0}\n"
-                       "trainer: {epochs: 0}\n"));
+  const RunRecord eval = f.run(
+      downstream("init_from: {experiment: up.yaml, normaliser: keep}\nsplit: {train: 0}\n", 0));
   expect_identical(eval.parameters, f.upstream.parameters);
   EXPECT_TRUE(eval.split.train.empty());
   EXPECT_EQ(eval.split.test.size(), 300u);
@@ -124,8 +123,7 @@ TEST(FineTune, ConfigurationsThatCannotWorkAreErrorsNamingTheKey) {
                 .find("split.train = 0: leaves 0 training samples"),
             std::string::npos);
   // Refitting on no samples.
-  EXPECT_NE(error_of(downstream("init_from: {experiment: up.yaml}\nsplit: {train_count: 0}\n"
-                                "trainer: {epochs: 0}\n"))
+  EXPECT_NE(error_of(downstream("init_from: {experiment: up.yaml}\nsplit: {train_count: 0}\n", 0))
                 .find("split.train_count = 0: leaves no training samples to fit the normaliser"),
             std::string::npos);
   EXPECT_NE(error_of(downstream("init_from: {experiment: up.yaml, normaliser: kept}\n"))
