@@ -101,6 +101,33 @@ TEST(Narx, DynamicJacobianMatchesFiniteDifferences) {
   }
 }
 
+// Over many of the recursion's internal 64-row blocks and a last partial
+// one: central differences for a spread of parameters (every kind: input,
+// feedback weights, biases, output weights).
+TEST(Narx, DynamicJacobianMatchesFiniteDifferencesOverLongSeries) {
+  const Narx narx(small(1));
+  Rng rng(5);
+  Eigen::VectorXd w(narx.num_parameters());
+  narx.initialise(w, rng);
+  const Eigen::Index n = 700;  // 697 steps: 10 full blocks and one of 57 rows
+  const Eigen::VectorXd v = smooth_input(n, 0.4);
+  Eigen::VectorXd e0 = Eigen::VectorXd::Zero(n);
+  e0.head(3) << 0.1, 0.3, -0.2;
+  Eigen::MatrixXd jac;
+  narx.simulate_closed_loop(w, v, e0, &jac);
+  ASSERT_EQ(jac.rows(), n - narx.first_step());
+  const double h = 1e-6;
+  for (Eigen::Index p = 0; p < w.size(); p += 3) {
+    Eigen::VectorXd plus = w, minus = w;
+    plus[p] += h;
+    minus[p] -= h;
+    const Eigen::VectorXd fd =
+        (narx.simulate_closed_loop(plus, v, e0) - narx.simulate_closed_loop(minus, v, e0)) / (2 * h);
+    EXPECT_LT((jac.col(p) - fd).cwiseAbs().maxCoeff() / (1.0 + fd.cwiseAbs().maxCoeff()), 1e-7)
+        << "parameter " << p;
+  }
+}
+
 TEST(Narx, RejectsBadOptionsAndSeries) {
   const auto message = [](auto change) {
     NarxOptions o;
