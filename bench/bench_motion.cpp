@@ -5,7 +5,8 @@
 //
 // The path is a long epitrochoid-like curve (analytic_paths.hpp) standing in
 // for seed 002's random NURBS path until NURBS paths are adapted.
-// Usage: cnclab_bench_motion [TURNS]   (default 65 turns: about 172 s)
+// Usage: cnclab_bench_motion [TURNS [WINDOW COMMIT]]   (default 65 turns: about 172 s;
+// windows of 240 intervals keeping 180, FeedratePlannerOptions' defaults)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -33,7 +34,11 @@ int main(int argc, char** argv) {
   using namespace cnclab;
   const double turns = argc > 1 ? std::atof(argv[1]) : 65.0;
   const EpitrochoidPath path(Vec2(0, 0), 100.0, 8.0, 7.0, turns);
-  const FeedratePlannerOptions options;
+  FeedratePlannerOptions options;
+  if (argc > 3) {
+    options.window_intervals = static_cast<std::size_t>(std::atol(argv[2]));
+    options.commit_intervals = static_cast<std::size_t>(std::atol(argv[3]));
+  }
   std::printf("path: epitrochoid R1 = 100 mm, R2 = 8 mm, k = 7, %.0f turns, %.0f mm\n", turns,
               arc_length(path, 200000));
   std::printf(
