@@ -107,8 +107,8 @@ BenchData synthetic(Eigen::Index n) {
     double e = 0;
     for (Eigen::Index t = 0; t < n; ++t) {
       const double s = static_cast<double>(t) * 1e-3;
-      const double v = 180 * std::sin(0.7 * s + a) + 90 * std::sin(5.3 * s + 2 * a) +
-                       30 * std::sin(31.0 * s);
+      const double v =
+          180 * std::sin(0.7 * s + a) + 90 * std::sin(5.3 * s + 2 * a) + 30 * std::sin(31.0 * s);
       e += 1e-3 * (2.5e-4 * v - e) / 0.05;
       d.axes[a].velocity[t] = v;
       d.axes[a].error[t] = e;
@@ -264,17 +264,18 @@ int main(int argc, char** argv) {
     t0 = cpu_seconds();
     for (Eigen::Index t = 0; t < n; ++t) {
       const auto k = static_cast<std::size_t>(t);
-      checksum += taylor_contour_error(data.reference[k],
-                                       data.reference[k].position - Vec2(1e-2, -2e-2));
+      checksum +=
+          taylor_contour_error(data.reference[k], data.reference[k].position - Vec2(1e-2, -2e-2));
     }
     per_taylor.push_back((cpu_seconds() - t0) / static_cast<double>(n));
   }
   const double tick_us = median(per_tick) * 1e6;
   std::printf("\ncontour predictor per 1 ms tick (CPU time, median of %zu passes over %ld ticks)\n",
               per_tick.size(), static_cast<long>(n));
-  std::printf("  both axes + Taylor estimate  %9.3f us   (target 5 us: %.1f x under; 1 ms tick: "
-              "%.2f %% of it)\n",
-              tick_us, 5.0 / tick_us, tick_us / 1000.0 * 100.0);
+  std::printf(
+      "  both axes + Taylor estimate  %9.3f us   (target 5 us: %.1f x under; 1 ms tick: "
+      "%.2f %% of it)\n",
+      tick_us, 5.0 / tick_us, tick_us / 1000.0 * 100.0);
   std::printf("  one axis network             %9.3f us\n", median(per_axis_step) * 1e6);
   std::printf("  Taylor estimate (Eqs. 3-6)   %9.3f us\n", median(per_taylor) * 1e6);
   if (failed > 0) std::printf("  %ld ticks returned a non-ok status\n", failed);

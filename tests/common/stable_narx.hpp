@@ -16,11 +16,10 @@ namespace cnclab::testing {
 inline NarxAxisModel stable_narx_model(const NarxOptions& options, std::uint64_t seed) {
   constexpr double kFeedbackGain = 0.9;
   const Narx narx(options);
-  NarxAxisModel m{options, Eigen::VectorXd(narx.num_parameters()),
-                  MinMaxNormaliser(Eigen::VectorXd::Constant(1, -300.0),
-                                   Eigen::VectorXd::Constant(1, 300.0)),
-                  MinMaxNormaliser(Eigen::VectorXd::Constant(1, -0.2),
-                                   Eigen::VectorXd::Constant(1, 0.25))};
+  NarxAxisModel m{
+      options, Eigen::VectorXd(narx.num_parameters()),
+      MinMaxNormaliser(Eigen::VectorXd::Constant(1, -300.0), Eigen::VectorXd::Constant(1, 300.0)),
+      MinMaxNormaliser(Eigen::VectorXd::Constant(1, -0.2), Eigen::VectorXd::Constant(1, 0.25))};
   Rng rng(seed);
   narx.initialise(m.params, rng);
   const auto h = static_cast<Eigen::Index>(options.hidden);

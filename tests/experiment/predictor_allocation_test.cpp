@@ -53,16 +53,22 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
   *out = __libc_memalign(alignment, size);
   return *out == nullptr ? 12 /* ENOMEM */ : 0;
 }
-void free(void* p) { __libc_free(p); }
+void free(void* p) {
+  __libc_free(p);
+}
 }
 
 namespace cnclab {
 namespace {
 
-long allocations() { return g_allocations.load(std::memory_order_relaxed); }
+long allocations() {
+  return g_allocations.load(std::memory_order_relaxed);
+}
 
 // Keeps the optimiser from eliding an allocation whose result is unused.
-void escape(const void* p) { asm volatile("" : : "g"(p) : "memory"); }
+void escape(const void* p) {
+  asm volatile("" : : "g"(p) : "memory");
+}
 
 // The counter sees what the tick path could use: new, std::vector, Eigen.
 TEST(PredictorAllocation, CounterSeesHeapAllocations) {

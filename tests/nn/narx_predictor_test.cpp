@@ -85,8 +85,8 @@ TEST(NarxPredictor, EqualsTheBatchClosedLoopFromMeasuredInitialStates) {
       max_diff = std::max(max_diff, std::abs(e - batch[t - t0]));
     }
     // Both step through Narx::step on the same regressors: bit for bit.
-    EXPECT_EQ(max_diff, 0.0) << "D_V " << o.input_delays << " D_E " << o.feedback_delays
-                             << " d0 " << o.first_input_delay;
+    EXPECT_EQ(max_diff, 0.0) << "D_V " << o.input_delays << " D_E " << o.feedback_delays << " d0 "
+                             << o.first_input_delay;
     EXPECT_GT(batch.cwiseAbs().maxCoeff(), 1e-3);  // a non-trivial output
   }
 }
@@ -155,8 +155,9 @@ TEST(NarxPredictor, RejectsInconsistentModels) {
   NarxAxisModel m = stable_narx_model(o, 1);
   NarxAxisModel short_params = m;
   short_params.params.conservativeResize(m.params.size() - 1);
-  EXPECT_NE(testing::error_message<Error>([&] { NarxPredictor p(short_params); })
-                .find("120 parameters, the network has 121"),
+  EXPECT_NE(testing::error_message<Error>([&] {
+              NarxPredictor p(short_params);
+            }).find("120 parameters, the network has 121"),
             std::string::npos);
   NarxAxisModel nan_params = m;
   nan_params.params[5] = std::nan("");
@@ -164,18 +165,21 @@ TEST(NarxPredictor, RejectsInconsistentModels) {
             std::string::npos);
   NarxAxisModel two_features = m;
   two_features.input = MinMaxNormaliser(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1));
-  EXPECT_NE(testing::error_message<Error>([&] { NarxPredictor p(two_features); })
-                .find("input (velocity) normaliser has 2 fitted features"),
+  EXPECT_NE(testing::error_message<Error>([&] {
+              NarxPredictor p(two_features);
+            }).find("input (velocity) normaliser has 2 fitted features"),
             std::string::npos);
   NarxAxisModel unfitted = m;
   unfitted.output = MinMaxNormaliser();
-  EXPECT_NE(testing::error_message<Error>([&] { NarxPredictor p(unfitted); })
-                .find("output (following error) normaliser has 0"),
+  EXPECT_NE(testing::error_message<Error>([&] {
+              NarxPredictor p(unfitted);
+            }).find("output (following error) normaliser has 0"),
             std::string::npos);
   NarxAxisModel bad_options = m;
   bad_options.options.feedback_delays = 0;
-  EXPECT_NE(testing::error_message<OptionError>([&] { NarxPredictor p(bad_options); })
-                .find("feedback_delays"),
+  EXPECT_NE(testing::error_message<OptionError>([&] {
+              NarxPredictor p(bad_options);
+            }).find("feedback_delays"),
             std::string::npos);
 }
 

@@ -122,7 +122,8 @@ TEST(Narx, DynamicJacobianMatchesFiniteDifferencesOverLongSeries) {
     plus[p] += h;
     minus[p] -= h;
     const Eigen::VectorXd fd =
-        (narx.simulate_closed_loop(plus, v, e0) - narx.simulate_closed_loop(minus, v, e0)) / (2 * h);
+        (narx.simulate_closed_loop(plus, v, e0) - narx.simulate_closed_loop(minus, v, e0)) /
+        (2 * h);
     EXPECT_LT((jac.col(p) - fd).cwiseAbs().maxCoeff() / (1.0 + fd.cwiseAbs().maxCoeff()), 1e-7)
         << "parameter " << p;
   }

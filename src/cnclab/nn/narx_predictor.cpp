@@ -44,7 +44,8 @@ const char* to_string(PredictorStatus status) noexcept {
   return "?";
 }
 
-NarxPredictor::NarxPredictor(NarxAxisModel model) : model_(std::move(model)), narx_(model_.options) {
+NarxPredictor::NarxPredictor(NarxAxisModel model)
+    : model_(std::move(model)), narx_(model_.options) {
   if (model_.params.size() != static_cast<Eigen::Index>(narx_.num_parameters())) {
     throw Error("NARX predictor: " + std::to_string(model_.params.size()) +
                 " parameters, the network has " + std::to_string(narx_.num_parameters()));
