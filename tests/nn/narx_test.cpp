@@ -65,6 +65,20 @@ TEST(Narx, ClosedLoopFeedsBackItsOwnOutputs) {
   for (Eigen::Index s = 0; s < sim.size(); ++s) EXPECT_NEAR(predicted(0, s), sim[s], 1e-13);
 }
 
+// Relative error of column p of the dynamic Jacobian against central
+// differences of the closed-loop simulation itself.
+double jacobian_column_error(const Narx& narx, const Eigen::VectorXd& w, const Eigen::VectorXd& v,
+                             const Eigen::VectorXd& e0, const Eigen::MatrixXd& jac,
+                             Eigen::Index p) {
+  const double h = 1e-6;
+  Eigen::VectorXd plus = w, minus = w;
+  plus[p] += h;
+  minus[p] -= h;
+  const Eigen::VectorXd fd =
+      (narx.simulate_closed_loop(plus, v, e0) - narx.simulate_closed_loop(minus, v, e0)) / (2 * h);
+  return (jac.col(p) - fd).cwiseAbs().maxCoeff() / (1.0 + fd.cwiseAbs().maxCoeff());
+}
+
 // The RTRL Jacobian against central differences of the closed-loop
 // simulation itself, for both delay conventions and tanh / sigmoid units.
 TEST(Narx, DynamicJacobianMatchesFiniteDifferences) {
@@ -82,17 +96,9 @@ TEST(Narx, DynamicJacobianMatchesFiniteDifferences) {
       e0.head(3) << 0.2, -0.4, 0.1;
       Eigen::MatrixXd jac;
       narx.simulate_closed_loop(w, v, e0, &jac);
-      const double h = 1e-6;
       double worst = 0.0;
       for (Eigen::Index p = 0; p < w.size(); ++p) {
-        Eigen::VectorXd plus = w, minus = w;
-        plus[p] += h;
-        minus[p] -= h;
-        const Eigen::VectorXd fd =
-            (narx.simulate_closed_loop(plus, v, e0) - narx.simulate_closed_loop(minus, v, e0)) /
-            (2 * h);
-        worst = std::max(
-            worst, (jac.col(p) - fd).cwiseAbs().maxCoeff() / (1.0 + fd.cwiseAbs().maxCoeff()));
+        worst = std::max(worst, jacobian_column_error(narx, w, v, e0, jac, p));
       }
       EXPECT_LT(worst, 1e-7) << d0 << " " << to_string(f);
       // Not a static Jacobian: feedback makes late rows depend on many steps.
@@ -116,16 +122,8 @@ TEST(Narx, DynamicJacobianMatchesFiniteDifferencesOverLongSeries) {
   Eigen::MatrixXd jac;
   narx.simulate_closed_loop(w, v, e0, &jac);
   ASSERT_EQ(jac.rows(), n - narx.first_step());
-  const double h = 1e-6;
   for (Eigen::Index p = 0; p < w.size(); p += 3) {
-    Eigen::VectorXd plus = w, minus = w;
-    plus[p] += h;
-    minus[p] -= h;
-    const Eigen::VectorXd fd =
-        (narx.simulate_closed_loop(plus, v, e0) - narx.simulate_closed_loop(minus, v, e0)) /
-        (2 * h);
-    EXPECT_LT((jac.col(p) - fd).cwiseAbs().maxCoeff() / (1.0 + fd.cwiseAbs().maxCoeff()), 1e-7)
-        << "parameter " << p;
+    EXPECT_LT(jacobian_column_error(narx, w, v, e0, jac, p), 1e-7) << "parameter " << p;
   }
 }
 
