@@ -98,4 +98,9 @@ SweepArguments split_sweep_arguments(const std::vector<std::string>& words);
 SweepSpec read_sweep_block(const std::filesystem::path& file,
                            const std::vector<std::string>& overrides);
 
+class ConfigReader;
+// The same block from an open document (`s` is the `sweep:` section; a
+// `kind: sweep` job file's block, sweep_job.hpp). Marks what it reads.
+SweepSpec read_sweep_section(const ConfigReader& s);
+
 }  // namespace cnclab
