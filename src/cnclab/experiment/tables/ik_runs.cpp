@@ -92,6 +92,12 @@ std::vector<IkVariant> load_ik_variants(const TablesOptions& o) {
       out[2].notes.push_back(axis + " not available: " + e.what());
     }
   }
+  // A variant with no axis at all: one note (the first axis's reason).
+  for (auto& v : out) {
+    if (!v.any() && !v.notes.empty()) {
+      v.notes = {"no results for any axis; " + v.notes.front()};
+    }
+  }
   return out;
 }
 
