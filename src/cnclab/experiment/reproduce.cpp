@@ -11,6 +11,7 @@
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
+#include "cnclab/experiment/sweep_job.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
 #include "cnclab/experiment/trochoid_job.hpp"
 #include "cnclab/experiment/upstream.hpp"
@@ -37,14 +38,14 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
   if (found.empty()) throw ConfigError("reproduce: no experiment files found");
   // `kind: gcode` jobs (trochoid_job.hpp) take no part in the training graph;
   // a file whose kind cannot be read stays in it, to be reported there.
-  std::vector<fs::path> files, gcode_jobs;
+  std::vector<fs::path> files, gcode_jobs, sweep_jobs;
   for (const auto& file : found) {
-    bool gcode = false;
+    std::string kind = "train";
     try {
-      gcode = experiment_kind(file) == "gcode";
+      kind = experiment_kind(file);
     } catch (const ConfigError&) {
     }
-    (gcode ? gcode_jobs : files).push_back(file);
+    (kind == "gcode" ? gcode_jobs : kind == "sweep" ? sweep_jobs : files).push_back(file);
   }
   const std::vector<GraphNode> graph = load_graph(files);
   std::vector<NodeState> state(graph.size());
@@ -148,6 +149,27 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
       exit_code = 2;
     } catch (const Error& e) {
       rows.push_back({file.string(), "ERROR", "gcode job", e.what(), ""});
+      exit_code = std::max(exit_code, 1);
+    }
+  }
+  // Sweep jobs (sweep_job.hpp): trials without a result run, a finished
+  // sweep is reused.
+  for (const auto& file : sweep_jobs) {
+    if (!options.quiet) log << "[sweep] " << file.string() << "\n";
+    try {
+      const SweepJob job = load_sweep_job(file);
+      const SweepJobOutcome r = run_sweep_job(job, options, log);
+      const std::string why = r.ran == 0 ? "sweep plan unchanged, every trial has a result"
+                                         : std::to_string(r.ran) + " trial(s) had no result";
+      const bool ok = r.stopped == 0 && r.state.selected;
+      rows.push_back({job.name, std::string(r.ran == 0 ? "reused" : "ran") + (ok ? "" : ", FAILED"),
+                      why, selection_line(r.state), r.state.dir.string()});
+      if (!ok) exit_code = std::max(exit_code, 1);
+    } catch (const ConfigError& e) {
+      rows.push_back({file.string(), "CONFIG ERROR", "sweep job", e.what(), ""});
+      exit_code = 2;
+    } catch (const Error& e) {
+      rows.push_back({file.string(), "ERROR", "sweep job", e.what(), ""});
       exit_code = std::max(exit_code, 1);
     }
   }

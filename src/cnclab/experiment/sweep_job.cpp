@@ -7,6 +7,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/override.hpp"
+#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/spec.hpp"
 #include "cnclab/experiment/sweep_command.hpp"
 #include "cnclab/io/atomic_file.hpp"
@@ -78,6 +79,18 @@ SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& ov
   }
   doc.check_all_consumed();
   return job;
+}
+
+std::string selection_line(const SweepJobState& s) {
+  const std::string counts = std::to_string(s.summary.complete) + " of " +
+                             std::to_string(s.plan.trials.size()) + " trials complete";
+  if (!s.selected) return "no trial selected; " + counts;
+  const PlannedTrial& t = s.plan.trials[*s.selected];
+  const auto& metrics = s.outcomes[*s.selected].metrics;
+  const auto it = metrics.find(s.plan.objective.metric);
+  return "selected " + t.id + " (" + point_text(s.plan.keys, t.values) +
+         "): " + s.plan.objective.metric + " " +
+         (it == metrics.end() ? std::string("?") : format_metric(it->second)) + "; " + counts;
 }
 
 fs::path SweepJobState::selected_result() const {

@@ -77,4 +77,8 @@ struct SweepJobOutcome {
 SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options,
                               std::ostream& log);
 
+// One line for people: "selected <id> (key=value ...): <objective> v; k of N
+// trials complete", or why nothing is selected.
+std::string selection_line(const SweepJobState& state);
+
 }  // namespace cnclab
