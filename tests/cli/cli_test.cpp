@@ -410,6 +410,42 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
             std::string::npos)
       << b.out;
 
+  // A search for X (kind: sweep) through reproduce: ran, then reused; the
+  // table shows the selected trial's sizes beside ours.
+  fs::create_directories(dir_ / "experiments/ik_search");
+  write("experiments/ik_search/search_x.yaml",
+        "kind: sweep\nname: ik_search_x\nexperiment: ../ik/ik_x.yaml\njobs: 2\n"
+        "sweep:\n  objective: {metric: normalised_validation_mse}\n"
+        "  parameters: {model.hidden: [[3, 2], [5, 3]]}\n");
+  const Result s1 = cnclab("reproduce experiments/ik_search --quiet");
+  ASSERT_EQ(s1.code, 2) << s1.err << s1.out;  // ik_x lacks normalised_validation_mse
+  EXPECT_NE(s1.out.find("is not among the experiment's metrics"), std::string::npos) << s1.out;
+  write("experiments/ik_search/search_x.yaml",
+        "kind: sweep\nname: ik_search_x\nexperiment: ../ik/ik_x.yaml\njobs: 2\n"
+        "overrides: ['metrics=[mse, normalised_validation_mse]']\n"
+        "sweep:\n  objective: {metric: normalised_validation_mse}\n"
+        "  parameters: {model.hidden: [[3, 2], [5, 3]]}\n");
+  const Result s2 = cnclab("reproduce experiments/ik_search --quiet");
+  ASSERT_EQ(s2.code, 0) << s2.err << s2.out;
+  EXPECT_NE(s2.out.find("ik_search_x                  ran          2 trial(s) had no result"),
+            std::string::npos)
+      << s2.out;
+  const Result s3 = cnclab("reproduce experiments/ik_search --quiet");
+  ASSERT_EQ(s3.code, 0) << s3.err << s3.out;
+  EXPECT_NE(s3.out.find("ik_search_x                  reused       sweep plan unchanged"),
+            std::string::npos)
+      << s3.out;
+  const Result c = cnclab("tables ik --reference " CNCLAB_SOURCE_DIR "/results/reference");
+  ASSERT_EQ(c.code, 0) << c.err << c.out;
+  const std::string hidden1 = words_of_line(c.out, "Hidden layer1");
+  EXPECT_TRUE(hidden1.rfind("Hidden layer1 6 3 6 25 6 n/a n/a 22", 0) == 0 ||
+              hidden1.rfind("Hidden layer1 6 5 6 25 6 n/a n/a 22", 0) == 0)
+      << c.out;
+  EXPECT_NE(c.out.find("- search: X: best of 2 complete trial(s) (2 planned) by "
+                       "normalised_validation_mse"),
+            std::string::npos)
+      << c.out;
+
   expect_one_line_error(cnclab("tables nosuch"), 2, "unknown table 'nosuch'; known: ik");
   const Result list = cnclab("tables");
   EXPECT_EQ(list.code, 0);
