@@ -401,8 +401,7 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
   EXPECT_EQ(words_of_line(b.out, "Training set"),
             "Dataset Training set 100 100 1042 100 n/a 1042 100 n/a 1042");
   EXPECT_EQ(words_of_line(b.out, "LR"), "Learning rate LR 0.3 - 0.11 0.3 n/a 0.71 0.3 n/a 0.71");
-  EXPECT_NE(b.out.find("- trainbr *: Y, Z, A, C from ours (no trainbr result)"),
-            std::string::npos)
+  EXPECT_NE(b.out.find("- trainbr *: Y, Z, A, C from ours (no trainbr result)"), std::string::npos)
       << b.out;
   EXPECT_EQ(b.out.find("- trainbr: X not available"), std::string::npos) << b.out;
   EXPECT_NE(b.out.find("- trainbr: C not available: experiments/ik_trainbr/ik_c.yaml: "

@@ -48,8 +48,8 @@ TEST(Metrics, NormalisedTestAndValidationMseByHand) {
   // No validation split: NaN, not an error.
   d.validation_outputs.resize(1, 0);
   d.validation_scaled_targets.resize(1, 0);
-  EXPECT_TRUE(std::isnan(evaluation_metrics(d, {"normalised_validation_mse"}).at(
-      "normalised_validation_mse")));
+  EXPECT_TRUE(std::isnan(
+      evaluation_metrics(d, {"normalised_validation_mse"}).at("normalised_validation_mse")));
   EXPECT_THROW(evaluation_metrics(d, {"validation_rmse"}), Error);
 }
 

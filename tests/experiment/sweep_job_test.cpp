@@ -113,9 +113,9 @@ TEST_F(SweepJobTest, SelectsTheTrialWithTheLeastValidationMse) {
   EXPECT_EQ(sel["selected"]["trial"].as<std::string>(), best_id);
   EXPECT_EQ(sel["selected"]["metrics"]["normalised_validation_mse"].as<double>(), best);
   const RunRecord chosen = read_result(s.selected_result());
-  EXPECT_EQ(sel["selected"]["parameters"]["trainer.learning_rate"].as<double>(),
-            std::get<SgdmOptions>(s.plan.trials[*s.selected].experiment->spec.trainer)
-                .learning_rate);
+  EXPECT_EQ(
+      sel["selected"]["parameters"]["trainer.learning_rate"].as<double>(),
+      std::get<SgdmOptions>(s.plan.trials[*s.selected].experiment->spec.trainer).learning_rate);
   EXPECT_EQ(sel["selected"]["parameters"]["model.hidden"].as<std::vector<std::size_t>>(),
             chosen.model.hidden);
   // The fixed override reached every trial.
@@ -162,15 +162,18 @@ TEST_F(SweepJobTest, BadJobFilesAreConfigErrors) {
   };
   const std::string job = kJob;
   expect_error(job + "jobz: 2\n", "jobz");
-  expect_error("kind: sweep\nname: s\nexperiment: nosuch.yaml\nsweep: {parameters: {seed: [1, 2]}}\n",
-               "no experiment file");
+  expect_error(
+      "kind: sweep\nname: s\nexperiment: nosuch.yaml\nsweep: {parameters: {seed: [1, 2]}}\n",
+      "no experiment file");
   expect_error("kind: sweep\nname: s\nexperiment: ik_tiny.yaml\nsweep: {}\n", "no parameters");
-  expect_error("kind: sweep\nname: s\nexperiment: ik_tiny.yaml\noverrides: [epochs]\n"
-               "sweep: {parameters: {seed: [1, 2]}}\n",
-               "overrides");
+  expect_error(
+      "kind: sweep\nname: s\nexperiment: ik_tiny.yaml\noverrides: [epochs]\n"
+      "sweep: {parameters: {seed: [1, 2]}}\n",
+      "overrides");
   // An objective the experiment does not compute stops before any trial.
-  write("obj.yaml", "kind: sweep\nname: s\nexperiment: ik_tiny.yaml\n"
-                    "sweep: {objective: {metric: r2}, parameters: {seed: [1, 2]}}\n");
+  write("obj.yaml",
+        "kind: sweep\nname: s\nexperiment: ik_tiny.yaml\n"
+        "sweep: {objective: {metric: r2}, parameters: {seed: [1, 2]}}\n");
   std::ostringstream log;
   EXPECT_THROW(run_sweep_job(load_sweep_job(dir_ / "obj.yaml"), options_, log), ConfigError);
   EXPECT_FALSE(fs::exists(dir_ / "results"));

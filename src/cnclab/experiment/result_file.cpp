@@ -367,8 +367,8 @@ void print_result(const RunRecord& r, std::ostream& out) {
   out << "metrics      (test split, " << join(r.target_units)
       << (normalised ? "; normalised_*: the network's scaled units" : "") << ")\n";
   for (const auto& [name, value] : r.metrics) {
-    out << "  " << std::left << std::setw(static_cast<int>(width)) << name
-        << format_metric(value) << "\n";
+    out << "  " << std::left << std::setw(static_cast<int>(width)) << name << format_metric(value)
+        << "\n";
   }
   out << "config\n";
   std::size_t start = 0;

@@ -177,8 +177,8 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
     EvaluationData eval;
     eval.test_outputs = mlp.predict(params, xn_test);
     eval.test_scaled_targets = yn_test;
-    eval.validation_outputs = xn_val.cols() > 0 ? mlp.predict(params, xn_val)
-                                                : Eigen::MatrixXd(yn_val.rows(), 0);
+    eval.validation_outputs =
+        xn_val.cols() > 0 ? mlp.predict(params, xn_val) : Eigen::MatrixXd(yn_val.rows(), 0);
     eval.validation_scaled_targets = yn_val;
     rec.test_predictions = rec.target_scaling.inverse_transform(eval.test_outputs);
     rec.test_targets = y_test;

@@ -133,8 +133,7 @@ SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options
     write_summary(s.dir / "summary.h5", s.plan, s.outcomes, s.summary);
     write_text_atomically(selection, selection_yaml(job, s));
   }
-  r.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
 

@@ -144,8 +144,7 @@ TextTable table5(const std::vector<Column>& columns, const Reference& ref) {
   return t;
 }
 
-void print_table5(const std::vector<IkVariant>& variants, const Reference& ref,
-                  std::ostream& out) {
+void print_table5(const std::vector<IkVariant>& variants, const Reference& ref, std::ostream& out) {
   std::vector<const IkVariant*> shown;
   for (const auto& v : variants) {
     if (v.any()) shown.push_back(&v);
@@ -163,8 +162,8 @@ void print_table5(const std::vector<IkVariant>& variants, const Reference& ref,
     out << "\n";
     table5(columns, ref).print_aligned(out);
   } else {
-    const auto split = std::find_if(columns.begin(), columns.end(),
-                                    [](const Column& c) { return c.axis >= 3; });
+    const auto split =
+        std::find_if(columns.begin(), columns.end(), [](const Column& c) { return c.axis >= 3; });
     out << "\n";
     table5({columns.begin(), split}, ref).print_aligned(out);
     out << "\n";
@@ -172,16 +171,15 @@ void print_table5(const std::vector<IkVariant>& variants, const Reference& ref,
   }
 
   TextTable phys;
-  phys.header = {"Test error in machine units", "",       "X [mm]", "Y [mm]",
-                 "Z [mm]",                      "A [deg]", "C [deg]"};
+  phys.header = {
+      "Test error in machine units", "", "X [mm]", "Y [mm]", "Z [mm]", "A [deg]", "C [deg]"};
   for (const char* name : {"rmse", "max_abs_error"}) {
     for (const IkVariant* v : shown) {
       std::vector<std::string> cells = {name == std::string("rmse") ? "RMSE" : "max |error|",
                                         v->label};
       for (std::size_t a = 0; a < kIkAxes.size(); ++a) {
         const double f = a >= 3 ? kDegPerRad : 1.0;
-        cells.push_back(v->axes[a] ? table_number(f * metric(v->axes[a]->record, name), 3)
-                                   : "n/a");
+        cells.push_back(v->axes[a] ? table_number(f * metric(v->axes[a]->record, name), 3) : "n/a");
       }
       phys.rows.push_back(cells);
     }
