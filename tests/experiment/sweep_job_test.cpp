@@ -65,8 +65,7 @@ class SweepJobTest : public ::testing::Test {
   SweepJobOutcome run(bool force = false) {
     CommandOptions o = options_;
     o.force = force;
-    std::ostringstream log;
-    return run_sweep_job(load_sweep_job(dir_ / "search.yaml"), o, log);
+    return run_sweep_job(load_sweep_job(dir_ / "search.yaml"), o, nullptr);
   }
   testing::TempDir dir_;
   CommandOptions options_;
@@ -174,8 +173,7 @@ TEST_F(SweepJobTest, BadJobFilesAreConfigErrors) {
   write("obj.yaml",
         "kind: sweep\nname: s\nexperiment: ik_tiny.yaml\n"
         "sweep: {objective: {metric: r2}, parameters: {seed: [1, 2]}}\n");
-  std::ostringstream log;
-  EXPECT_THROW(run_sweep_job(load_sweep_job(dir_ / "obj.yaml"), options_, log), ConfigError);
+  EXPECT_THROW(run_sweep_job(load_sweep_job(dir_ / "obj.yaml"), options_, nullptr), ConfigError);
   EXPECT_FALSE(fs::exists(dir_ / "results"));
 }
 

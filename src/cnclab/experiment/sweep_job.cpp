@@ -51,13 +51,15 @@ std::string selection_yaml(const SweepJob& job, const SweepJobState& s) {
 
 }  // namespace
 
-SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& overrides) {
-  ConfigDocument doc = ConfigDocument::load(file);
+SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& overrides,
+                        const std::string& profile) {
+  ConfigDocument doc = ConfigDocument::load(file, profile);
   for (const auto& text : overrides) doc.apply(parse_override(text));
   const ConfigReader root = doc.root();
   if (root.get<std::string>("kind", "sweep") != "sweep") root.fail("kind", "must be sweep");
   SweepJob job;
   job.source_file = file;
+  job.profile = profile;
   job.name = read_experiment_name(root);
   job.description = root.get<std::string>("description", "");
   job.experiment = upstream_file(root, "experiment", root.require<std::string>("experiment"),
@@ -81,6 +83,31 @@ SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& ov
   return job;
 }
 
+std::string to_yaml(const SweepJob& job) {
+  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
+  const SweepSpec& w = job.sweep;
+  YAML::Emitter out;
+  out << BeginMap << Key << "kind" << Value << "sweep" << Key << "name" << Value << job.name;
+  out << Key << "description" << Value << job.description;
+  out << Key << "experiment" << Value << job.experiment.string();
+  out << Key << "overrides" << Value << YAML::Flow << job.overrides;
+  out << Key << "jobs" << Value << job.jobs;
+  out << Key << "sweep" << Value << BeginMap;
+  out << Key << "method" << Value << (w.resolved_method() == SweepMethod::grid ? "grid" : "random");
+  if (w.trials > 0) out << Key << "trials" << Value << w.trials;
+  if (w.seed) out << Key << "seed" << Value << *w.seed;
+  out << Key << "repeats" << Value << w.repeats;
+  if (w.objective) {
+    out << Key << "objective" << Value << YAML::Flow << BeginMap << Key << "metric" << Value
+        << w.objective->metric << Key << "mode" << Value << (w.objective->maximize ? "max" : "min")
+        << EndMap;
+  }
+  out << Key << "parameters" << Value << BeginMap;
+  for (const auto& p : w.parameters) out << Key << p.key << Value << p.text;
+  out << EndMap << EndMap << EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
 std::string selection_line(const SweepJobState& s) {
   const std::string counts = std::to_string(s.summary.complete) + " of " +
                              std::to_string(s.plan.trials.size()) + " trials complete";
@@ -100,7 +127,7 @@ fs::path SweepJobState::selected_result() const {
 
 SweepJobState sweep_job_state(const SweepJob& job, const fs::path& results_dir) {
   SweepJobState s;
-  s.plan = plan_sweep(job.experiment, job.overrides, std::nullopt, job.sweep);
+  s.plan = plan_sweep(job.experiment, job.overrides, std::nullopt, job.sweep, job.profile);
   s.dir = results_dir / job.name / ("sweep-" + s.plan.hash().substr(0, 8));
   s.outcomes = read_trial_outcomes(s.dir, s.plan);
   s.summary = summarize(s.plan, s.outcomes);
@@ -109,7 +136,7 @@ SweepJobState sweep_job_state(const SweepJob& job, const fs::path& results_dir) 
 }
 
 SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options,
-                              std::ostream& log) {
+                              std::ostream* log) {
   const auto start = std::chrono::steady_clock::now();
   SweepJobOutcome r;
   r.state = sweep_job_state(job, options.results_dir);
@@ -119,7 +146,7 @@ SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options
   exec.common = options;
   exec.jobs = job.jobs;
   exec.rerun = options.force;
-  SweepExecution ex = execute_sweep(s.plan, s.dir, exec, options.quiet ? nullptr : &log);
+  SweepExecution ex = execute_sweep(s.plan, s.dir, exec, log);
   r.ran = ex.ran;
   r.stopped = ex.stopped;
   s.outcomes = std::move(ex.outcomes);

@@ -15,6 +15,8 @@
 //   jobs: 2                          # trials at once; 0 (default) = available cores
 //   sweep: {method, trials, seed, repeats, objective: {metric, mode}, parameters: {...}}
 //                                    # the `sweep:` block grammar (sweep_spec.hpp)
+//   profiles: {quick: {sweep.trials: 3}}   # optional (core/config.hpp); the trials
+//                                    # load the experiment with the same profile
 //
 // Reuse: the folder is named by the plan's hash, and a trial's identity is
 // its resolved config, so running the job again runs only trials without a
@@ -41,12 +43,18 @@ struct SweepJob {
   std::vector<std::string> overrides;  // plain key=value settings of every trial
   std::size_t jobs = 0;                // 0 = the cores this process may use
   SweepSpec sweep;
+  std::string profile;  // the profiles: entry applied to this file and the trials
 };
 
 // Reads a `kind: sweep` file strictly (unknown keys are ConfigErrors naming
-// file:line:col), applying `key=value` overrides of the job file first.
+// file:line:col), applying the profile, then `key=value` overrides of the job
+// file.
 SweepJob load_sweep_job(const std::filesystem::path& file,
-                        const std::vector<std::string>& overrides = {});
+                        const std::vector<std::string>& overrides = {},
+                        const std::string& profile = {});
+
+// The resolved job as YAML (what `cnclab validate` prints).
+std::string to_yaml(const SweepJob& job);
 
 // The job's sweep as it stands in `results_dir` (nothing run or written).
 struct SweepJobState {
@@ -72,10 +80,10 @@ struct SweepJobOutcome {
 
 // Runs the trials without a result (all with options.force), writes
 // summary.h5 and results/<name>/selection.yaml (the selected trial: id,
-// parameters, metrics, result file; atomic). Progress lines to `log` unless
-// options.quiet.
+// parameters, metrics, result file; atomic). Progress lines to `log`
+// (nullptr: silent).
 SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options,
-                              std::ostream& log);
+                              std::ostream* log);
 
 // One line for people: "selected <id> (key=value ...): <objective> v; k of N
 // trials complete", or why nothing is selected.

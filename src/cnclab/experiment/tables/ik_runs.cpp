@@ -31,7 +31,8 @@ IkAxisRun load_experiment_axis(const TablesOptions& o, const std::string& folder
                                const std::string& axis) {
   const fs::path file = o.experiments_dir / folder / ("ik_" + lower(axis) + ".yaml");
   if (!fs::exists(file)) throw MissingResults(file.string() + ": experiment file not found");
-  LoadedExperiment loaded = load_experiment(file);
+  LoadedExperiment loaded =
+      load_experiment(file, std::vector<std::string>{}, std::nullopt, o.profile);
   const fs::path result = result_path(loaded, o.results_dir);
   if (!fs::exists(result)) {
     throw MissingResults("no result for " + file.string() + " (expected " + result.string() +
@@ -46,7 +47,7 @@ IkAxisRun load_experiment_axis(const TablesOptions& o, const std::string& folder
 IkAxisRun load_search_axis(const TablesOptions& o, const std::string& axis, std::string& note) {
   const fs::path file = o.experiments_dir / "ik_search" / ("search_" + lower(axis) + ".yaml");
   if (!fs::exists(file)) throw MissingResults(file.string() + ": sweep job file not found");
-  const SweepJob job = load_sweep_job(file);
+  const SweepJob job = load_sweep_job(file, {}, o.profile);
   const SweepJobState s = sweep_job_state(job, o.results_dir);
   const std::size_t have = s.plan.trials.size() - s.summary.missing;
   if (!s.finished()) {
