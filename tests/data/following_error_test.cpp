@@ -16,9 +16,9 @@ namespace {
 
 using testing::error_message;
 
-// A short path (12 control points, ~0.5 m), 3 runs, 3000 samples kept.
+// A short path (12 control points, 1.49 s), 3 runs, 1200 samples kept.
 std::shared_ptr<const DatasetGenerator> small(const std::string& extra = "",
-                                              const std::string& samples = "3000") {
+                                              const std::string& samples = "1200") {
   const std::string yaml =
       "dataset:\n  generator: following_error\n  options:\n"
       "    path: {control_points: 12}\n    runs: 3\n    samples: " +
@@ -45,12 +45,12 @@ double meta(const Dataset& d, const char* name, Eigen::Index k) {
 
 TEST(FollowingErrorDataset, SampleCountsAndHalves) {
   const Dataset& d = small_dataset();
-  ASSERT_EQ(d.num_samples(), 3000u);
+  ASSERT_EQ(d.num_samples(), 1200u);
   EXPECT_EQ(d.inputs.rows(), 2);
   EXPECT_EQ(d.targets.rows(), 2);
-  EXPECT_EQ(first_validation_sample(d), 1500u);
-  for (Eigen::Index k = 0; k < 3000; ++k) {
-    ASSERT_EQ(meta(d, "validation", k), k >= 1500 ? 1.0 : 0.0) << k;
+  EXPECT_EQ(first_validation_sample(d), 600u);
+  for (Eigen::Index k = 0; k < 1200; ++k) {
+    ASSERT_EQ(meta(d, "validation", k), k >= 600 ? 1.0 : 0.0) << k;
     // Time at the 1 ms controller period.
     ASSERT_NEAR(meta(d, "time", k), 1e-3 * static_cast<double>(k), 1e-12);
   }
@@ -66,7 +66,7 @@ TEST(FollowingErrorDataset, NormalisationIsExactlyMinusOneToOneAndInvertible) {
     EXPECT_EQ(d.targets.row(a).maxCoeff(), 1.0);
     const char* v = a == 0 ? "v_ref_x" : "v_ref_y";
     const char* e = a == 0 ? "e_ref_x" : "e_ref_y";
-    for (Eigen::Index k = 0; k < 3000; k += 7) {
+    for (Eigen::Index k = 0; k < 1200; k += 7) {
       const double vp =
           r.velocity[a].min + (d.inputs(a, k) + 1) / 2 * (r.velocity[a].max - r.velocity[a].min);
       ASSERT_NEAR(vp, meta(d, v, k), 1e-9 * (r.velocity[a].max - r.velocity[a].min));
@@ -82,7 +82,7 @@ TEST(FollowingErrorDataset, NormalisationIsExactlyMinusOneToOneAndInvertible) {
 // derivative of the reference position.
 TEST(FollowingErrorDataset, ColumnsAreConsistent) {
   const Dataset& d = small_dataset();
-  for (Eigen::Index k = 1; k + 1 < 3000; k += 13) {
+  for (Eigen::Index k = 1; k + 1 < 1200; k += 13) {
     for (const char* axis : {"x", "y"}) {
       const std::string s(axis);
       const double ref = meta(d, ("ref_" + s).c_str(), k);

@@ -17,12 +17,12 @@ namespace fs = std::filesystem;
 using testing::error_message;
 using testing::TempDir;
 
-// A tiny study: 2000 samples of a short path, 2 runs, a 3-neuron NARX with 2
+// A tiny study: 1200 samples of a short path, 2 runs, a 3-neuron NARX with 2
 // delays, a few epochs.
 std::string tiny(const std::string& extra = "") {
   return "kind: narx\nname: tiny\nseed: 5\n"
          "dataset:\n  generator: following_error\n  seed: 11\n  options:\n"
-         "    path: {control_points: 12}\n    runs: 2\n    samples: 2000\n"
+         "    path: {control_points: 12}\n    runs: 2\n    samples: 1200\n"
          "narx: {input_delays: 2, feedback_delays: 2, hidden: 3}\n"
          "training:\n  open_loop: {epochs: 30}\n  closed_loop: {epochs: 5}\n"
          "study:\n  methods: [two_stage, open_loop_only]\n  seeds: [1]\n  workers: 2\n" +
@@ -97,8 +97,8 @@ TEST(NarxJob, RunsWritesAndReusesTheStudy) {
   EXPECT_FALSE(first.reused);
   ASSERT_TRUE(fs::exists(first.file));
   const NarxStudyResult& r = first.result;
-  EXPECT_EQ(r.train_samples, 1000u);
-  EXPECT_EQ(r.validation_samples, 1000u);
+  EXPECT_EQ(r.train_samples, 600u);
+  EXPECT_EQ(r.validation_samples, 600u);
   ASSERT_EQ(r.runs.size(), 2u);
   EXPECT_EQ(r.runs[0].method, NarxMethod::two_stage);
   EXPECT_EQ(r.runs[1].method, NarxMethod::open_loop_only);
@@ -117,7 +117,7 @@ TEST(NarxJob, RunsWritesAndReusesTheStudy) {
   // Taylor is second-order exact: closer to the exact contour error than the
   // tangent line on a curved path.
   EXPECT_LE(r.estimates[0].mean_um, r.estimates[1].mean_um);
-  EXPECT_EQ(r.series.cols(), 1000);
+  EXPECT_EQ(r.series.cols(), 600);
 
   const NarxStudyResult back = read_narx_result(first.file);
   EXPECT_EQ(back.config_hash, job.config_hash);

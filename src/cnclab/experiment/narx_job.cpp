@@ -122,6 +122,7 @@ struct Prepared {
 
 struct RunSeries {
   std::vector<Eigen::VectorXd> predicted_um;  // per job axis, validation steps
+  Eigen::VectorXd contour_um;                 // Taylor from the predictions (NaN: none)
 };
 
 NarxRun train_one(const NarxJob& job, const Prepared& p, const NarxArchitecture& arch,
@@ -184,6 +185,7 @@ NarxRun train_one(const NarxJob& job, const Prepared& p, const NarxArchitecture&
   // Contour error predicted by the Taylor estimate (Eqs. 3-6) from the
   // predicted following errors against the exact contour error of the data.
   run.contour_rms_um = run.contour_max_um = kNaN;
+  Eigen::VectorXd contour = Eigen::VectorXd::Constant(n - half, kNaN);
   if (all_stable && job.axes.size() == 2) {
     const Dataset& d = p.data;
     const auto row = [&](const char* name) { return d.metadata_row(name); };
@@ -199,6 +201,7 @@ NarxRun train_one(const NarxJob& job, const Prepared& p, const NarxArchitecture&
       Vec2 e_mm;
       for (std::size_t a = 0; a < 2; ++a) e_mm[p.axis_index[a]] = predicted[a][t] / 1000.0;
       const double c = std::abs(taylor_contour_error(pp, pp.position - e_mm)) * 1000.0;
+      contour[t] = c;
       const double diff = c - d.metadata(ex, k);
       sq += diff * diff;
       mx = std::max(mx, std::abs(diff));
@@ -206,7 +209,10 @@ NarxRun train_one(const NarxJob& job, const Prepared& p, const NarxArchitecture&
     run.contour_rms_um = std::sqrt(sq / static_cast<double>(n - half - first));
     run.contour_max_um = mx;
   }
-  if (series) series->predicted_um = std::move(predicted);
+  if (series) {
+    series->predicted_um = std::move(predicted);
+    series->contour_um = std::move(contour);
+  }
   return run;
 }
 
@@ -478,6 +484,8 @@ NarxStudyResult run_narx_study(const NarxJob& job, const fs::path& datasets, std
   }
   res.series_names.push_back("contour_exact");
   cols.push_back(d.metadata.row(d.metadata_row("contour_exact")).segment(half, m).transpose());
+  res.series_names.push_back("contour_hat");
+  cols.push_back(first_series.contour_um);
   res.series.resize(static_cast<Eigen::Index>(cols.size()), m);
   for (std::size_t c = 0; c < cols.size(); ++c) res.series.row(static_cast<Eigen::Index>(c)) = cols[c].transpose();
   return res;
