@@ -63,8 +63,13 @@ TEST(NarxJob, BadInputsAreConfigErrorsNamingTheKeyAndWriteNothing) {
   EXPECT_NE(message(tiny(), {"narx.hiden=3"}).find("hiden"), std::string::npos);
   EXPECT_NE(message(tiny(), {"training.closed_loop.mu=-1"}).find("closed_loop.mu"),
             std::string::npos);
-  EXPECT_NE(message(tiny("profiles: {quick: {study.seeds: [1]}}\n"), {}).find("no error"),
-            std::string::npos);  // a profile not asked for is only read
+  // A profile not asked for is only read; an unknown one is an error.
+  const fs::path with_profile = write(dir, tiny("profiles: {quick: {study.seeds: [2]}}\n"));
+  EXPECT_EQ(load_narx_job(with_profile).study.seeds, std::vector<std::uint64_t>{1});
+  EXPECT_EQ(load_narx_job(with_profile, {}, "quick").study.seeds, std::vector<std::uint64_t>{2});
+  EXPECT_NE(error_message<ConfigError>([&] { load_narx_job(with_profile, {}, "slow"); })
+                .find("no profile 'slow'"),
+            std::string::npos);
   EXPECT_EQ(files_under(dir.path() / "results"), 0u);
   EXPECT_EQ(files_under(dir.path() / "datasets"), 0u);
 }

@@ -9,6 +9,7 @@
 #include "cnclab/experiment/commands.hpp"
 #include "cnclab/experiment/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
+#include "cnclab/experiment/narx_job.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
@@ -37,14 +38,15 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
   if (found.empty()) throw ConfigError("reproduce: no experiment files found");
   // `kind: gcode` jobs (trochoid_job.hpp) take no part in the training graph;
   // a file whose kind cannot be read stays in it, to be reported there.
-  std::vector<fs::path> files, gcode_jobs;
+  std::vector<fs::path> files, gcode_jobs, narx_jobs;
   for (const auto& file : found) {
-    bool gcode = false;
+    bool gcode = false, narx = false;
     try {
-      gcode = experiment_kind(file) == "gcode";
+      narx = experiment_kind_of(file) == "narx";
+      gcode = !narx && experiment_kind(file) == "gcode";
     } catch (const ConfigError&) {
     }
-    (gcode ? gcode_jobs : files).push_back(file);
+    (narx ? narx_jobs : gcode ? gcode_jobs : files).push_back(file);
   }
   const std::vector<GraphNode> graph = load_graph(files);
   std::vector<NodeState> state(graph.size());
@@ -148,6 +150,24 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
       exit_code = 2;
     } catch (const Error& e) {
       rows.push_back({file.string(), "ERROR", "gcode job", e.what(), ""});
+      exit_code = std::max(exit_code, 1);
+    }
+  }
+  // NARX studies (narx_job.hpp): reused while their resolved config is unchanged.
+  for (const auto& file : narx_jobs) {
+    if (!options.quiet) log << "[narx] " << file.string() << "\n";
+    try {
+      const NarxJob job = load_narx_job(file);
+      const NarxJobOutcome o = run_narx_job(job, options.results_dir, options.datasets_dir, options.force,
+                                            options.quiet ? nullptr : &log);
+      rows.push_back({job.name, o.reused ? "reused" : "ran",
+                      o.reused ? "config unchanged" : "narx study", narx_summary_line(o.result),
+                      o.file.string()});
+    } catch (const ConfigError& e) {
+      rows.push_back({file.string(), "CONFIG ERROR", "narx study", e.what(), ""});
+      exit_code = 2;
+    } catch (const Error& e) {
+      rows.push_back({file.string(), "ERROR", "narx study", e.what(), ""});
       exit_code = std::max(exit_code, 1);
     }
   }
