@@ -86,9 +86,10 @@ TEST(FollowingErrorDataset, ColumnsAreConsistent) {
     for (const char* axis : {"x", "y"}) {
       const std::string s(axis);
       const double ref = meta(d, ("ref_" + s).c_str(), k);
-      ASSERT_NEAR(meta(d, ("actual_" + s).c_str(), k), ref - meta(d, ("e_ref_" + s).c_str(), k) / 1000,
-                  1e-12);
-      const double dv = (meta(d, ("ref_" + s).c_str(), k + 1) - meta(d, ("ref_" + s).c_str(), k - 1)) / 2e-3;
+      ASSERT_NEAR(meta(d, ("actual_" + s).c_str(), k),
+                  ref - meta(d, ("e_ref_" + s).c_str(), k) / 1000, 1e-12);
+      const double dv =
+          (meta(d, ("ref_" + s).c_str(), k + 1) - meta(d, ("ref_" + s).c_str(), k - 1)) / 2e-3;
       ASSERT_NEAR(dv, meta(d, ("v_ref_" + s).c_str(), k), 0.05) << k;
     }
     PathPoint p;
@@ -148,8 +149,7 @@ TEST(FollowingErrorDataset, BadOptionsAreConfigErrorsNamingTheKey) {
 
 TEST(FollowingErrorDataset, TooShortARunSaysWhatToChange) {
   Rng rng(7);
-  const std::string m =
-      error_message<Error>([&] { small("", "100000000")->generate(rng); });
+  const std::string m = error_message<Error>([&] { small("", "100000000")->generate(rng); });
   EXPECT_NE(m.find("raise path.control_points"), std::string::npos) << m;
 }
 

@@ -41,10 +41,9 @@ TEST(ContourErrorQuick, ReproduceAndTables) {
   std::ostringstream out;
   EXPECT_EQ(tables_command("contour-error", t, out), 0);
   const std::string text = out.str();
-  for (const char* needle :
-       {"training methods", "two_stage", "open_loop_only", "closed_loop_only", "zero predictor",
-        "architecture sweep", "<- paper's choice", "taylor", "tangent", "osculating",
-        "Contour error predictor", "Paper:"}) {
+  for (const char* needle : {"training methods", "two_stage", "open_loop_only", "closed_loop_only",
+                             "zero predictor", "architecture sweep", "<- paper's choice", "taylor",
+                             "tangent", "osculating", "Contour error predictor", "Paper:"}) {
     EXPECT_NE(text.find(needle), std::string::npos) << needle << "\n" << text;
   }
 }

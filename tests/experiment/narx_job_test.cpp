@@ -67,8 +67,9 @@ TEST(NarxJob, BadInputsAreConfigErrorsNamingTheKeyAndWriteNothing) {
   const fs::path with_profile = write(dir, tiny("profiles: {quick: {study.seeds: [2]}}\n"));
   EXPECT_EQ(load_narx_job(with_profile).study.seeds, std::vector<std::uint64_t>{1});
   EXPECT_EQ(load_narx_job(with_profile, {}, "quick").study.seeds, std::vector<std::uint64_t>{2});
-  EXPECT_NE(error_message<ConfigError>([&] { load_narx_job(with_profile, {}, "slow"); })
-                .find("no profile 'slow'"),
+  EXPECT_NE(error_message<ConfigError>([&] {
+              load_narx_job(with_profile, {}, "slow");
+            }).find("no profile 'slow'"),
             std::string::npos);
   EXPECT_EQ(files_under(dir.path() / "results"), 0u);
   EXPECT_EQ(files_under(dir.path() / "datasets"), 0u);

@@ -16,14 +16,28 @@ namespace {
 constexpr double kUmPerMm = 1000.0;
 constexpr const char* kAxis[2] = {"x", "y"};
 
-const std::vector<std::string> kMetadata = {
-    "time",     "u",        "ref_x",   "ref_y",         "actual_x",        "actual_y",
-    "v_ref_x",  "v_ref_y",  "e_ref_x", "e_ref_y",       "d1_x",            "d1_y",
-    "d2_x",     "d2_y",     "contour_exact", "contour_taylor", "contour_tangent",
-    "contour_osculating", "validation"};
-const std::vector<std::string> kMetadataUnits = {
-    "s", "1", "mm", "mm", "mm", "mm", "mm/s", "mm/s", "µm", "µm", "mm", "mm",
-    "mm", "mm", "µm", "µm", "µm", "µm", "1"};
+const std::vector<std::string> kMetadata = {"time",
+                                            "u",
+                                            "ref_x",
+                                            "ref_y",
+                                            "actual_x",
+                                            "actual_y",
+                                            "v_ref_x",
+                                            "v_ref_y",
+                                            "e_ref_x",
+                                            "e_ref_y",
+                                            "d1_x",
+                                            "d1_y",
+                                            "d2_x",
+                                            "d2_y",
+                                            "contour_exact",
+                                            "contour_taylor",
+                                            "contour_tangent",
+                                            "contour_osculating",
+                                            "validation"};
+const std::vector<std::string> kMetadataUnits = {"s",    "1",  "mm", "mm", "mm", "mm", "mm/s",
+                                                 "mm/s", "µm", "µm", "mm", "mm", "mm", "mm",
+                                                 "µm",   "µm", "µm", "µm", "1"};
 
 }  // namespace
 
@@ -154,7 +168,9 @@ FollowingErrorRanges following_error_ranges(const Dataset& d) {
   return r;
 }
 
-std::size_t first_validation_sample(const Dataset& d) { return d.num_samples() / 2; }
+std::size_t first_validation_sample(const Dataset& d) {
+  return d.num_samples() / 2;
+}
 
 std::string machine_yaml(const MachineOptions& m, const std::string& in) {
   std::ostringstream out;

@@ -99,9 +99,9 @@ std::string resolved_yaml(const NarxJob& job, std::uint64_t dataset_seed) {
   out << Key << "seeds" << Value << YAML::Flow << s.seeds;
   out << Key << "architectures" << Value << YAML::BeginSeq;
   for (const auto& a : s.architectures) {
-    out << YAML::Flow << BeginMap << Key << "hidden" << Value << a.hidden << Key
-        << "input_delays" << Value << a.input_delays << Key << "feedback_delays" << Value
-        << a.feedback_delays << EndMap;
+    out << YAML::Flow << BeginMap << Key << "hidden" << Value << a.hidden << Key << "input_delays"
+        << Value << a.input_delays << Key << "feedback_delays" << Value << a.feedback_delays
+        << EndMap;
   }
   out << YAML::EndSeq;
   out << Key << "stable_bound" << Value << shortest_double(s.stable_bound) << EndMap << EndMap;
@@ -159,8 +159,8 @@ NarxRun train_one(const NarxJob& job, const Prepared& p, const NarxArchitecture&
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (tr.open_loop) s.open_epochs = tr.open_loop->history.size();
     if (tr.closed_loop) s.closed_epochs = tr.closed_loop->history.size();
-    s.termination = to_string(tr.closed_loop ? tr.closed_loop->termination
-                                             : tr.open_loop->termination);
+    s.termination =
+        to_string(tr.closed_loop ? tr.closed_loop->termination : tr.open_loop->termination);
     // Closed loop over the whole validation half from measured initial states.
     const Eigen::VectorXd e_hat = narx.simulate_closed_loop(params, v_val, e_val);
     const ColumnRange& r = p.ranges.following_error[static_cast<std::size_t>(axis)];
@@ -381,7 +381,8 @@ NarxStudyResult run_narx_study(const NarxJob& job, const fs::path& datasets, std
       job.dataset.seed ? *job.dataset.seed : derive_seed(job.seed, "generator");
   auto t0 = std::chrono::steady_clock::now();
   CachedDataset cached = obtain_dataset(job.dataset, dseed, datasets, log);
-  res.dataset_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.dataset_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   res.dataset_file = cached.path.string();
   res.dataset_hash = cached.content_hash;
   Prepared p;
@@ -440,19 +441,18 @@ NarxStudyResult run_narx_study(const NarxJob& job, const fs::path& datasets, std
     for (std::size_t i; (i = next.fetch_add(1)) < tasks.size();) {
       try {
         const Task& task = tasks[i];
-        res.runs[i] = train_one(job, p, task.arch, task.method, task.seed,
-                                i == 0 ? &first_series : nullptr);
+        res.runs[i] =
+            train_one(job, p, task.arch, task.method, task.seed, i == 0 ? &first_series : nullptr);
         if (log) {
           const std::lock_guard lock(log_mutex);
           *log << "  [" << i + 1 << "/" << tasks.size() << "] " << to_string(task.method)
                << " H=" << task.arch.hidden << " D=" << task.arch.input_delays << "/"
-               << task.arch.feedback_delays << " seed "
-               << task.seed;
+               << task.arch.feedback_delays << " seed " << task.seed;
           for (std::size_t a = 0; a < job.axes.size(); ++a) {
             const NarxAxisScore& s = res.runs[i].axes[a];
             *log << "  " << job.axes[a] << ": rms " << table_number(s.rms_um) << " µm"
-                 << (s.stable ? "" : " UNSTABLE") << " (" << s.open_epochs << "+"
-                 << s.closed_epochs << " epochs, " << table_number(s.seconds, 3) << " s)";
+                 << (s.stable ? "" : " UNSTABLE") << " (" << s.open_epochs << "+" << s.closed_epochs
+                 << " epochs, " << table_number(s.seconds, 3) << " s)";
           }
           *log << "  contour rms " << table_number(res.runs[i].contour_rms_um) << " µm\n";
           log->flush();
@@ -475,10 +475,12 @@ NarxStudyResult run_narx_study(const NarxJob& job, const fs::path& datasets, std
   // Validation series of the first run, for the figures.
   const Eigen::Index m = n - half;
   res.series_names = {"time"};
-  std::vector<Eigen::VectorXd> cols = {d.metadata.row(d.metadata_row("time")).segment(half, m).transpose()};
+  std::vector<Eigen::VectorXd> cols = {
+      d.metadata.row(d.metadata_row("time")).segment(half, m).transpose()};
   for (std::size_t a = 0; a < job.axes.size(); ++a) {
     res.series_names.push_back("e_" + job.axes[a]);
-    cols.push_back(d.metadata.row(d.metadata_row("e_ref_" + job.axes[a])).segment(half, m).transpose());
+    cols.push_back(
+        d.metadata.row(d.metadata_row("e_ref_" + job.axes[a])).segment(half, m).transpose());
     res.series_names.push_back("e_hat_" + job.axes[a]);
     cols.push_back(first_series.predicted_um[a]);
   }
@@ -487,7 +489,8 @@ NarxStudyResult run_narx_study(const NarxJob& job, const fs::path& datasets, std
   res.series_names.push_back("contour_hat");
   cols.push_back(first_series.contour_um);
   res.series.resize(static_cast<Eigen::Index>(cols.size()), m);
-  for (std::size_t c = 0; c < cols.size(); ++c) res.series.row(static_cast<Eigen::Index>(c)) = cols[c].transpose();
+  for (std::size_t c = 0; c < cols.size(); ++c)
+    res.series.row(static_cast<Eigen::Index>(c)) = cols[c].transpose();
   return res;
 }
 
@@ -632,8 +635,8 @@ NarxStudyResult read_narx_result(const fs::path& path) {
     const auto ce = f.read_uint64s(g + "closed_epochs");
     const auto term = f.read_strings(g + "termination");
     for (std::size_t i = 0; i < r.runs.size(); ++i) {
-      r.runs[i].axes.push_back({rms.at(i), mx.at(i), stable.at(i) != 0, oe.at(i), ce.at(i),
-                                secs.at(i), term.at(i)});
+      r.runs[i].axes.push_back(
+          {rms.at(i), mx.at(i), stable.at(i) != 0, oe.at(i), ce.at(i), secs.at(i), term.at(i)});
     }
   }
   r.train_seconds = f.attribute_double("/runs", "seconds");
@@ -655,7 +658,8 @@ NarxJobOutcome run_narx_job(const NarxJob& job, const fs::path& results, const f
         return out;
       }
     } catch (const IoError& e) {
-      if (log) *log << "  " << out.file.string() << ": unreadable (" << e.what() << "), re-running\n";
+      if (log)
+        *log << "  " << out.file.string() << ": unreadable (" << e.what() << "), re-running\n";
     }
   }
   out.result = run_narx_study(job, datasets, log);

@@ -106,7 +106,7 @@ struct NarxRun {
 };
 
 struct ContourEstimateRow {
-  std::string method;      // taylor, tangent_line, osculating_circle
+  std::string method;              // taylor, tangent_line, osculating_circle
   double mean_um = 0, max_um = 0;  // |estimate - exact|
 };
 
@@ -115,7 +115,7 @@ struct NarxStudyResult {
   std::vector<std::string> axes;
   std::size_t train_samples = 0, validation_samples = 0;
   std::vector<NarxRun> runs;
-  std::vector<double> zero_rms_um, zero_max_um;  // predicting e = 0, per axis
+  std::vector<double> zero_rms_um, zero_max_um;                // predicting e = 0, per axis
   double exact_contour_mean_um = 0, exact_contour_max_um = 0;  // validation half
   std::vector<ContourEstimateRow> estimates;                   // validation half
   double dataset_seconds = 0, train_seconds = 0;

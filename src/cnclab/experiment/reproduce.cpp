@@ -158,8 +158,8 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
     if (!options.quiet) log << "[narx] " << file.string() << "\n";
     try {
       const NarxJob job = load_narx_job(file);
-      const NarxJobOutcome o = run_narx_job(job, options.results_dir, options.datasets_dir, options.force,
-                                            options.quiet ? nullptr : &log);
+      const NarxJobOutcome o = run_narx_job(job, options.results_dir, options.datasets_dir,
+                                            options.force, options.quiet ? nullptr : &log);
       rows.push_back({job.name, o.reused ? "reused" : "ran",
                       o.reused ? "config unchanged" : "narx study", narx_summary_line(o.result),
                       o.file.string()});

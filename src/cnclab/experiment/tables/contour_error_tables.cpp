@@ -131,7 +131,8 @@ void print_training_methods(const NarxStudyResult& r, const ConfigReader& ref, s
   t.rows.push_back(zero);
   t.print_aligned(out);
   out << "Paper: two_stage: " << reference_text(ref, "training_methods", "two_stage")
-      << "\n       closed_loop_only: " << reference_text(ref, "training_methods", "closed_loop_only")
+      << "\n       closed_loop_only: "
+      << reference_text(ref, "training_methods", "closed_loop_only")
       << "\n       open_loop_only: " << reference_text(ref, "training_methods", "open_loop_only")
       << "\n";
 }
@@ -169,10 +170,9 @@ void print_architecture(const NarxStudyResult& r, const ConfigReader& ref, std::
     std::size_t stable = 0;
     for (const auto* run : runs) stable += run_stable(*run) ? 1 : 0;
     const std::size_t params = k.h * (k.di + k.df) + 2 * k.h + 1;
-    std::vector<std::string> row = {std::to_string(k.h),
-                                    std::to_string(k.di) + "/" + std::to_string(k.df),
-                                    std::to_string(params),
-                                    std::to_string(stable) + "/" + std::to_string(runs.size())};
+    std::vector<std::string> row = {
+        std::to_string(k.h), std::to_string(k.di) + "/" + std::to_string(k.df),
+        std::to_string(params), std::to_string(stable) + "/" + std::to_string(runs.size())};
     for (std::size_t a = 0; a < r.axes.size(); ++a) {
       std::vector<double> rms;
       for (const auto* run : runs) rms.push_back(run->axes[a].rms_um);
@@ -185,8 +185,8 @@ void print_architecture(const NarxStudyResult& r, const ConfigReader& ref, std::
     t.rows.push_back(row);
   }
   t.print_aligned(out);
-  out << "Paper: " << paper_h << " tanh neurons, " << paper_d << " input and feedback delays: "
-      << reference_text(ref, "architecture", "claim") << "\n";
+  out << "Paper: " << paper_h << " tanh neurons, " << paper_d
+      << " input and feedback delays: " << reference_text(ref, "architecture", "claim") << "\n";
 }
 
 void print_estimates(const NarxStudyResult& r, const ConfigReader& ref, std::ostream& out) {
@@ -197,8 +197,8 @@ void print_estimates(const NarxStudyResult& r, const ConfigReader& ref, std::ost
   for (const auto& e : r.estimates) {
     t.rows.push_back({e.method, table_number(e.mean_um, 3), table_number(e.max_um, 3)});
   }
-  t.rows.push_back({"(exact contour error itself)", table_number(r.exact_contour_mean_um, 3) +
-                                                         " (mean)",
+  t.rows.push_back({"(exact contour error itself)",
+                    table_number(r.exact_contour_mean_um, 3) + " (mean)",
                     table_number(r.exact_contour_max_um, 3) + " (max)"});
   t.print_aligned(out);
   out << "Paper: " << reference_text(ref, "contour", "estimate") << "\n";
@@ -217,9 +217,9 @@ void print_predictor(const NarxStudyResult& r, const ConfigReader& ref, std::ost
   }
   const Stats s = stats(rms);
   const double best =
-      s.n ? *std::min_element(rms.begin(), rms.end(), [](double a, double b) {
-        return std::isfinite(a) && (!std::isfinite(b) || a < b);
-      })
+      s.n ? *std::min_element(
+                rms.begin(), rms.end(),
+                [](double a, double b) { return std::isfinite(a) && (!std::isfinite(b) || a < b); })
           : kNaN;
   // Predicting zero following error predicts zero contour error: its RMS is
   // the exact contour error's RMS.
