@@ -18,6 +18,7 @@
 #include "cnclab/data/following_error.hpp"
 #include "cnclab/experiment/dataset_cache.hpp"
 #include "cnclab/experiment/text_table.hpp"
+#include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/h5.hpp"
 #include "cnclab/motion/contour_error.hpp"
@@ -42,32 +43,6 @@ NarxMethod parse_method(const ConfigReader& r, const std::string& key, const std
   r.fail(key, "unknown method '" + name + "'; one of: two_stage, open_loop_only, closed_loop_only");
 }
 
-TrainbrOptions read_trainbr(const ConfigReader& r) {
-  TrainbrOptions o = seed002_trainbr();
-  o.epochs = r.get<std::size_t>("epochs", o.epochs);
-  o.goal = r.get<double>("goal", o.goal);
-  o.mu = r.get<double>("mu", o.mu);
-  o.mu_dec = r.get<double>("mu_dec", o.mu_dec);
-  o.mu_inc = r.get<double>("mu_inc", o.mu_inc);
-  o.mu_max = r.get<double>("mu_max", o.mu_max);
-  o.min_gradient = r.get<double>("min_gradient", o.min_gradient);
-  r.validate([&] { o.validate(); });
-  return o;
-}
-
-void emit_trainbr(YAML::Emitter& out, const char* key, const TrainbrOptions& o) {
-  using YAML::Key, YAML::Value;
-  out << Key << key << Value << YAML::BeginMap;
-  out << Key << "epochs" << Value << o.epochs;
-  out << Key << "goal" << Value << shortest_double(o.goal);
-  out << Key << "mu" << Value << shortest_double(o.mu);
-  out << Key << "mu_dec" << Value << shortest_double(o.mu_dec);
-  out << Key << "mu_inc" << Value << shortest_double(o.mu_inc);
-  out << Key << "mu_max" << Value << shortest_double(o.mu_max);
-  out << Key << "min_gradient" << Value << shortest_double(o.min_gradient);
-  out << YAML::EndMap;
-}
-
 std::string resolved_yaml(const NarxJob& job, std::uint64_t dataset_seed) {
   using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
   YAML::Emitter out;
@@ -88,8 +63,10 @@ std::string resolved_yaml(const NarxJob& job, std::uint64_t dataset_seed) {
   out << Key << "activation" << Value << to_string(n.hidden_activation);
   out << Key << "first_input_delay" << Value << n.first_input_delay << EndMap;
   out << Key << "training" << Value << BeginMap;
-  emit_trainbr(out, "open_loop", job.training.open_loop);
-  emit_trainbr(out, "closed_loop", job.training.closed_loop);
+  out << Key << "open_loop" << Value;
+  emit_trainer(out, job.training.open_loop);
+  out << Key << "closed_loop" << Value;
+  emit_trainer(out, job.training.closed_loop);
   out << EndMap;
   const NarxStudyOptions& s = job.study;
   out << Key << "study" << Value << BeginMap;
@@ -321,8 +298,8 @@ NarxJob load_narx_job(const fs::path& file, const std::vector<std::string>& over
   n.validate([&] { o.validate(); });
 
   const ConfigReader t = root.section("training");
-  job.training.open_loop = read_trainbr(t.section("open_loop"));
-  job.training.closed_loop = read_trainbr(t.section("closed_loop"));
+  job.training.open_loop = read_trainbr_options(t.section("open_loop"), seed002_trainbr());
+  job.training.closed_loop = read_trainbr_options(t.section("closed_loop"), seed002_trainbr());
 
   const ConfigReader s = root.section("study");
   NarxStudyOptions& st = job.study;
