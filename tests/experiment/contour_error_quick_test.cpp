@@ -4,6 +4,7 @@
 // zero predictor.
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <sstream>
 
 #include "cnclab/experiment/narx_job.hpp"
@@ -41,6 +42,7 @@ TEST(ContourErrorQuick, ReproduceAndTables) {
   std::ostringstream out;
   EXPECT_EQ(tables_command("contour-error", t, out), 0);
   const std::string text = out.str();
+  std::cout << text;  // the quick tables, for the test log
   for (const char* needle : {"training methods", "two_stage", "open_loop_only", "closed_loop_only",
                              "zero predictor", "architecture sweep", "<- paper's choice", "taylor",
                              "tangent", "osculating", "Contour error predictor", "Paper:"}) {
