@@ -230,37 +230,9 @@ void NarxStudyOptions::validate() const {
   }
 }
 
-std::string experiment_kind_of(const fs::path& file) {
-  const ConfigDocument doc = ConfigDocument::load(file);
-  return doc.root().get<std::string>("kind", "train");
-}
-
 NarxJob load_narx_job(const fs::path& file, const std::vector<std::string>& overrides,
                       const std::string& profile) {
-  ConfigDocument doc = ConfigDocument::load(file);
-  // profiles: {NAME: {dotted.key: value}} - applied before the overrides.
-  {
-    const ConfigReader top = doc.root();
-    std::vector<Override> chosen;
-    bool found = profile.empty();
-    if (top.has("profiles")) {
-      const YAML::Node all = top.raw("profiles");
-      if (!all.IsMap()) top.fail("profiles", "expected a map NAME: {dotted.key: value}");
-      for (const auto& entry : all) {
-        if (!entry.second.IsMap()) top.fail("profiles", "each profile must be a map");
-        if (entry.first.as<std::string>() != profile) continue;
-        found = true;
-        for (const auto& kv : entry.second) {
-          Override o = parse_override(kv.first.as<std::string>() + "=0");
-          o.value = kv.second;
-          o.text = kv.first.as<std::string>() + "=" + node_text(kv.second);
-          chosen.push_back(o);
-        }
-      }
-    }
-    if (!found) top.fail("profiles", "has no profile '" + profile + "'");
-    for (const auto& o : chosen) doc.apply(o);
-  }
+  ConfigDocument doc = ConfigDocument::load(file, profile);
   for (const auto& text : overrides) doc.apply(parse_override(text));
   const ConfigReader root = doc.root();
   if (root.get<std::string>("kind", "narx") != "narx") root.fail("kind", "must be narx");

@@ -77,12 +77,9 @@ struct NarxJob {
   std::string config_hash;
 };
 
-// The `kind:` key's value, default "train".
-std::string experiment_kind_of(const std::filesystem::path& file);
-
 // Reads a `kind: narx` file strictly, with the named profile (top-level
-// `profiles: {NAME: {dotted.key: value}}`, e.g. quick) and then `key=value`
-// overrides applied first. ConfigError naming file:line, key, value and rule.
+// `profiles: {NAME: {dotted.key: value}}`, core/config.hpp) and then
+// `key=value` overrides applied first. ConfigError naming file:line, key, value and rule.
 NarxJob load_narx_job(const std::filesystem::path& file,
                       const std::vector<std::string>& overrides = {},
                       const std::string& profile = "");

@@ -24,7 +24,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 NarxStudyResult load_study(const TablesOptions& o, const std::string& file) {
   const fs::path experiment = o.experiments_dir / "contour_error" / file;
   if (!fs::exists(experiment)) throw MissingResults(experiment.string() + ": not found");
-  const NarxJob job = load_narx_job(experiment);
+  const NarxJob job = load_narx_job(experiment, {}, o.profile);
   const fs::path exact = narx_result_path(job, o.results_dir);
   if (fs::exists(exact)) return read_narx_result(exact);
   const fs::path dir = o.results_dir / job.name;

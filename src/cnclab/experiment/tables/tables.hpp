@@ -16,6 +16,9 @@ struct TablesOptions {
   std::filesystem::path results_dir = "results";              // where `run`/`reproduce` wrote
   std::filesystem::path experiments_dir = "experiments";      // the experiment YAML files
   std::filesystem::path reference_dir = "results/reference";  // transcribed paper numbers
+  // The profiles: entry the results were made with (`reproduce --quick`:
+  // "quick"); experiments load with it to find their result files.
+  std::string profile;
 };
 
 // A table's input results do not exist yet (run the experiments first).
