@@ -6,6 +6,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/sweep_job.hpp"
+#include "cnclab/experiment/narx_job.hpp"
 #include "cnclab/experiment/trochoid_job.hpp"
 
 namespace cnclab {
@@ -71,6 +72,32 @@ JobKind sweep_kind() {
   return k;
 }
 
+// `kind: narx` (narx_job.hpp): seed 002's NARX studies; the result is
+// reused while the resolved config is unchanged.
+JobKind narx_kind() {
+  JobKind k;
+  k.kind = "narx";
+  k.summary =
+      "NARX following-error / contour-error study over methods, architectures, seeds (seed 002)";
+  k.run = [](const fs::path& file, const JobContext& c) {
+    const NarxJob job = load_narx_job(file, c.overrides, c.options.profile);
+    const NarxJobOutcome o =
+        run_narx_job(job, c.options.results_dir, c.options.datasets_dir, c.options.force, c.log);
+    return JobReport{job.name,
+                     o.reused ? "reused" : "ran",
+                     o.reused
+                         ? "config unchanged (hash " + job.config_hash + ")"
+                         : (c.options.force ? "--force" : "no result for this resolved config"),
+                     narx_summary_line(o.result),
+                     o.file.string(),
+                     ""};
+  };
+  k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
+    return load_narx_job(file, c.overrides, c.options.profile).resolved_yaml;
+  };
+  return k;
+}
+
 std::string known_kinds() {
   std::string s = "train";
   for (const auto& k : builtin_job_kinds()) s += ", " + k.kind;
@@ -80,7 +107,7 @@ std::string known_kinds() {
 }  // namespace
 
 std::vector<JobKind> builtin_job_kinds() {
-  return {gcode_kind(), sweep_kind()};
+  return {gcode_kind(), sweep_kind(), narx_kind()};
 }
 
 std::optional<JobKind> find_job_kind(const std::string& kind) {

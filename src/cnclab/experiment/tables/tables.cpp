@@ -1,5 +1,6 @@
 #include "cnclab/experiment/tables/tables.hpp"
 
+#include "cnclab/experiment/tables/contour_error_tables.hpp"
 #include "cnclab/experiment/tables/ik_tables.hpp"
 
 namespace cnclab {
@@ -10,6 +11,10 @@ std::vector<TableEntry> builtin_tables() {
        "seed 004 Table 5 (IK networks per axis, ours vs paper) and the machine-space error of the "
        "predicted joints",
        print_ik_tables},
+      {"contour-error",
+       "seed 002: NARX training methods, architecture sweep, contour-error estimates and the "
+       "contour predictor's accuracy (simulated machine)",
+       print_contour_error_tables},
   };
 }
 
