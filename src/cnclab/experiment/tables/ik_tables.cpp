@@ -68,12 +68,6 @@ double validation_mse(const RunRecord& r) {
   return h.back().validation_loss;
 }
 
-// Test MSE in the normalised units the network was trained in.
-double normalised_test_mse(const RunRecord& r) {
-  const ScalingRecord& y = r.target_scaling;
-  return (y.transform(r.test_predictions) - y.transform(r.test_targets)).array().square().mean();
-}
-
 struct Reference {
   std::map<std::string, std::vector<double>> rows;
   std::map<std::string, std::string> sources;
@@ -114,7 +108,8 @@ std::string integer(double v) {
   return std::to_string(static_cast<long long>(std::llround(v)));
 }
 
-void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, std::ostream& out) {
+void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, TableFormat format,
+                  std::ostream& out) {
   TextTable t;
   t.header = {"", ""};
   for (const auto& run : runs) {
@@ -175,9 +170,10 @@ void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, std::o
       "MSE-test", "", "mse_test",
       [&](const AxisRun& r) { return table_number(normalised_test_mse(r.record), 3); }, false);
 
-  out << "\nSeed 004 Table 5: the obtained MLP parameters (ours beside the paper's; A and C: ours "
-         "only)\n\n";
-  t.print_aligned(out);
+  print_table_title(out, format,
+                    "Seed 004 Table 5: the obtained MLP parameters (ours beside the paper's; A and "
+                    "C: ours only)");
+  t.print(out, format);
 
   TextTable phys;
   phys.header = {"Test error in machine units", "X [mm]", "Y [mm]", "Z [mm]", "A [deg]", "C [deg]"};
@@ -188,33 +184,34 @@ void print_table5(const std::vector<AxisRun>& runs, const Reference& ref, std::o
     maxe.push_back(table_number(f * r.record.metrics.at("max_abs_error"), 3));
   }
   phys.rows = {rmse, maxe};
-  out << "\n";
-  phys.print_aligned(out);
+  print_table_title(out, format, "Test error in machine units");
+  phys.print(out, format);
 
   const auto& s = runs.front().record;
   const std::string range =
       table_number(s.target_scaling.y_min) + ", " + table_number(s.target_scaling.y_max);
   const auto& text = ref.rows.at("text_split");
-  out << "\nNotes\n"
-      << "- Paper values: results/reference/ik_table5.yaml (" << ref.sources.at("mse_test")
-      << "; split text: " << ref.sources.at("text_split") << ").\n"
-      << "- Split: Table 5 prints " << integer(ref.rows.at("training_set")[0]) << " / "
-      << integer(ref.rows.at("test_set")[0]) << " / " << integer(ref.rows.at("validation_set")[0])
-      << " (training / test / validation), which adds up to "
-      << integer(ref.rows.at("training_set")[0] + ref.rows.at("test_set")[0] +
-                 ref.rows.at("validation_set")[0])
-      << ", not the " << integer(text[2]) << " samples; we follow the text ("
-      << ref.sources.at("text_split") << "): " << integer(text[0]) << " training, "
-      << integer(text[1]) << " test, the rest validation.\n"
-      << "- MSE in normalised units: targets min-max scaled to [" << range
-      << "] on the training split (sigmoid outputs); the paper does not state its scaling, so "
-         "its MSE values compare in magnitude only.\n"
-      << "- Validation MSE is that of the returned weights (best epoch under early stopping).\n"
-      << "- A and C networks are not in the paper; their sizes and settings are ours "
-         "(experiments/ik/ik_a.yaml, ik_c.yaml).\n";
+  print_table_notes(
+      out, format,
+      {"Paper values: results/reference/ik_table5.yaml (" + ref.sources.at("mse_test") +
+           "; split text: " + ref.sources.at("text_split") + ").",
+       "Split: Table 5 prints " + integer(ref.rows.at("training_set")[0]) + " / " +
+           integer(ref.rows.at("test_set")[0]) + " / " + integer(ref.rows.at("validation_set")[0]) +
+           " (training / test / validation), which adds up to " +
+           integer(ref.rows.at("training_set")[0] + ref.rows.at("test_set")[0] +
+                   ref.rows.at("validation_set")[0]) +
+           ", not the " + integer(text[2]) + " samples; we follow the text (" +
+           ref.sources.at("text_split") + "): " + integer(text[0]) + " training, " +
+           integer(text[1]) + " test, the rest validation.",
+       "MSE in normalised units: targets min-max scaled to [" + range +
+           "] on the training split (sigmoid outputs); the paper does not state its scaling, so "
+           "its MSE values compare in magnitude only.",
+       "Validation MSE is that of the returned weights (best epoch under early stopping).",
+       "A and C networks are not in the paper; their sizes and settings are ours "
+       "(experiments/ik/ik_a.yaml, ik_c.yaml)."});
 }
 
-void print_machine_error(const std::vector<AxisRun>& runs, std::ostream& out) {
+void print_machine_error(const std::vector<AxisRun>& runs, TableFormat format, std::ostream& out) {
   const RunRecord& first = runs.front().record;
   for (const auto& r : runs) {
     if (r.record.split.test != first.split.test || r.record.dataset_hash != first.dataset_hash) {
@@ -253,14 +250,17 @@ void print_machine_error(const std::vector<AxisRun>& runs, std::ostream& out) {
   add("X, Y, Z, A, C (all five networks)", {0, 1, 2, 3, 4});
   add("X, Y, Z (A, C exact)", {0, 1, 2});
   add("A, C (X, Y, Z exact)", {3, 4});
-  out << "\nMachine-space error (beyond the paper): predicted joint sets through forward "
-         "kinematics,\ncompared with the true pose, test split (n = "
-      << n << ", machine offset d = " << table_number(machine.options().offset_d) << " mm)\n\n";
-  t.print_aligned(out);
-  out << "\nNotes\n"
-      << "- tool tip: |P(predicted joints) - P(true joints)|; tool axis: angle between the two "
-         "tool orientations; p95 = 95th percentile (linear interpolation).\n"
-      << "- Rows with some joints exact show which networks the error comes from.\n";
+  print_table_title(out, format,
+                    "Machine-space error (beyond the paper): predicted joint sets through forward "
+                    "kinematics, compared with the true pose, test split (n = " +
+                        std::to_string(n) + ", machine offset d = " +
+                        table_number(machine.options().offset_d) + " mm)");
+  t.print(out, format);
+  print_table_notes(
+      out, format,
+      {"tool tip: |P(predicted joints) - P(true joints)|; tool axis: angle between the two tool "
+       "orientations; p95 = 95th percentile (linear interpolation).",
+       "Rows with some joints exact show which networks the error comes from."});
 }
 
 }  // namespace
@@ -269,8 +269,8 @@ void print_ik_tables(const TablesOptions& options, std::ostream& out) {
   std::vector<AxisRun> runs;
   for (const char* axis : kAxes) runs.push_back(load_axis(options, axis));
   const Reference ref = read_reference(options.reference_dir / "ik_table5.yaml");
-  print_table5(runs, ref, out);
-  print_machine_error(runs, out);
+  print_table5(runs, ref, options.format, out);
+  print_machine_error(runs, options.format, out);
 }
 
 }  // namespace cnclab
