@@ -98,7 +98,7 @@ TEST(StepErrorStats, FiguresAndShares) {
   EXPECT_EQ(f.samples, 4u);
   EXPECT_NEAR(f.max_abs, 1.4, kTol);
   EXPECT_NEAR(f.mean_abs, (0.2 + 0.6 + 1.0 + 1.4) / 4, kTol);
-  EXPECT_DOUBLE_EQ(f.share_abs_below(1.0), 50.0);   // 0.2, 0.6; 1.0 is not below 1
+  EXPECT_DOUBLE_EQ(f.share_abs_below(1.0), 50.0);  // 0.2, 0.6; 1.0 is not below 1
   EXPECT_DOUBLE_EQ(f.share_abs_below(1.5), 100.0);
   EXPECT_DOUBLE_EQ(f.share_rel_below(10.0 + 1e-9), 50.0);
   EXPECT_DOUBLE_EQ(f.share_rel_below(20.0), 100.0);

@@ -47,9 +47,9 @@ struct SurfaceCase {
   LoadedExperiment experiment;
   const StepErrorDatasetOptions* dataset = nullptr;  // inside experiment.spec
   fs::path result_file;
-  std::vector<std::size_t> test;        // dataset sample indices
-  std::vector<double> targets_um;       // the result's test targets
-  std::vector<double> predictions_um;   // the result's test predictions
+  std::vector<std::size_t> test;       // dataset sample indices
+  std::vector<double> targets_um;      // the result's test targets
+  std::vector<double> predictions_um;  // the result's test predictions
 };
 
 SurfaceCase prepare(const std::string& surface, const fs::path& file, const fs::path& results_dir) {
@@ -64,8 +64,8 @@ SurfaceCase prepare(const std::string& surface, const fs::path& file, const fs::
   c.dataset = &generator->options();
   c.result_file = result_path(c.experiment, results_dir);
   if (!fs::exists(c.result_file)) {
-    throw MissingResults("no result for " + file.string() + " (expected " +
-                         c.result_file.string() + "); run `cnclab reproduce` first");
+    throw MissingResults("no result for " + file.string() + " (expected " + c.result_file.string() +
+                         "); run `cnclab reproduce` first");
   }
   const RunRecord r = read_result(c.result_file);
   if (r.provenance.status != "complete") {
@@ -164,14 +164,17 @@ SurfaceTiming time_surface(const SurfaceCase& c, const StepErrorTimingOptions& o
   }
   const double exact_vs_targets = max_difference(e_exact, c.targets_um);
   if (!(exact_vs_targets <= kReproduceTolUm)) {
-    throw Error(c.result_file.string() + ": the exact step errors of the test segments differ from "
-                "the result's targets by " + shortest_double(exact_vs_targets) +
-                " µm: test indices and tool path do not match");
+    throw Error(c.result_file.string() +
+                ": the exact step errors of the test segments differ from "
+                "the result's targets by " +
+                shortest_double(exact_vs_targets) + " µm: test indices and tool path do not match");
   }
   const double network_vs_result = max_difference(e_network, c.predictions_um);
   if (!(network_vs_result <= kReproduceTolUm)) {
-    throw Error(c.result_file.string() + ": the network's predictions from the surface differ from "
-                "the result's test predictions by " + shortest_double(network_vs_result) + " µm");
+    throw Error(c.result_file.string() +
+                ": the network's predictions from the surface differ from "
+                "the result's test predictions by " +
+                shortest_double(network_vs_result) + " µm");
   }
   t.planning_s = median(planning);
   t.iterative_s = median(iterative);
@@ -213,8 +216,8 @@ StepErrorTimingJob load_step_error_timing_job(const fs::path& file,
   StepErrorTimingOptions& o = job.options;
   o.repeats = root.get<std::size_t>("repeats", o.repeats);
   const ConfigReader it = root.section("iterative");
-  o.iterative.points_per_pass = static_cast<int>(
-      it.get<std::int64_t>("points_per_pass", o.iterative.points_per_pass));
+  o.iterative.points_per_pass =
+      static_cast<int>(it.get<std::int64_t>("points_per_pass", o.iterative.points_per_pass));
   o.iterative.relative_tolerance =
       it.get<double>("relative_tolerance", o.iterative.relative_tolerance);
   o.iterative.max_passes =
@@ -281,7 +284,8 @@ fs::path write_step_error_timing(const StepErrorTimingResult& r, const fs::path&
     out << Key << "result_file" << Value << s.result_file;
     out << Key << "test_samples" << Value << s.test_samples;
     out << Key << "lines" << Value << s.lines;
-    for (const auto& [key, field] : kSeconds) out << Key << key << Value << shortest_double(s.*field);
+    for (const auto& [key, field] : kSeconds)
+      out << Key << key << Value << shortest_double(s.*field);
     out << EndMap;
   }
   out << EndMap << EndMap;

@@ -75,7 +75,8 @@ void TextTable::print_csv(std::ostream& out) const {
 void TextTable::print_latex(std::ostream& out) const {
   out << "\\begin{tabular}{" << std::string(header.size(), 'l') << "}\n\\hline\n";
   const auto line = [&](const std::vector<std::string>& cells) {
-    for (std::size_t c = 0; c < cells.size(); ++c) out << (c ? " & " : "") << latex_escape(cells[c]);
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      out << (c ? " & " : "") << latex_escape(cells[c]);
     out << " \\\\\n";
   };
   line(header);
@@ -86,10 +87,14 @@ void TextTable::print_latex(std::ostream& out) const {
 
 void TextTable::print(std::ostream& out, TableFormat format) const {
   switch (format) {
-    case TableFormat::text: return print_aligned(out);
-    case TableFormat::markdown: return print_markdown(out);
-    case TableFormat::csv: return print_csv(out);
-    case TableFormat::latex: return print_latex(out);
+    case TableFormat::text:
+      return print_aligned(out);
+    case TableFormat::markdown:
+      return print_markdown(out);
+    case TableFormat::csv:
+      return print_csv(out);
+    case TableFormat::latex:
+      return print_latex(out);
   }
 }
 
@@ -103,10 +108,18 @@ TableFormat parse_table_format(const std::string& name) {
 
 void print_table_title(std::ostream& out, TableFormat format, const std::string& title) {
   switch (format) {
-    case TableFormat::text: out << "\n" << title << "\n\n"; return;
-    case TableFormat::markdown: out << "\n### " << title << "\n\n"; return;
-    case TableFormat::csv: out << "\n# " << title << "\n"; return;
-    case TableFormat::latex: out << "\n% " << title << "\n"; return;
+    case TableFormat::text:
+      out << "\n" << title << "\n\n";
+      return;
+    case TableFormat::markdown:
+      out << "\n### " << title << "\n\n";
+      return;
+    case TableFormat::csv:
+      out << "\n# " << title << "\n";
+      return;
+    case TableFormat::latex:
+      out << "\n% " << title << "\n";
+      return;
   }
 }
 
@@ -135,14 +148,27 @@ std::string latex_escape(const std::string& text) {
   std::string s;
   for (char c : text) {
     switch (c) {
-      case '\\': s += "\\textbackslash{}"; break;
-      case '~': s += "\\textasciitilde{}"; break;
-      case '^': s += "\\textasciicircum{}"; break;
-      case '&': case '%': case '$': case '#': case '_': case '{': case '}':
+      case '\\':
+        s += "\\textbackslash{}";
+        break;
+      case '~':
+        s += "\\textasciitilde{}";
+        break;
+      case '^':
+        s += "\\textasciicircum{}";
+        break;
+      case '&':
+      case '%':
+      case '$':
+      case '#':
+      case '_':
+      case '{':
+      case '}':
         s += '\\';
         s += c;
         break;
-      default: s += c;
+      default:
+        s += c;
     }
   }
   return s;

@@ -33,7 +33,8 @@ struct TextTable {
 // CSV comment line ("# ..."; CSV readers skip them with comment='#'), a
 // LaTeX comment ("% ...") or plain text.
 void print_table_title(std::ostream& out, TableFormat format, const std::string& title);
-void print_table_notes(std::ostream& out, TableFormat format, const std::vector<std::string>& notes);
+void print_table_notes(std::ostream& out, TableFormat format,
+                       const std::vector<std::string>& notes);
 
 // The ten LaTeX special characters escaped (& % $ # _ { } ~ ^ and backslash); UTF-8 kept.
 std::string latex_escape(const std::string& text);

@@ -39,8 +39,8 @@ struct NormaliserChoice {
 };
 
 struct StudyManifest {
-  std::vector<StudyVariant> variants;  // file order; "paper" first
-  std::string normaliser_default;      // "keep" or "refit"
+  std::vector<StudyVariant> variants;        // file order; "paper" first
+  std::string normaliser_default;            // "keep" or "refit"
   std::vector<NormaliserChoice> normaliser;  // keep, refit
 };
 

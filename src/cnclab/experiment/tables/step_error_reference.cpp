@@ -43,7 +43,8 @@ PaperBins read_bins(const ConfigReader& r) {
 }
 
 PaperBinTable read_bin_table(const ConfigReader& r) {
-  return {read_bins(r.section("absolute_error_um")), read_bins(r.section("relative_error_percent"))};
+  return {read_bins(r.section("absolute_error_um")),
+          read_bins(r.section("relative_error_percent"))};
 }
 
 PaperSurfaceText read_surface_text(const ConfigReader& r) {

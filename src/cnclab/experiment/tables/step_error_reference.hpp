@@ -21,11 +21,11 @@ struct PaperBinTable {
 
 // A surface section of the text ("Predict step error values of Surface 2/3").
 struct PaperSurfaceText {
-  double max_abs_at_0 = 0, max_abs_at_15 = 0;              // µm
+  double max_abs_at_0 = 0, max_abs_at_15 = 0;                  // µm
   double share_below_1um_at_0 = 0, share_below_1um_at_15 = 0;  // %
-  double share_rel_below_10_at_15 = 0;                     // %
-  double mean_abs_at_15 = 0;                               // µm
-  double share_below_0_4um_at_15 = 0;                      // %
+  double share_rel_below_10_at_15 = 0;                         // %
+  double mean_abs_at_15 = 0;                                   // µm
+  double share_below_0_4um_at_15 = 0;                          // %
 };
 
 struct Seed000Reference {

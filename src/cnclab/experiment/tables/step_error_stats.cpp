@@ -43,7 +43,8 @@ BinCounts bin_counts(const std::vector<double>& values, const std::vector<double
 }
 
 double percent(std::size_t count, std::size_t total) {
-  return total == 0 ? std::nan("") : 100.0 * static_cast<double>(count) / static_cast<double>(total);
+  return total == 0 ? std::nan("")
+                    : 100.0 * static_cast<double>(count) / static_cast<double>(total);
 }
 
 namespace {
@@ -100,8 +101,8 @@ std::vector<double> relative_errors_percent(const std::vector<double>& predicted
 }
 
 double ErrorFigures::share_abs_below(double threshold_um) const {
-  const auto n = std::count_if(abs_um.begin(), abs_um.end(),
-                               [&](double e) { return e < threshold_um; });
+  const auto n =
+      std::count_if(abs_um.begin(), abs_um.end(), [&](double e) { return e < threshold_um; });
   return percent(static_cast<std::size_t>(n), abs_um.size());
 }
 
@@ -111,7 +112,8 @@ double ErrorFigures::share_rel_below(double threshold_percent) const {
   return percent(static_cast<std::size_t>(n), rel_percent.size());
 }
 
-ErrorFigures error_figures(const std::vector<double>& predicted, const std::vector<double>& target) {
+ErrorFigures error_figures(const std::vector<double>& predicted,
+                           const std::vector<double>& target) {
   ErrorFigures f;
   f.abs_um = absolute_errors(predicted, target);
   f.rel_percent = relative_errors_percent(predicted, target);

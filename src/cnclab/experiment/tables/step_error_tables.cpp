@@ -45,9 +45,9 @@ Run load_run(const fs::path& experiment, const TablesOptions& o) {
   const LoadedExperiment loaded = load_experiment(experiment);
   const fs::path result = result_path(loaded, o.results_dir);
   if (!fs::exists(result)) {
-    throw MissingResults("no result for " + experiment.string() + " (expected " +
-                         result.string() + "); run `cnclab reproduce " +
-                         (o.experiments_dir / "step_error").string() + "` first");
+    throw MissingResults("no result for " + experiment.string() + " (expected " + result.string() +
+                         "); run `cnclab reproduce " + (o.experiments_dir / "step_error").string() +
+                         "` first");
   }
   Run run;
   run.name = loaded.spec.name;
@@ -96,7 +96,9 @@ std::string fixed(double v, int decimals = 2) {
   return buf;
 }
 
-std::string um(double v) { return table_number(v, 3); }
+std::string um(double v) {
+  return table_number(v, 3);
+}
 
 std::string integer(double v) {
   return std::isnan(v) ? "-" : std::to_string(static_cast<long long>(std::llround(v)));
@@ -198,7 +200,9 @@ void print_bin_tables(std::ostream& out, TableFormat format, const std::string& 
   print_table_notes(out, format, notes);
 }
 
-std::string ours(const StudyVariant& v) { return "ours, " + v.name; }
+std::string ours(const StudyVariant& v) {
+  return "ours, " + v.name;
+}
 
 void print_variant_notes(const Study& s, std::vector<std::string>& notes) {
   for (const auto& v : s.manifest.variants) {
@@ -234,8 +238,8 @@ void print_table2(const Study& s, TableFormat format, std::ostream& out) {
     notes.push_back(ours(v) + ": lowest test MSE at p = " + table_number(best_p) +
                     " (paper: minimum at p = 0.5).");
   }
-  print_table_title(out, format,
-                    "Seed 000 Table 2: dropout keep probability p and MSE (surface 1, 70/30 split)");
+  print_table_title(
+      out, format, "Seed 000 Table 2: dropout keep probability p and MSE (surface 1, 70/30 split)");
   t.print(out, format);
   notes.push_back(
       "MSE in the z-score units of the targets (Eq. 7, fitted on the training split). The paper "
@@ -251,8 +255,9 @@ void print_table3(const Study& s, TableFormat format, std::ostream& out) {
     sources.push_back({ours(v), &s.at(v.surface1)});
     sources.push_back({ours(v) + ", no dropout", &s.at(v.surface1_no_dropout)});
   }
-  print_bin_tables(out, format, "Seed 000 Table 3", "prediction error of the surface-1 test samples",
-                   s.ref.table3, sources, checks_about(s.ref, "Table 3"));
+  print_bin_tables(out, format, "Seed 000 Table 3",
+                   "prediction error of the surface-1 test samples", s.ref.table3, sources,
+                   checks_about(s.ref, "Table 3"));
 
   TextTable t;
   t.header = {"Surface 1 test set", "paper"};
@@ -266,7 +271,8 @@ void print_table3(const Study& s, TableFormat format, std::ostream& out) {
   for (double c : s.ref.table3.absolute_um.count) paper_n += c;
   row("test samples", integer(paper_n),
       [](const Run& r) { return std::to_string(r.figures.samples); });
-  row("max |e| (µm)", um(s.ref.table3_max_abs_um), [](const Run& r) { return um(r.figures.max_abs); });
+  row("max |e| (µm)", um(s.ref.table3_max_abs_um),
+      [](const Run& r) { return um(r.figures.max_abs); });
   row("mean |e| (µm)", "-", [](const Run& r) { return um(r.figures.mean_abs); });
   row("|e| < 0.5 µm (%)", fixed(s.ref.table3_share_below_0_5um),
       [](const Run& r) { return fixed(r.figures.share_abs_below(0.5)); });
@@ -336,8 +342,7 @@ void print_fine_tune_table(const Study& s, TableFormat format, std::ostream& out
       },
       [](const Run& r) { return fixed(r.figures.share_abs_below(1.0)); });
   metric(
-      "mean |e| (µm)",
-      [&](double p) { return at_0_15(p, NAN, paper.mean_abs_at_15, um); },
+      "mean |e| (µm)", [&](double p) { return at_0_15(p, NAN, paper.mean_abs_at_15, um); },
       [](const Run& r) { return um(r.figures.mean_abs); });
   metric(
       "relative error < 10 % (%)",
@@ -354,17 +359,16 @@ void print_fine_tune_table(const Study& s, TableFormat format, std::ostream& out
   const int table = surface == 2 ? 4 : 5;
   print_table_title(out, format,
                     "Seed 000 Table " + std::to_string(table) + " (test sets) and the text of " +
-                        "\"Predict step error values of Surface " + std::to_string(surface) +
-                        "\"");
+                        "\"Predict step error values of Surface " + std::to_string(surface) + "\"");
   t.print(out, format);
   std::vector<std::string> notes = {
       "Each column fine-tunes the " +
-          std::string(surface == 2 ? "surface-1 network" :
-                                     "network trained on surface 1 and 15 % of surface 2") +
+          std::string(surface == 2 ? "surface-1 network"
+                                   : "network trained on surface 1 and 15 % of surface 2") +
           " with that share of surface " + std::to_string(surface) +
           "'s samples and tests on the rest; '-': the paper gives no value there.",
-      "Issue target: >= 99 % of |e| < 1 µm at 15 % (paper: " +
-          fixed(paper.share_below_1um_at_15) + " %).",
+      "Issue target: >= 99 % of |e| < 1 µm at 15 % (paper: " + fixed(paper.share_below_1um_at_15) +
+          " %).",
       kSurfacesNote};
   if (surface == 2) {
     for (auto& c : checks_about(s.ref, "Table 6")) notes.push_back(c);
@@ -392,15 +396,14 @@ void print_bins_at_15(const Study& s, TableFormat format, std::ostream& out, int
 
 void print_normaliser_table(const Study& s, TableFormat format, std::ostream& out) {
   TextTable t;
-  t.header = {"Normaliser at 15 %", "test samples", "max |e| (µm)", "|e| < 1 µm (%)",
-              "mean |e| (µm)", "relative error < 10 % (%)"};
+  t.header = {"Normaliser at 15 %", "test samples",  "max |e| (µm)",
+              "|e| < 1 µm (%)",     "mean |e| (µm)", "relative error < 10 % (%)"};
   for (const char* surface : {"surface2", "surface3"}) {
     for (const auto& n : s.manifest.normaliser) {
       const Run& r = s.at(std::string(surface) == "surface2" ? n.surface2 : n.surface3);
-      const std::string label = std::string(surface == std::string("surface2") ? "surface 2" :
-                                                                                 "surface 3") +
-                                ", " + n.name +
-                                (n.name == s.manifest.normaliser_default ? " (default)" : "");
+      const std::string label =
+          std::string(surface == std::string("surface2") ? "surface 2" : "surface 3") + ", " +
+          n.name + (n.name == s.manifest.normaliser_default ? " (default)" : "");
       t.rows.push_back({label, std::to_string(r.figures.samples), um(r.figures.max_abs),
                         fixed(r.figures.share_abs_below(1.0)), um(r.figures.mean_abs),
                         fixed(r.figures.share_rel_below(10))});
@@ -458,11 +461,11 @@ void print_table8(const Study& s, const TablesOptions& o, std::ostream& out) {
                     sec(s.ref.table8_proposed.at("surface2")), sec(t3.network_total_s()),
                     sec(s.ref.table8_proposed.at("surface3"))});
   const auto ratio = [](double a, double b) { return table_number(a / b, 3); };
-  t.rows.push_back({"ratio network total / geometric",
-                    ratio(t2.network_total_s(), t2.iterative_s),
-                    ratio(s.ref.table8_proposed.at("surface2"), s.ref.table8_geometric.at("surface2")),
-                    ratio(t3.network_total_s(), t3.iterative_s),
-                    ratio(s.ref.table8_proposed.at("surface3"), s.ref.table8_geometric.at("surface3"))});
+  t.rows.push_back(
+      {"ratio network total / geometric", ratio(t2.network_total_s(), t2.iterative_s),
+       ratio(s.ref.table8_proposed.at("surface2"), s.ref.table8_geometric.at("surface2")),
+       ratio(t3.network_total_s(), t3.iterative_s),
+       ratio(s.ref.table8_proposed.at("surface3"), s.ref.table8_geometric.at("surface3"))});
   t.rows.push_back({"ratio network load + forward / geometric",
                     ratio(t2.network_load_s + t2.network_forward_s, t2.iterative_s), "-",
                     ratio(t3.network_load_s + t3.network_forward_s, t3.iterative_s), "-"});
@@ -470,13 +473,14 @@ void print_table8(const Study& s, const TablesOptions& o, std::ostream& out) {
   print_table_title(out, format,
                     "Seed 000 Table 8: time to obtain the step errors of the surface-2 and "
                     "surface-3 test sets (15 % fine-tuning; " +
-                        std::to_string(t2.test_samples) + " and " + std::to_string(t3.test_samples) +
-                        " samples)");
+                        std::to_string(t2.test_samples) + " and " +
+                        std::to_string(t3.test_samples) + " samples)");
   t.print(out, format);
   const auto verdict = [](const SurfaceTiming& x, const std::string& name) {
     const double r = x.network_total_s() / x.iterative_s;
     return name + ": the network end to end is " +
-           (r < 1 ? table_number(1 / r, 3) + "x faster than" : table_number(r, 3) + "x slower than") +
+           (r < 1 ? table_number(1 / r, 3) + "x faster than"
+                  : table_number(r, 3) + "x slower than") +
            " the iterative geometric method and " +
            table_number(x.network_total_s() / x.exact_s, 3) + "x the exact method's time.";
   };
@@ -484,8 +488,10 @@ void print_table8(const Study& s, const TablesOptions& o, std::ostream& out) {
       out, format,
       {verdict(t2, "Surface 2"), verdict(t3, "Surface 3"),
        "Measured in one run by " + timing.name + " on " + timing.host + " (" + timing.utc +
-           ", cnclab " + timing.cnclab_version + ", " + timing.git_commit + "), single thread, "
-           "median of " + std::to_string(timing.repeats) +
+           ", cnclab " + timing.cnclab_version + ", " + timing.git_commit +
+           "), single thread, "
+           "median of " +
+           std::to_string(timing.repeats) +
            " repeat(s). The paper: i7-12700KF, RTX 3070 Ti, PyTorch (other hardware and software).",
        "All three start from the same planned tool-path lines (CC curve, CC and CL points), "
        "timed once on the first row. The paper's network read precomputed samples (its time "
