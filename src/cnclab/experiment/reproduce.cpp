@@ -11,6 +11,7 @@
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
+#include "cnclab/experiment/step_error_timing.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
 #include "cnclab/experiment/trochoid_job.hpp"
 #include "cnclab/experiment/upstream.hpp"
@@ -37,14 +38,17 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
   if (found.empty()) throw ConfigError("reproduce: no experiment files found");
   // `kind: gcode` jobs (trochoid_job.hpp) take no part in the training graph;
   // a file whose kind cannot be read stays in it, to be reported there.
-  std::vector<fs::path> files, gcode_jobs;
+  std::vector<fs::path> files, gcode_jobs, timing_jobs;
   for (const auto& file : found) {
-    bool gcode = false;
+    std::string kind = "train";
     try {
-      gcode = experiment_kind(file) == "gcode";
+      kind = experiment_kind(file);
     } catch (const ConfigError&) {
     }
-    (gcode ? gcode_jobs : files).push_back(file);
+    (kind == "gcode"               ? gcode_jobs
+     : kind == "step_error_timing" ? timing_jobs
+                                   : files)
+        .push_back(file);
   }
   const std::vector<GraphNode> graph = load_graph(files);
   std::vector<NodeState> state(graph.size());
@@ -148,6 +152,23 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
       exit_code = 2;
     } catch (const Error& e) {
       rows.push_back({file.string(), "ERROR", "gcode job", e.what(), ""});
+      exit_code = std::max(exit_code, 1);
+    }
+  }
+  // Timing jobs read the training results above: after the graph, always re-run.
+  for (const auto& file : timing_jobs) {
+    if (!options.quiet) log << "[timing] " << file.string() << "\n";
+    try {
+      const StepErrorTimingJob job = load_step_error_timing_job(file);
+      const StepErrorTimingResult result = run_step_error_timing(job, options.results_dir);
+      const fs::path written = write_step_error_timing(result, options.results_dir);
+      rows.push_back(
+          {job.name, "ran", "timing job", step_error_timing_summary(result), written.string()});
+    } catch (const ConfigError& e) {
+      rows.push_back({file.string(), "CONFIG ERROR", "timing job", e.what(), ""});
+      exit_code = 2;
+    } catch (const Error& e) {
+      rows.push_back({file.string(), "ERROR", "timing job", e.what(), ""});
       exit_code = std::max(exit_code, 1);
     }
   }

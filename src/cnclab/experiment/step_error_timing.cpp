@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "cnclab/core/config.hpp"
@@ -292,6 +293,18 @@ fs::path write_step_error_timing(const StepErrorTimingResult& r, const fs::path&
   const fs::path file = step_error_timing_path(r.name, results_dir);
   write_text_atomically(file, std::string(out.c_str()) + "\n");
   return file;
+}
+
+std::string step_error_timing_summary(const StepErrorTimingResult& r) {
+  std::string line;
+  for (const auto& s : r.surfaces) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s%s: geometric %.3g s, exact %.3g s, network %.3g s",
+                  line.empty() ? "" : "; ", s.surface.c_str(), s.iterative_s, s.exact_s,
+                  s.network_total_s());
+    line += buf;
+  }
+  return line;
 }
 
 StepErrorTimingResult read_step_error_timing(const fs::path& file) {

@@ -94,6 +94,8 @@ std::filesystem::path step_error_timing_path(const std::string& name,
 // Writes the result atomically; returns the file.
 std::filesystem::path write_step_error_timing(const StepErrorTimingResult& result,
                                               const std::filesystem::path& results_dir);
+// One line per run for `cnclab reproduce`: each surface's seconds by method.
+std::string step_error_timing_summary(const StepErrorTimingResult& result);
 // Reads it back strictly (ConfigError on a malformed file).
 StepErrorTimingResult read_step_error_timing(const std::filesystem::path& file);
 

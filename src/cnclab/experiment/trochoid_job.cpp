@@ -40,7 +40,9 @@ std::string experiment_kind(const fs::path& file) {
   const ConfigDocument doc = ConfigDocument::load(file);
   const ConfigReader root = doc.root();
   const auto kind = root.get<std::string>("kind", "train");
-  if (kind != "train" && kind != "gcode") root.fail("kind", "must be one of: train, gcode");
+  if (kind != "train" && kind != "gcode" && kind != "step_error_timing") {
+    root.fail("kind", "must be one of: train, gcode, step_error_timing");
+  }
   return kind;
 }
 

@@ -46,7 +46,8 @@ struct TrochoidJob {
   std::filesystem::path source_file;
 };
 
-// The `kind:` of an experiment file: "train" (default) or "gcode". Throws
+// The `kind:` of an experiment file: "train" (default), "gcode" or
+// "step_error_timing" (step_error_timing.hpp). Throws
 // ConfigError for unreadable YAML or another value.
 std::string experiment_kind(const std::filesystem::path& file);
 
