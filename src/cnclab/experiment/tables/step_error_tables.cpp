@@ -1,5 +1,6 @@
 #include "cnclab/experiment/tables/step_error_tables.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -25,6 +26,7 @@ struct Run {
   std::string name;  // experiment name
   RunRecord record;
   ErrorFigures figures;
+  std::string failure;  // non-empty: training failed (no figures)
 };
 
 struct Study {
@@ -53,8 +55,11 @@ Run load_run(const fs::path& experiment, const TablesOptions& o) {
   run.name = loaded.spec.name;
   run.record = read_result(result);
   if (run.record.provenance.status != "complete") {
-    throw Error(result.string() + ": training failed (" + run.record.provenance.failure_reason +
-                ")");
+    // Table 2 shows a diverged keep probability as such; elsewhere it is an
+    // error (load_study).
+    run.failure = result.string() + ": training failed (" + run.record.provenance.failure_reason +
+                  ")";
+    return run;
   }
   if (run.record.target_units != std::vector<std::string>{"µm"}) {
     throw Error(result.string() + ": expected one step-error target in µm");
@@ -85,6 +90,12 @@ Study load_study(const TablesOptions& o) {
   }
   for (const auto& f : files) {
     if (!s.runs.count(f)) s.runs.emplace(f, load_run(f, o));
+  }
+  for (const auto& v : s.manifest.variants) {
+    for (const auto& [p, f] : v.table2) files.erase(std::find(files.begin(), files.end(), f));
+  }
+  for (const auto& f : files) {
+    if (!s.runs.at(f).failure.empty()) throw Error(s.runs.at(f).failure);
   }
   return s;
 }
@@ -224,6 +235,11 @@ void print_table2(const Study& s, TableFormat format, std::ostream& out) {
     double best = NAN, best_p = NAN;
     for (double p : s.ref.table2_p) {
       const Run* run = s.find(v.table2, p);
+      if (run && !run->failure.empty()) {
+        test.push_back("diverged");
+        train.push_back("diverged");
+        continue;
+      }
       const double mse = run ? normalised_test_mse(run->record) : NAN;
       const auto& h = run ? run->record.training.history : std::vector<EpochRecord>{};
       test.push_back(table_number(mse, 3));
@@ -245,6 +261,9 @@ void print_table2(const Study& s, TableFormat format, std::ostream& out) {
       "MSE in the z-score units of the targets (Eq. 7, fitted on the training split). The paper "
       "does not say whether its MSE is the training loss or a test error, nor in which units; "
       "both of ours are shown. Training loss is with dropout active (mean over the epoch).");
+  notes.push_back(
+      "'diverged': training with the paper's settings (N(0, 1) weights, per-sample SGDM) ended "
+      "with a non-finite loss at that p; its result file says when.");
   print_variant_notes(s, notes);
   print_table_notes(out, format, notes);
 }
