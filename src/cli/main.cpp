@@ -19,6 +19,9 @@ namespace {
 constexpr int kExitOk = 0;
 constexpr int kExitFailed = 1;
 constexpr int kExitUsage = 2;
+constexpr const char* kProfileHelp =
+    "Apply the experiment files' `profiles: {NAME: ...}` overrides (e.g. quick); results then "
+    "default to <results>/NAME";
 
 }  // namespace
 
@@ -47,6 +50,7 @@ int main(int argc, char** argv) {
   run->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")->capture_default_str();
   run->add_flag("--quiet,-q", common.quiet, "No progress output");
   run->add_flag("--regenerate", common.regenerate, "Regenerate the dataset even when cached");
+  run->add_option("--profile", common.profile, kProfileHelp);
   run->footer(
       "Example:\n  cnclab run experiments/friedman/friedman1_mlp.yaml trainer.learning_rate=1e-3 "
       "model.hidden=[32,16] --seed 7\nWrites results/<name>/<name>-seed<N>-<hash>.h5 atomically.");
@@ -58,6 +62,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   validate->add_option("overrides", overrides, "Config overrides key=value");
   validate->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
+  validate->add_option("--profile", common.profile, kProfileHelp);
   validate->footer(
       "Example:\n  cnclab validate experiments/friedman/friedman1_mlp.yaml trainer.momentum=0.9");
 
@@ -77,11 +82,17 @@ int main(int argc, char** argv) {
   reproduce->add_flag("--force", common.force,
                       "Run every experiment even if its result is current");
   reproduce->add_flag("--regenerate", common.regenerate, "Regenerate datasets even when cached");
+  reproduce->add_option("--profile", common.profile, kProfileHelp);
+  bool quick = false;
+  reproduce->add_flag("--quick", quick,
+                      "Same as --profile quick: fewer epochs and samples, same code paths "
+                      "(about a minute per study; results/quick)");
   reproduce->footer(
       "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
       "experiments/friedman\n"
       "Experiments run upstream first (needs:, init_from:); a result whose resolved config and "
-      "upstream results are unchanged is reused. Each line says ran/reused and why.");
+      "upstream results are unchanged is reused. Each line says ran/reused and why.\n"
+      "  cnclab reproduce --quick experiments/step_error   # the quick profile");
 
   cnclab::SweepCommandOptions sweep_options;
   std::vector<std::string> sweep_words;
@@ -112,6 +123,7 @@ int main(int argc, char** argv) {
   sweep->add_flag("--regenerate", sweep_options.common.regenerate,
                   "Regenerate the datasets even when cached");
   sweep->add_flag("--quiet,-q", sweep_options.common.quiet, "No progress output");
+  sweep->add_option("--profile", sweep_options.common.profile, kProfileHelp);
   sweep->footer(
       "Examples:\n"
       "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
@@ -187,6 +199,8 @@ int main(int argc, char** argv) {
   std::string tables_format = "text";
   tables->add_option("--format", tables_format, "Output: text (aligned), md, csv or latex")
       ->capture_default_str();
+  tables->add_option("--profile", tables_options.profile,
+                     "Tables of the results made with this profile (reproduce --quick: quick)");
   tables->footer(
       "Examples:\n  cnclab tables ik    # seed 004 Table 5 and the machine-space error\n"
       "  cnclab tables step-error --format md   # seed 000 Tables 2-8 as Markdown");
@@ -200,10 +214,29 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? kExitOk : kExitUsage;
   }
+  if (quick) {
+    if (!common.profile.empty() && common.profile != "quick") {
+      std::cerr << "error: --quick and --profile " << common.profile << " contradict\n";
+      return kExitUsage;
+    }
+    common.profile = "quick";
+  }
+  // With a profile, results go to results/<profile> unless --out/--results
+  // says otherwise: quick results never mix with the full ones.
+  const auto profile_dir = [](CLI::App* sub, const char* option, const std::string& profile,
+                              std::filesystem::path& dir) {
+    if (sub->parsed() && !profile.empty() && sub->get_option(option)->count() == 0) {
+      dir = dir / profile;
+    }
+  };
+  profile_dir(run, "--out", common.profile, common.results_dir);
+  profile_dir(reproduce, "--out", common.profile, common.results_dir);
+  profile_dir(sweep, "--out", sweep_options.common.profile, sweep_options.common.results_dir);
+  profile_dir(tables, "--results", tables_options.profile, tables_options.results_dir);
 
   try {
     if (*run) return cnclab::run_command(experiment, overrides, seed, common, std::cout, std::cerr);
-    if (*validate) return cnclab::validate_command(experiment, overrides, seed, std::cout);
+    if (*validate) return cnclab::validate_command(experiment, overrides, seed, common, std::cout);
     if (*show) return cnclab::show_command(paths, std::cout);
     if (*reproduce) return cnclab::reproduce_command(paths, common, std::cout, std::cerr);
     if (*compare) return cnclab::compare_command(paths, compare_format, std::cout);

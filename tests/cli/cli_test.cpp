@@ -277,6 +277,42 @@ TEST_F(Cli, ReproduceRunsAFolderAndPrintsMetrics) {
   EXPECT_NE(r.out.find("r2"), std::string::npos) << r.out;
 }
 
+// `reproduce --quick`: each file's `profiles: {quick: ...}` applies, also to
+// the upstream an init_from names, and results go to results/quick.
+TEST_F(Cli, QuickProfileAppliesThroughTheGraphIntoItsOwnFolder) {
+  fs::create_directories(dir_ / "exps");
+  write("exps/up.yaml", "include: " + kExperiment +
+                            "\nname: up\ntrainer: {epochs: 4}\ndataset: {options: {samples: 100}}\n"
+                            "profiles:\n  quick: {trainer.epochs: 1}\n");
+  write("exps/down.yaml",
+        "include: up.yaml\nname: down\ninit_from: {experiment: up.yaml}\n"
+        "profiles:\n  quick: {trainer.epochs: 2}\n");
+  const Result v = cnclab("validate exps/down.yaml --profile quick");
+  ASSERT_EQ(v.code, 0) << v.err;
+  EXPECT_NE(v.out.find("epochs: 2"), std::string::npos) << v.out;
+  EXPECT_EQ(v.out.find("profiles"), std::string::npos) << v.out;
+
+  const Result r = cnclab("reproduce exps --quick --quiet");
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "results/up"));
+  ASSERT_TRUE(fs::is_directory(dir_ / "results/quick/up")) << r.out;
+  ASSERT_TRUE(fs::is_directory(dir_ / "results/quick/down")) << r.out;
+  for (const char* name : {"up", "down"}) {
+    const fs::path folder = dir_ / "results/quick" / name;
+    const fs::path file = fs::directory_iterator(folder)->path();
+    const Result show = cnclab("show '" + file.string() + "'");
+    ASSERT_EQ(show.code, 0) << show.err;
+    EXPECT_NE(show.out.find(std::string("epochs: ") + (name == std::string("up") ? "1" : "2")),
+              std::string::npos)
+        << show.out;
+  }
+  // A second quick run reuses both; a full run is separate.
+  const Result again = cnclab("reproduce exps --quick --quiet");
+  EXPECT_EQ(again.code, 0);
+  EXPECT_EQ(again.out.find(" ran "), std::string::npos) << again.out;
+  EXPECT_EQ(cnclab("reproduce exps --quick --profile other").code, 2);
+}
+
 TEST_F(Cli, ImpossibleDatasetIsAResourceErrorNotACrash) {
   const Result r = cnclab(quick("dataset.options.samples=100000000 dataset.options.inputs=10000"));
   expect_one_line_error(r, 1, "needs about");

@@ -146,6 +146,65 @@ TEST(Config, IncludeCycleDetected) {
             std::string::npos);
 }
 
+TEST(ConfigProfiles, AppliedOnlyWhenNamedAndNeverInTheResolvedTree) {
+  const std::string text =
+      "trainer:\n  epochs: 2000\n  momentum: 0.8\n"
+      "profiles:\n  quick: {trainer.epochs: 20, dataset.samples: 100}\n  other:\n";
+  const auto full = ConfigDocument::parse(text, "e.yaml");
+  EXPECT_EQ(full.root().section("trainer").get<std::int64_t>("epochs", 0), 2000);
+  EXPECT_EQ(full.to_yaml().find("profiles"), std::string::npos);
+  full.root().section("trainer").get<double>("momentum", 0);
+  full.check_all_consumed();  // `profiles` is gone, not an unread key
+
+  const auto quick = ConfigDocument::parse(text, "e.yaml", "quick");
+  EXPECT_EQ(quick.root().section("trainer").get<std::int64_t>("epochs", 0), 20);
+  EXPECT_DOUBLE_EQ(quick.root().section("trainer").get<double>("momentum", 0), 0.8);
+  EXPECT_EQ(quick.root().section("dataset").get<std::int64_t>("samples", 0),
+            100);  // created on the way
+
+  // A profile a file does not define leaves it unchanged.
+  EXPECT_EQ(ConfigDocument::parse(text, "e.yaml", "missing").to_yaml(), full.to_yaml());
+}
+
+TEST(ConfigProfiles, InheritedThroughIncludesIncludingFileWins) {
+  TempDir dir;
+  dir.write("base.yaml", "a: 1\nb: 1\nprofiles:\n  quick: {a: 10, b: 10}\n");
+  const auto exp = dir.write("e.yaml", "include: base.yaml\nprofiles:\n  quick: {b: 20}\n");
+  const auto doc = ConfigDocument::load(exp, "quick");
+  EXPECT_EQ(doc.root().get<std::int64_t>("a", 0), 10);
+  EXPECT_EQ(doc.root().get<std::int64_t>("b", 0), 20);
+}
+
+TEST(ConfigProfiles, CommandLineOverridesComeAfterTheProfile) {
+  auto doc = ConfigDocument::parse("a: 1\nprofiles:\n  quick: {a: 2}\n", "e.yaml", "quick");
+  doc.apply(parse_override("a=3"));
+  EXPECT_EQ(doc.root().get<std::int64_t>("a", 0), 3);
+}
+
+TEST(ConfigProfiles, MalformedBlocksAreErrorsNamingTheKey) {
+  EXPECT_NE(config_error([] {
+              ConfigDocument::parse("profiles: [1, 2]\n", "e.yaml");
+            }).find("e.yaml:1:1: profiles: must be a map"),
+            std::string::npos);
+  EXPECT_NE(config_error([] {
+              ConfigDocument::parse("profiles:\n  quick: 3\n", "e.yaml");
+            }).find("profiles.quick: must be a map"),
+            std::string::npos);
+  EXPECT_NE(config_error([] {
+              ConfigDocument::parse("profiles:\n  quick: {'a..b': 1}\n", "e.yaml");
+            }).find("is not a dotted key"),
+            std::string::npos);
+  EXPECT_NE(config_error([] {
+              ConfigDocument::parse("profiles:\n  quick: {a: ~}\n", "e.yaml", "quick");
+            }).find("profiles.quick.a: value is null"),
+            std::string::npos);
+  // Descending into a scalar names the profile entry and where it is written.
+  EXPECT_NE(config_error([] {
+              ConfigDocument::parse("a: 1\nprofiles:\n  quick: {a.b: 1}\n", "e.yaml", "quick");
+            }).find("profile quick (e.yaml:3:"),
+            std::string::npos);
+}
+
 TEST(Config, OverrideReplacesValueAndIsNamedInErrors) {
   auto doc = ConfigDocument::parse("trainer:\n  momentum: 0.5\n", "x.yaml");
   doc.apply(parse_override("trainer.momentum=1.5"));

@@ -258,23 +258,60 @@ std::string node_text(const YAML::Node& node) {
 
 // ---------------------------------------------------------------- document
 
-ConfigDocument ConfigDocument::load(const fs::path& file) {
+ConfigDocument ConfigDocument::load(const fs::path& file, const std::string& profile) {
   std::vector<fs::path> stack;
   Loaded loaded = load_recursive(file, stack);
   ConfigDocument doc;
   doc.tree_ = loaded.tree;
   doc.origin_ = file.string();
   doc.state_->locations = std::move(loaded.locations);
+  doc.take_profiles(profile);
   return doc;
 }
 
-ConfigDocument ConfigDocument::parse(const std::string& yaml_text, const std::string& origin) {
+ConfigDocument ConfigDocument::parse(const std::string& yaml_text, const std::string& origin,
+                                     const std::string& profile) {
   ConfigDocument doc;
   doc.tree_ = parse_yaml(yaml_text, origin);
   doc.origin_ = origin;
   std::size_t count = 0;
   index_tree(doc.tree_, "", origin, doc.state_->locations, count);
+  doc.take_profiles(profile);
   return doc;
+}
+
+void ConfigDocument::take_profiles(const std::string& profile) {
+  const YAML::Node profiles = static_cast<const YAML::Node&>(tree_)["profiles"];
+  if (!profiles.IsDefined()) return;
+  const auto fail = [&](const std::string& key, const std::string& why) {
+    throw ConfigError(location(key).str() + ": " + key + ": " + why);
+  };
+  if (!profiles.IsMap()) fail("profiles", "must be a map of profile names to overrides");
+  std::vector<Override> chosen;
+  for (auto it = profiles.begin(); it != profiles.end(); ++it) {
+    const std::string name = it->first.as<std::string>();
+    const std::string key = "profiles." + name;
+    if (it->second.IsNull()) continue;
+    if (!it->second.IsMap()) fail(key, "must be a map of `dotted.key: value` overrides");
+    for (auto e = it->second.begin(); e != it->second.end(); ++e) {
+      const std::string dotted = e->first.as<std::string>();
+      const std::string where = location(key + "." + dotted).str();
+      if (!e->second.IsDefined() || e->second.IsNull()) fail(key + "." + dotted, "value is null");
+      // parse_override checks the key; the value is the YAML node itself.
+      Override o;
+      try {
+        o = parse_override(dotted + "=0");
+      } catch (const ConfigError&) {
+        fail(key + "." + dotted,
+             "is not a dotted key (letters, digits, '_', '-', '.' between segments)");
+      }
+      o.value = YAML::Clone(e->second);
+      o.text = "profile " + name + " (" + where + "): " + dotted + "=" + node_text(e->second);
+      if (name == profile) chosen.push_back(std::move(o));
+    }
+  }
+  tree_.remove("profiles");
+  for (const auto& o : chosen) apply(o);
 }
 
 void ConfigDocument::apply(const Override& override) {

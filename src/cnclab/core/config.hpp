@@ -31,9 +31,21 @@ class ConfigDocument {
   // ancestor directory holding configs/). Included documents are merged in
   // order, then the including file's own keys: later keys override earlier
   // ones (maps merge key by key; scalars and lists are replaced).
-  static ConfigDocument load(const std::filesystem::path& file);
+  //
+  // `profiles:` (top level) holds named sets of overrides, for example
+  //   profiles:
+  //     quick: {trainer.epochs: 20, dataset.options.samples: 2000}
+  // load() and parse() take the block out of the tree after the includes are
+  // merged (an included file's profiles are inherited; the including file's
+  // entries win key by key), so it is never part of the resolved
+  // configuration, then apply the entries of `profile` as overrides (before
+  // any command-line override). A profile the file does not define leaves it
+  // unchanged; "" selects none. ConfigError when `profiles` is not a map of
+  // maps or an entry is not a valid `key: value` override.
+  static ConfigDocument load(const std::filesystem::path& file, const std::string& profile = {});
   // A document from YAML text (tests, fuzzing); `origin` names it in messages.
-  static ConfigDocument parse(const std::string& yaml_text, const std::string& origin);
+  static ConfigDocument parse(const std::string& yaml_text, const std::string& origin,
+                              const std::string& profile = {});
 
   // Sets path = value, creating maps on the way; it is an error to descend
   // into a value that is not a map.
@@ -55,6 +67,8 @@ class ConfigDocument {
     std::map<std::string, SourceLocation> locations;
     std::set<std::string> consumed;
   };
+  void take_profiles(const std::string& profile);
+
   YAML::Node tree_;
   std::string origin_;
   std::shared_ptr<State> state_ = std::make_shared<State>();

@@ -4,6 +4,7 @@
 #include <iomanip>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
@@ -31,11 +32,19 @@ RunOptions run_options(const CommandOptions& options, std::ostream& log) {
 
 namespace {
 
-// A gcode job has no random streams: --seed would silently do nothing.
-bool is_gcode_job(const fs::path& experiment, std::optional<std::uint64_t> seed) {
-  if (experiment_kind(experiment) != "gcode") return false;
-  if (seed) throw ConfigError("--seed: " + experiment.string() + " is a gcode job (no seed)");
-  return true;
+// The job kind of a `kind: <job>` file with its context (--seed becomes the
+// override seed=N: a job without a seed key rejects it), or nullopt for a
+// training experiment.
+std::optional<std::pair<JobKind, JobContext>> job_of(const fs::path& experiment,
+                                                     const std::vector<std::string>& overrides,
+                                                     std::optional<std::uint64_t> seed,
+                                                     const CommandOptions& options,
+                                                     std::ostream* log) {
+  auto kind = find_job_kind(experiment_kind(experiment));
+  if (!kind) return std::nullopt;
+  JobContext context{options, overrides, options.quiet ? nullptr : log};
+  if (seed) context.overrides.push_back("seed=" + std::to_string(*seed));
+  return std::pair{std::move(*kind), std::move(context)};
 }
 
 }  // namespace
@@ -43,14 +52,16 @@ bool is_gcode_job(const fs::path& experiment, std::optional<std::uint64_t> seed)
 int run_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                 std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
                 std::ostream& log) {
-  if (is_gcode_job(experiment, seed)) {
-    const TrochoidFiles written =
-        write_trochoid_outputs(load_trochoid_job(experiment, overrides), options.results_dir);
-    if (!options.quiet) out << written.outcome.report << "\n";
-    out << written.program.string() << "\n";
+  if (const auto job = job_of(experiment, overrides, seed, options, &log)) {
+    const JobReport report = job->first.run(experiment, job->second);
+    if (!options.quiet && !report.report.empty()) out << report.report << "\n";
+    out << report.name << ": " << report.action << " (" << report.why << ")";
+    if (!report.detail.empty()) out << "; " << report.detail;
+    out << "\n";
+    if (!report.file.empty()) out << report.file << "\n";
     return 0;
   }
-  const LoadedExperiment loaded = load_experiment(experiment, overrides, seed);
+  const LoadedExperiment loaded = load_experiment(experiment, overrides, seed, options.profile);
   const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
   if (!outcome.ok) {
     out << "FAILED " << loaded.spec.name << ": " << outcome.message << "\n"
@@ -63,13 +74,14 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
 }
 
 int validate_command(const fs::path& experiment, const std::vector<std::string>& overrides,
-                     std::optional<std::uint64_t> seed, std::ostream& out) {
-  if (is_gcode_job(experiment, seed)) {
+                     std::optional<std::uint64_t> seed, const CommandOptions& options,
+                     std::ostream& out) {
+  if (const auto job = job_of(experiment, overrides, seed, options, nullptr)) {
     out << "# " << experiment.string() << ": valid; resolved configuration:\n"
-        << to_yaml(load_trochoid_job(experiment, overrides));
+        << job->first.resolved_yaml(experiment, job->second);
     return 0;
   }
-  const LoadedExperiment loaded = load_experiment(experiment, overrides, seed);
+  const LoadedExperiment loaded = load_experiment(experiment, overrides, seed, options.profile);
   out << "# " << experiment.string() << ": valid; resolved configuration:\n"
       << loaded.resolved_yaml;
   return 0;

@@ -18,6 +18,9 @@ struct CommandOptions {
   bool quiet = false;
   bool regenerate = false;  // --regenerate: generate datasets even when cached
   bool force = false;       // reproduce --force: run even when the result is current
+  // --profile NAME: the experiment files' `profiles: {NAME: ...}` overrides
+  // (core/config.hpp); `reproduce --quick` is --profile quick.
+  std::string profile;
 };
 
 int run_command(const std::filesystem::path& experiment, const std::vector<std::string>& overrides,
@@ -25,7 +28,7 @@ int run_command(const std::filesystem::path& experiment, const std::vector<std::
                 std::ostream& log);
 int validate_command(const std::filesystem::path& experiment,
                      const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed,
-                     std::ostream& out);
+                     const CommandOptions& options, std::ostream& out);
 int show_command(const std::vector<std::string>& result_files, std::ostream& out);
 // Runs the experiments under `paths` and the ones they need, upstream first
 // (experiment_graph.hpp); reuses every result whose resolved config and

@@ -18,7 +18,7 @@ fs::path key_of(const fs::path& file) {
 
 }  // namespace
 
-std::vector<GraphNode> load_graph(const std::vector<fs::path>& files) {
+std::vector<GraphNode> load_graph(const std::vector<fs::path>& files, const std::string& profile) {
   // Load everything reachable.
   std::vector<GraphNode> nodes;
   std::map<fs::path, std::size_t> index;
@@ -35,7 +35,8 @@ std::vector<GraphNode> load_graph(const std::vector<fs::path>& files) {
     nodes.push_back({file, std::nullopt, "", false, {}, requested});
     needs.emplace_back();
     try {
-      nodes[i].experiment = load_experiment(file);
+      nodes[i].experiment =
+          load_experiment(file, std::vector<std::string>{}, std::nullopt, profile);
       needs[i] = upstream_files(nodes[i].experiment->spec);
     } catch (const ConfigError& e) {
       nodes[i].load_error = e.what();

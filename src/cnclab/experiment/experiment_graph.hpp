@@ -24,7 +24,8 @@ struct GraphNode {
 // Loads `files` and, transitively, every experiment they need; returns them
 // upstream first (otherwise in the order given). A file that fails to load is
 // a node with load_error. ConfigError naming the files on a dependency cycle.
-std::vector<GraphNode> load_graph(const std::vector<std::filesystem::path>& files);
+std::vector<GraphNode> load_graph(const std::vector<std::filesystem::path>& files,
+                                  const std::string& profile = {});
 
 struct CurrentUpstream {
   std::string name;      // upstream experiment name, for messages

@@ -1,19 +1,16 @@
 // `cnclab reproduce`: the experiment graph, upstream first, reusing current
 // results (DVC-style stage caching; see experiment_graph.hpp).
-#include <cstdio>
 #include <iomanip>
-#include <numbers>
 #include <optional>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/commands.hpp"
 #include "cnclab/experiment/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/step_error_timing.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
-#include "cnclab/experiment/trochoid_job.hpp"
 #include "cnclab/experiment/upstream.hpp"
 
 namespace cnclab {
@@ -36,21 +33,24 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
                       std::ostream& out, std::ostream& log) {
   const auto found = find_experiments(paths);
   if (found.empty()) throw ConfigError("reproduce: no experiment files found");
-  // `kind: gcode` jobs (trochoid_job.hpp) take no part in the training graph;
-  // a file whose kind cannot be read stays in it, to be reported there.
-  std::vector<fs::path> files, gcode_jobs, timing_jobs;
+  // `kind: <job>` files (job_kinds.hpp) take no part in the training graph
+  // and run after it; a file whose kind cannot be read stays in the graph, to
+  // be reported there.
+  std::vector<fs::path> files;
+  std::vector<std::pair<fs::path, JobKind>> jobs;
   for (const auto& file : found) {
-    std::string kind = "train";
+    std::optional<JobKind> kind;
     try {
-      kind = experiment_kind(file);
+      kind = find_job_kind(experiment_kind(file));
     } catch (const ConfigError&) {
     }
-    (kind == "gcode"               ? gcode_jobs
-     : kind == "step_error_timing" ? timing_jobs
-                                   : files)
-        .push_back(file);
+    if (kind) {
+      jobs.emplace_back(file, std::move(*kind));
+    } else {
+      files.push_back(file);
+    }
   }
-  const std::vector<GraphNode> graph = load_graph(files);
+  const std::vector<GraphNode> graph = load_graph(files, options.profile);
   std::vector<NodeState> state(graph.size());
   std::vector<Row> rows;
   int exit_code = 0;
@@ -133,42 +133,20 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
       exit_code = std::max(exit_code, 1);
     }
   }
-  // G-code jobs take seconds and write text files: always re-run.
+  // Jobs read training results: they run after the graph, in file order.
   std::string reports;
-  for (const auto& file : gcode_jobs) {
-    if (!options.quiet) log << "[gcode] " << file.string() << "\n";
+  const JobContext context{options, {}, options.quiet ? nullptr : &log};
+  for (const auto& [file, kind] : jobs) {
+    if (!options.quiet) log << "[" << kind.kind << "] " << file.string() << "\n";
     try {
-      const TrochoidJob job = load_trochoid_job(file);
-      const TrochoidFiles written = write_trochoid_outputs(job, options.results_dir);
-      char detail[160];
-      std::snprintf(detail, sizeof detail,
-                    "%zu points; max radial engagement %.1f deg in the loops (slotting 180)",
-                    written.outcome.groove.points.size(),
-                    written.outcome.max_engagement_rad * 180.0 / std::numbers::pi);
-      rows.push_back({job.name, "ran", "gcode job", detail, written.program.string()});
-      reports += "\n== " + job.name + " ==\n" + written.outcome.report;
+      const JobReport r = kind.run(file, context);
+      rows.push_back({r.name, r.action, r.why, r.detail, r.file});
+      if (!r.report.empty()) reports += "\n" + r.report;
     } catch (const ConfigError& e) {
-      rows.push_back({file.string(), "CONFIG ERROR", "gcode job", e.what(), ""});
+      rows.push_back({file.string(), "CONFIG ERROR", kind.kind + " job", e.what(), ""});
       exit_code = 2;
     } catch (const Error& e) {
-      rows.push_back({file.string(), "ERROR", "gcode job", e.what(), ""});
-      exit_code = std::max(exit_code, 1);
-    }
-  }
-  // Timing jobs read the training results above: after the graph, always re-run.
-  for (const auto& file : timing_jobs) {
-    if (!options.quiet) log << "[timing] " << file.string() << "\n";
-    try {
-      const StepErrorTimingJob job = load_step_error_timing_job(file);
-      const StepErrorTimingResult result = run_step_error_timing(job, options.results_dir);
-      const fs::path written = write_step_error_timing(result, options.results_dir);
-      rows.push_back(
-          {job.name, "ran", "timing job", step_error_timing_summary(result), written.string()});
-    } catch (const ConfigError& e) {
-      rows.push_back({file.string(), "CONFIG ERROR", "timing job", e.what(), ""});
-      exit_code = 2;
-    } catch (const Error& e) {
-      rows.push_back({file.string(), "ERROR", "timing job", e.what(), ""});
+      rows.push_back({file.string(), "ERROR", kind.kind + " job", e.what(), ""});
       exit_code = std::max(exit_code, 1);
     }
   }
@@ -182,6 +160,7 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
   out << reports;
   TablesOptions tables;
   tables.results_dir = options.results_dir;
+  tables.profile = options.profile;
   print_available_tables(tables, out);
   return exit_code;
 }

@@ -84,7 +84,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   // before any work.
   std::optional<UpstreamResult> init_source;
   for (const auto& file : upstream_files(spec)) {
-    UpstreamResult up = load_upstream(file, options.results_dir);
+    UpstreamResult up = load_upstream(file, options.results_dir, spec.profile);
     rec.upstream.push_back({file.string(), up.result_file.string(), result_identity(up.record)});
     if (spec.init_from && file == spec.init_from->resolved_file) init_source = std::move(up);
   }

@@ -190,7 +190,8 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
   const ConfigReader root = doc.root();
   ExperimentSpec spec;
   if (root.get<std::string>("kind", "train") != "train") {
-    root.fail("kind", "must be train here (gcode files are run by their own reader)");
+    root.fail("kind",
+              "must be train here (other kinds are read by their job, experiment/job_kinds.hpp)");
   }
   spec.name = read_experiment_name(root);
   spec.description = root.get<std::string>("description", "");
@@ -265,17 +266,20 @@ std::string read_experiment_name(const ConfigReader& root) {
 
 LoadedExperiment load_experiment(const std::filesystem::path& file,
                                  const std::vector<Override>& overrides,
-                                 std::optional<std::uint64_t> seed_override) {
-  ConfigDocument doc = ConfigDocument::load(file);
+                                 std::optional<std::uint64_t> seed_override,
+                                 const std::string& profile) {
+  ConfigDocument doc = ConfigDocument::load(file, profile);
   LoadedExperiment loaded = read_experiment(doc, overrides, seed_override, file.parent_path());
   loaded.spec.source_file = file;
+  loaded.spec.profile = profile;
   return loaded;
 }
 
 LoadedExperiment load_experiment(const std::filesystem::path& file,
                                  const std::vector<std::string>& overrides,
-                                 std::optional<std::uint64_t> seed_override) {
-  return load_experiment(file, parse_overrides(overrides), seed_override);
+                                 std::optional<std::uint64_t> seed_override,
+                                 const std::string& profile) {
+  return load_experiment(file, parse_overrides(overrides), seed_override, profile);
 }
 
 LoadedExperiment parse_experiment(const std::string& yaml_text, const std::string& origin,

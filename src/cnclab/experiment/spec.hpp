@@ -88,6 +88,9 @@ struct ExperimentSpec {
   std::optional<InitFromSpec> init_from;
 
   std::filesystem::path source_file;
+  // The `profiles:` entry applied when loading ("" = none; core/config.hpp).
+  // Upstream experiments (needs, init_from) load with the same profile.
+  std::string profile;
 };
 
 struct LoadedExperiment {
@@ -98,17 +101,20 @@ struct LoadedExperiment {
   std::string resolved_yaml;
 };
 
-// Loads, merges includes, applies `key=value` overrides (then --seed), reads
-// and validates everything. Throws ConfigError naming file:line:col, key,
-// value and rule; unknown keys are errors.
+// Loads, merges includes, applies the `profile` (profiles: block, see
+// core/config.hpp), then `key=value` overrides (then --seed), reads and
+// validates everything. Throws ConfigError naming file:line:col, key, value
+// and rule; unknown keys are errors.
 LoadedExperiment load_experiment(const std::filesystem::path& file,
                                  const std::vector<std::string>& overrides = {},
-                                 std::optional<std::uint64_t> seed_override = std::nullopt);
+                                 std::optional<std::uint64_t> seed_override = std::nullopt,
+                                 const std::string& profile = {});
 
 // The same with already parsed overrides (sweep trials).
 LoadedExperiment load_experiment(const std::filesystem::path& file,
                                  const std::vector<Override>& overrides,
-                                 std::optional<std::uint64_t> seed_override);
+                                 std::optional<std::uint64_t> seed_override,
+                                 const std::string& profile = {});
 
 // The upstream experiment files (needs and init_from), without duplicates.
 std::vector<std::filesystem::path> upstream_files(const ExperimentSpec& spec);

@@ -53,10 +53,11 @@ struct SurfaceCase {
   std::vector<double> predictions_um;  // the result's test predictions
 };
 
-SurfaceCase prepare(const std::string& surface, const fs::path& file, const fs::path& results_dir) {
+SurfaceCase prepare(const std::string& surface, const fs::path& file, const std::string& profile,
+                    const fs::path& results_dir) {
   SurfaceCase c;
   c.surface = surface;
-  c.experiment = load_experiment(file);
+  c.experiment = load_experiment(file, {}, std::nullopt, profile);
   const auto* generator =
       dynamic_cast<const StepErrorGenerator*>(c.experiment.spec.dataset.generator.get());
   if (!generator) {
@@ -198,8 +199,9 @@ void StepErrorTimingOptions::validate() const {
 }
 
 StepErrorTimingJob load_step_error_timing_job(const fs::path& file,
-                                              const std::vector<std::string>& overrides) {
-  ConfigDocument doc = ConfigDocument::load(file);
+                                              const std::vector<std::string>& overrides,
+                                              const std::string& profile) {
+  ConfigDocument doc = ConfigDocument::load(file, profile);
   for (const auto& text : overrides) doc.apply(parse_override(text));
   const ConfigReader root = doc.root();
   if (root.require<std::string>("kind") != "step_error_timing") {
@@ -207,6 +209,7 @@ StepErrorTimingJob load_step_error_timing_job(const fs::path& file,
   }
   StepErrorTimingJob job;
   job.source_file = file;
+  job.profile = profile;
   job.name = read_experiment_name(root);
   job.description = root.get<std::string>("description", "");
   const ConfigReader e = root.section("experiments");
@@ -243,7 +246,7 @@ StepErrorTimingResult run_step_error_timing(const StepErrorTimingJob& job,
   // Everything read first, so a missing upstream result fails before timing.
   std::vector<SurfaceCase> cases;
   for (const auto& [surface, file] : job.experiments) {
-    cases.push_back(prepare(surface, file, results_dir));
+    cases.push_back(prepare(surface, file, job.profile, results_dir));
   }
   for (const auto& c : cases) result.surfaces.push_back(time_surface(c, job.options));
   return result;
@@ -293,6 +296,23 @@ fs::path write_step_error_timing(const StepErrorTimingResult& r, const fs::path&
   const fs::path file = step_error_timing_path(r.name, results_dir);
   write_text_atomically(file, std::string(out.c_str()) + "\n");
   return file;
+}
+
+std::string to_yaml(const StepErrorTimingJob& job) {
+  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
+  YAML::Emitter out;
+  out << BeginMap << Key << "kind" << Value << "step_error_timing";
+  out << Key << "name" << Value << job.name << Key << "description" << Value << job.description;
+  out << Key << "experiments" << Value << BeginMap;
+  for (const auto& [surface, file] : job.experiments)
+    out << Key << surface << Value << file.string();
+  out << EndMap << Key << "repeats" << Value << job.options.repeats;
+  const auto& it = job.options.iterative;
+  out << Key << "iterative" << Value << BeginMap;
+  out << Key << "points_per_pass" << Value << it.points_per_pass;
+  out << Key << "relative_tolerance" << Value << shortest_double(it.relative_tolerance);
+  out << Key << "max_passes" << Value << it.max_passes << EndMap << EndMap;
+  return std::string(out.c_str()) + "\n";
 }
 
 std::string step_error_timing_summary(const StepErrorTimingResult& r) {

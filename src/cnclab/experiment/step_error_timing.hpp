@@ -27,6 +27,7 @@
 //   experiments: {surface2: FILE, surface3: FILE}   # relative to this file
 //   repeats: 3
 //   iterative: {points_per_pass: 10, relative_tolerance: 1e-6, max_passes: 100}
+//   profiles: {quick: {repeats: 1}}
 // Output: results/<name>/<name>.yaml (atomic), read by `cnclab tables step-error`.
 #include <filesystem>
 #include <map>
@@ -50,12 +51,18 @@ struct StepErrorTimingJob {
   std::map<std::string, std::filesystem::path> experiments;
   StepErrorTimingOptions options;
   std::filesystem::path source_file;
+  std::string profile;  // applied to the upstream experiments as well
 };
 
 // Reads a `kind: step_error_timing` file strictly (unknown keys are errors),
-// applying `key=value` overrides first.
+// applying the `profiles:` entry `profile` (core/config.hpp; the upstream
+// experiments load with it too), then `key=value` overrides.
 StepErrorTimingJob load_step_error_timing_job(const std::filesystem::path& file,
-                                              const std::vector<std::string>& overrides = {});
+                                              const std::vector<std::string>& overrides = {},
+                                              const std::string& profile = {});
+
+// The resolved job as YAML that loads back to the same job (`cnclab validate`).
+std::string to_yaml(const StepErrorTimingJob& job);
 
 // Timings of one surface's test set [s] (medians over the repeats).
 struct SurfaceTiming {

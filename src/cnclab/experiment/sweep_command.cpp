@@ -21,7 +21,7 @@ namespace {
 
 SweepSpec resolve_spec(const fs::path& experiment, const SweepArguments& args,
                        const SweepCommandOptions& o) {
-  SweepSpec spec = read_sweep_block(experiment, args.overrides);
+  SweepSpec spec = read_sweep_block(experiment, args.overrides, o.common.profile);
   // A plain command-line value fixes a key the block sweeps.
   for (const auto& text : args.overrides) {
     const std::string key = parse_override(text).dotted_key();
@@ -101,7 +101,8 @@ std::size_t invalidate_stale(const SweepPlan& plan, const std::vector<std::size_
       if (it == current.end()) {
         std::optional<CurrentUpstream> now;
         try {
-          const UpstreamResult up = load_upstream(file, results_dir);
+          const UpstreamResult up =
+              load_upstream(file, results_dir, plan.trials[i].experiment->spec.profile);
           now = CurrentUpstream{up.experiment.spec.name, result_identity(up.record)};
         } catch (const IoError&) {
           // Missing upstream: keep the trial's result (a re-run could only fail).
@@ -131,7 +132,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
   const SweepSpec spec = resolve_spec(experiment, args, o);
   const auto [shard, shards] =
       o.shard.empty() ? std::pair<std::size_t, std::size_t>{1, 1} : parse_shard(o.shard);
-  SweepPlan plan = plan_sweep(experiment, args.overrides, seed, spec);
+  SweepPlan plan = plan_sweep(experiment, args.overrides, seed, spec, o.common.profile);
   const fs::path dir =
       o.dir.empty() ? o.common.results_dir / plan.experiment / ("sweep-" + plan.hash().substr(0, 8))
                     : o.dir;

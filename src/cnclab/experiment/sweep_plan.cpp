@@ -100,9 +100,10 @@ std::string SweepPlan::hash() const {
 }
 
 SweepPlan plan_sweep(const fs::path& file, const std::vector<std::string>& overrides,
-                     std::optional<std::uint64_t> seed, const SweepSpec& spec) {
+                     std::optional<std::uint64_t> seed, const SweepSpec& spec,
+                     const std::string& profile) {
   spec.validate();
-  const LoadedExperiment base = load_experiment(file, overrides, seed);
+  const LoadedExperiment base = load_experiment(file, overrides, seed, profile);
   SweepPlan plan;
   plan.experiment = base.spec.name;
   plan.method = spec.resolved_method() == SweepMethod::grid ? "grid" : "random";
@@ -140,7 +141,7 @@ SweepPlan plan_sweep(const fs::path& file, const std::vector<std::string>& overr
     }
     const auto load = [&](std::optional<std::uint64_t> trial_seed) {
       try {
-        return load_experiment(file, trial_overrides, trial_seed);
+        return load_experiment(file, trial_overrides, trial_seed, profile);
       } catch (const ConfigError& e) {
         throw ConfigError("sweep trial " + point_text(plan.keys, values) + ": " + e.what());
       }

@@ -48,10 +48,11 @@ struct SweepPlan {
 
 // Expands and resolves every trial (loading each config validates it, so a
 // bad key or value stops the sweep before anything runs: ConfigError).
-// `overrides` are the plain overrides, `seed` the --seed option.
+// `overrides` are the plain overrides, `seed` the --seed option, `profile`
+// the profiles: entry every trial loads with.
 SweepPlan plan_sweep(const std::filesystem::path& experiment_file,
                      const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed,
-                     const SweepSpec& spec);
+                     const SweepSpec& spec, const std::string& profile = {});
 
 // The trials of shard `shard` (1-based) of `shards`: trial i (plan order)
 // belongs to shard (i mod shards) + 1. Deterministic for a plan.

@@ -264,8 +264,8 @@ SweepArguments split_sweep_arguments(const std::vector<std::string>& words) {
 }
 
 SweepSpec read_sweep_block(const std::filesystem::path& file,
-                           const std::vector<std::string>& overrides) {
-  ConfigDocument doc = ConfigDocument::load(file);
+                           const std::vector<std::string>& overrides, const std::string& profile) {
+  ConfigDocument doc = ConfigDocument::load(file, profile);
   for (const auto& text : overrides) doc.apply(parse_override(text));
   const ConfigReader root = doc.root();
   for (const auto& key : root.keys()) {

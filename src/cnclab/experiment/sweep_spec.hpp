@@ -93,9 +93,11 @@ struct SweepArguments {
 SweepArguments split_sweep_arguments(const std::vector<std::string>& words);
 
 // The `sweep:` block of `file` (after includes and the plain `overrides`, so
-// `sweep.repeats=3` works); an absent block gives an empty spec. Strict:
-// unknown keys and bad values are ConfigErrors naming file:line:col.
+// `sweep.repeats=3` works, and after `profile`, so a profile can shrink the
+// sweep); an absent block gives an empty spec. Strict: unknown keys and bad
+// values are ConfigErrors naming file:line:col.
 SweepSpec read_sweep_block(const std::filesystem::path& file,
-                           const std::vector<std::string>& overrides);
+                           const std::vector<std::string>& overrides,
+                           const std::string& profile = {});
 
 }  // namespace cnclab

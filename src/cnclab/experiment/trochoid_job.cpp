@@ -36,18 +36,9 @@ void TrochoidReportOptions::validate() const {
   }
 }
 
-std::string experiment_kind(const fs::path& file) {
-  const ConfigDocument doc = ConfigDocument::load(file);
-  const ConfigReader root = doc.root();
-  const auto kind = root.get<std::string>("kind", "train");
-  if (kind != "train" && kind != "gcode" && kind != "step_error_timing") {
-    root.fail("kind", "must be one of: train, gcode, step_error_timing");
-  }
-  return kind;
-}
-
-TrochoidJob load_trochoid_job(const fs::path& file, const std::vector<std::string>& overrides) {
-  ConfigDocument doc = ConfigDocument::load(file);
+TrochoidJob load_trochoid_job(const fs::path& file, const std::vector<std::string>& overrides,
+                              const std::string& profile) {
+  ConfigDocument doc = ConfigDocument::load(file, profile);
   for (const auto& text : overrides) doc.apply(parse_override(text));
   const ConfigReader root = doc.root();
   if (root.get<std::string>("kind", "gcode") != "gcode") root.fail("kind", "must be gcode");

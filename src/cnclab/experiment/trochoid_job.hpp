@@ -46,15 +46,11 @@ struct TrochoidJob {
   std::filesystem::path source_file;
 };
 
-// The `kind:` of an experiment file: "train" (default), "gcode" or
-// "step_error_timing" (step_error_timing.hpp). Throws
-// ConfigError for unreadable YAML or another value.
-std::string experiment_kind(const std::filesystem::path& file);
-
 // Reads a `kind: gcode` file strictly (unknown keys are errors), applying
-// `key=value` overrides first.
+// the profile (core/config.hpp), then `key=value` overrides, first.
 TrochoidJob load_trochoid_job(const std::filesystem::path& file,
-                              const std::vector<std::string>& overrides = {});
+                              const std::vector<std::string>& overrides = {},
+                              const std::string& profile = {});
 
 // The resolved job, defaults included, as YAML that loads back to the same
 // job (what `cnclab validate` prints).

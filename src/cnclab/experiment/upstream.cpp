@@ -32,8 +32,10 @@ std::string result_identity(const RunRecord& r) {
   return h.hex();
 }
 
-UpstreamResult load_upstream(const fs::path& experiment_file, const fs::path& results_dir) {
-  UpstreamResult up{load_experiment(experiment_file), {}, {}};
+UpstreamResult load_upstream(const fs::path& experiment_file, const fs::path& results_dir,
+                             const std::string& profile) {
+  UpstreamResult up{
+      load_experiment(experiment_file, std::vector<std::string>{}, std::nullopt, profile), {}, {}};
   up.result_file = result_path(up.experiment, results_dir);
   std::error_code ec;
   if (!fs::exists(up.result_file, ec)) {

@@ -24,8 +24,10 @@ struct UpstreamResult {
 // The result `cnclab run experiment_file` writes into `results_dir`. Throws
 // IoError naming the experiment and the expected file (and how to make it)
 // when it is missing or unreadable.
+// `profile` is the downstream run's (ExperimentSpec::profile).
 UpstreamResult load_upstream(const std::filesystem::path& experiment_file,
-                             const std::filesystem::path& results_dir);
+                             const std::filesystem::path& results_dir,
+                             const std::string& profile = {});
 
 // init_from needs the same network shape: layer sizes and activations (dropout
 // may differ: it has no parameters). ConfigError naming both shapes otherwise.

@@ -39,7 +39,7 @@ AxisRun load_axis(const TablesOptions& o, const std::string& axis) {
   if (!fs::exists(run.experiment)) {
     throw MissingResults(run.experiment.string() + ": experiment file not found");
   }
-  run.loaded = load_experiment(run.experiment);
+  run.loaded = load_experiment(run.experiment, std::vector<std::string>{}, std::nullopt, o.profile);
   const fs::path result = result_path(run.loaded, o.results_dir);
   if (!fs::exists(result)) {
     throw MissingResults("no result for " + run.experiment.string() + " (expected " +

@@ -44,7 +44,7 @@ Run load_run(const fs::path& experiment, const TablesOptions& o) {
   if (!fs::exists(experiment)) {
     throw MissingResults(experiment.string() + ": experiment file not found");
   }
-  const LoadedExperiment loaded = load_experiment(experiment);
+  const LoadedExperiment loaded = load_experiment(experiment, {}, std::nullopt, o.profile);
   const fs::path result = result_path(loaded, o.results_dir);
   if (!fs::exists(result)) {
     throw MissingResults("no result for " + experiment.string() + " (expected " + result.string() +
@@ -57,8 +57,8 @@ Run load_run(const fs::path& experiment, const TablesOptions& o) {
   if (run.record.provenance.status != "complete") {
     // Table 2 shows a diverged keep probability as such; elsewhere it is an
     // error (load_study).
-    run.failure = result.string() + ": training failed (" + run.record.provenance.failure_reason +
-                  ")";
+    run.failure =
+        result.string() + ": training failed (" + run.record.provenance.failure_reason + ")";
     return run;
   }
   if (run.record.target_units != std::vector<std::string>{"µm"}) {
@@ -444,7 +444,7 @@ void print_table8(const Study& s, const TablesOptions& o, std::ostream& out) {
   StepErrorTimingResult timing;
   try {
     if (!fs::exists(job_file)) throw MissingResults(job_file.string() + ": not found");
-    const StepErrorTimingJob job = load_step_error_timing_job(job_file);
+    const StepErrorTimingJob job = load_step_error_timing_job(job_file, {}, o.profile);
     const fs::path file = step_error_timing_path(job.name, o.results_dir);
     if (!fs::exists(file)) {
       throw MissingResults("no timing result (expected " + file.string() + "); run `cnclab " +

@@ -20,6 +20,9 @@ struct TablesOptions {
   std::filesystem::path reference_dir = "results/reference";  // transcribed paper numbers
   std::filesystem::path configs_dir = "configs";              // study manifests (configs/studies)
   TableFormat format = TableFormat::text;                     // `--format`
+  // The profiles: entry the results were made with (`reproduce --quick`:
+  // "quick"); experiments load with it to find their result files.
+  std::string profile;
 };
 
 // A table's input results do not exist yet (run the experiments first).

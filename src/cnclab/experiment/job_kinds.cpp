@@ -1,0 +1,94 @@
+#include "cnclab/experiment/job_kinds.hpp"
+
+#include <cstdio>
+#include <numbers>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/core/error.hpp"
+#include "cnclab/experiment/step_error_timing.hpp"
+#include "cnclab/experiment/trochoid_job.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+// `kind: gcode` (trochoid_job.hpp). Takes seconds and writes text files:
+// always re-run.
+JobKind gcode_kind() {
+  JobKind k;
+  k.kind = "gcode";
+  k.summary = "trochoidal groove tool path and ISO 6983 program (seed 004)";
+  k.run = [](const fs::path& file, const JobContext& c) {
+    const TrochoidJob job = load_trochoid_job(file, c.overrides, c.options.profile);
+    const TrochoidFiles written = write_trochoid_outputs(job, c.options.results_dir);
+    char detail[160];
+    std::snprintf(detail, sizeof detail,
+                  "%zu points; max radial engagement %.1f deg in the loops (slotting 180)",
+                  written.outcome.groove.points.size(),
+                  written.outcome.max_engagement_rad * 180.0 / std::numbers::pi);
+    return JobReport{job.name,
+                     "ran",
+                     "gcode job (seconds; always re-run)",
+                     detail,
+                     written.program.string(),
+                     "== " + job.name + " ==\n" + written.outcome.report};
+  };
+  k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
+    return to_yaml(load_trochoid_job(file, c.overrides, c.options.profile));
+  };
+  return k;
+}
+
+// `kind: step_error_timing` (step_error_timing.hpp): seed 000 Table 8. A
+// measurement: re-run every time (results of a timing are not reusable).
+JobKind step_error_timing_kind() {
+  JobKind k;
+  k.kind = "step_error_timing";
+  k.summary = "seed 000 Table 8: geometric vs exact vs network step-error time";
+  k.run = [](const fs::path& file, const JobContext& c) {
+    const StepErrorTimingJob job = load_step_error_timing_job(file, c.overrides, c.options.profile);
+    const StepErrorTimingResult result = run_step_error_timing(job, c.options.results_dir);
+    const fs::path written = write_step_error_timing(result, c.options.results_dir);
+    return JobReport{job.name,
+                     "ran",
+                     "timing job (a measurement; always re-run)",
+                     step_error_timing_summary(result),
+                     written.string(),
+                     ""};
+  };
+  k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
+    return to_yaml(load_step_error_timing_job(file, c.overrides, c.options.profile));
+  };
+  return k;
+}
+
+std::string known_kinds() {
+  std::string s = "train";
+  for (const auto& k : builtin_job_kinds()) s += ", " + k.kind;
+  return s;
+}
+
+}  // namespace
+
+std::vector<JobKind> builtin_job_kinds() {
+  return {gcode_kind(), step_error_timing_kind()};
+}
+
+std::optional<JobKind> find_job_kind(const std::string& kind) {
+  for (auto& k : builtin_job_kinds()) {
+    if (k.kind == kind) return k;
+  }
+  return std::nullopt;
+}
+
+std::string experiment_kind(const fs::path& file) {
+  const ConfigDocument doc = ConfigDocument::load(file);
+  const ConfigReader root = doc.root();
+  const auto kind = root.get<std::string>("kind", "train");
+  if (kind != "train" && !find_job_kind(kind)) {
+    root.fail("kind", "unknown kind; known: " + known_kinds());
+  }
+  return kind;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,64 @@
+#pragma once
+// Experiment files that are not training runs: `kind: <name>` jobs (G-code,
+// timing studies, NARX studies, searches...). Each kind is one entry here;
+// `cnclab run` and `cnclab validate` dispatch on it, and `cnclab reproduce`
+// runs every job after the training graph (so the training results a job
+// reads exist by then), in file order. Adding a kind: write its loader and
+// runner in its own file and list it in builtin_job_kinds().
+//
+// A job decides itself whether its existing output is current (compare a
+// hash of its resolved config stored with the output, like
+// experiment/experiment_graph.hpp does for training runs) and says so in
+// JobReport::action / why.
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cnclab/experiment/commands.hpp"
+
+namespace cnclab {
+
+// What a job is given: the command's options (results and dataset folders,
+// quiet, force, regenerate, profile) and where progress goes.
+struct JobContext {
+  CommandOptions options;
+  std::vector<std::string> overrides;  // `key=value` (run / validate only; empty in reproduce)
+  std::ostream* log = nullptr;         // progress and notes; null when quiet
+};
+
+// One line of `reproduce`'s summary, plus an optional report printed after it.
+struct JobReport {
+  std::string name;    // the job's `name:`
+  std::string action;  // "ran", "reused", ...
+  std::string why;     // why it ran or was reused
+  std::string detail;  // one line of figures
+  std::string file;    // main output file
+  std::string report;  // printed after the summary (may be empty)
+};
+
+struct JobKind {
+  std::string kind;  // the value of `kind:`
+  std::string summary;
+  // Loads the file (strictly, with the context's profile and overrides),
+  // runs the job and writes its outputs atomically. ConfigError for bad
+  // configuration, Error for a failed run.
+  std::function<JobReport(const std::filesystem::path& file, const JobContext& context)> run;
+  // The resolved configuration as YAML (`cnclab validate`); throws like run.
+  std::function<std::string(const std::filesystem::path& file, const JobContext& context)>
+      resolved_yaml;
+};
+
+// The built-in job kinds in a fixed order; a new list each call.
+std::vector<JobKind> builtin_job_kinds();
+
+// The `kind:` of an experiment file: "train" (absent key) or a job kind.
+// ConfigError for unreadable YAML or an unknown kind, listing the known ones.
+std::string experiment_kind(const std::filesystem::path& file);
+
+// The job kind named `kind`, or nullopt for "train".
+std::optional<JobKind> find_job_kind(const std::string& kind);
+
+}  // namespace cnclab
