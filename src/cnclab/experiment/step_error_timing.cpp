@@ -57,7 +57,7 @@ SurfaceCase prepare(const std::string& surface, const fs::path& file, const std:
                     const fs::path& results_dir) {
   SurfaceCase c;
   c.surface = surface;
-  c.experiment = load_experiment(file, {}, std::nullopt, profile);
+  c.experiment = load_experiment(file, std::vector<std::string>{}, std::nullopt, profile);
   const auto* generator =
       dynamic_cast<const StepErrorGenerator*>(c.experiment.spec.dataset.generator.get());
   if (!generator) {

@@ -44,7 +44,8 @@ Run load_run(const fs::path& experiment, const TablesOptions& o) {
   if (!fs::exists(experiment)) {
     throw MissingResults(experiment.string() + ": experiment file not found");
   }
-  const LoadedExperiment loaded = load_experiment(experiment, {}, std::nullopt, o.profile);
+  const LoadedExperiment loaded =
+      load_experiment(experiment, std::vector<std::string>{}, std::nullopt, o.profile);
   const fs::path result = result_path(loaded, o.results_dir);
   if (!fs::exists(result)) {
     throw MissingResults("no result for " + experiment.string() + " (expected " + result.string() +
