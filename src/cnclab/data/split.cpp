@@ -10,9 +10,7 @@
 namespace cnclab {
 
 void SplitOptions::validate() const {
-  if (uses_counts()) {
-    return;
-  }
+  if (uses_counts()) return;
   if (validation_count || test_count) {
     const char* field = validation_count ? "validation_count" : "test_count";
     throw OptionError(field, std::to_string(validation_count ? *validation_count : *test_count),

@@ -156,7 +156,6 @@ void read_graph(const ConfigReader& root, const std::filesystem::path& base, Exp
   // The sweep block is read by `cnclab sweep` (sweep_spec.hpp); a run of the
   // file runs its base configuration.
   root.raw("sweep");
-  root.raw("profiles");  // TODO(merge main): read by the profiles mechanism
 }
 
 // The training part must be trainable: at least 2 samples, unless
