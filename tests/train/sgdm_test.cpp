@@ -55,6 +55,18 @@ TEST(Sgdm, StepsFollowEquation14ByHand) {
   EXPECT_NEAR((trained - ref).norm(), 0.0, 1e-15);
 }
 
+TEST(Sgdm, ZeroEpochsLeaveTheParametersBitIdentical) {
+  Quadratic q = scalar_quadratic(2.0, 1.0);
+  SgdmOptions o;
+  o.epochs = 0;  // evaluation only
+  Rng rng(1);
+  Eigen::VectorXd w = Eigen::VectorXd::Constant(1, 0.1 + 0.2);
+  const Summary s = train_sgdm(q, w, o, rng);
+  EXPECT_EQ(w[0], 0.1 + 0.2);
+  EXPECT_TRUE(s.history.empty());
+  EXPECT_EQ(s.termination, Termination::max_epochs);
+}
+
 TEST(Sgdm, ConvergesToTheKnownOptimum) {
   Eigen::VectorXd a(3), c(3);
   a << 1, 2, 3;

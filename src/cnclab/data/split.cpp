@@ -10,17 +10,14 @@
 namespace cnclab {
 
 void SplitOptions::validate() const {
-  if (uses_counts()) {
-    if (*train_count < 1) throw OptionError("train_count", "0", "must be at least 1");
-    return;
-  }
+  if (uses_counts()) return;
   if (validation_count || test_count) {
     const char* field = validation_count ? "validation_count" : "test_count";
     throw OptionError(field, std::to_string(validation_count ? *validation_count : *test_count),
                       "needs train_count (counts replace the fractions)");
   }
-  if (!(train_fraction > 0.0 && train_fraction <= 1.0)) {
-    throw OptionError("train_fraction", std::to_string(train_fraction), "must be in (0, 1]");
+  if (!(train_fraction >= 0.0 && train_fraction <= 1.0)) {
+    throw OptionError("train_fraction", std::to_string(train_fraction), "must be in [0, 1]");
   }
   if (!(validation_fraction >= 0.0 && validation_fraction < 1.0)) {
     throw OptionError("validation_fraction", std::to_string(validation_fraction),

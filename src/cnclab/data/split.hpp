@@ -11,7 +11,10 @@ namespace cnclab {
 struct SplitOptions {
   double train_fraction = 0.7;       // share of all samples used for training (seed 000: 70 %)
   double validation_fraction = 0.0;  // share held out of training for early stopping
-  // test = the rest. validate(): train in (0, 1], validation in [0, 1), sum <= 1.
+  // test = the rest. validate(): train in [0, 1], validation in [0, 1), sum <= 1.
+  // An empty training part (train 0) is a valid split: an evaluation-only
+  // experiment (trainer.epochs 0, seed 000's 0 % fine-tuning) tests on all
+  // samples; whether a run can train on the part is the experiment's check.
   //
   // Counts instead of fractions (seed 004 Sec. 4.2: 1042 training, 1040 test,
   // the rest validation). Setting train_count selects counts and the

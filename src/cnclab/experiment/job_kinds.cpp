@@ -5,8 +5,9 @@
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
-#include "cnclab/experiment/sweep_job.hpp"
 #include "cnclab/experiment/narx_job.hpp"
+#include "cnclab/experiment/step_error_timing.hpp"
+#include "cnclab/experiment/sweep_job.hpp"
 #include "cnclab/experiment/trochoid_job.hpp"
 
 namespace cnclab {
@@ -98,6 +99,29 @@ JobKind narx_kind() {
   return k;
 }
 
+// `kind: step_error_timing` (step_error_timing.hpp): seed 000 Table 8. A
+// measurement: re-run every time (results of a timing are not reusable).
+JobKind step_error_timing_kind() {
+  JobKind k;
+  k.kind = "step_error_timing";
+  k.summary = "seed 000 Table 8: geometric vs exact vs network step-error time";
+  k.run = [](const fs::path& file, const JobContext& c) {
+    const StepErrorTimingJob job = load_step_error_timing_job(file, c.overrides, c.options.profile);
+    const StepErrorTimingResult result = run_step_error_timing(job, c.options.results_dir);
+    const fs::path written = write_step_error_timing(result, c.options.results_dir);
+    return JobReport{job.name,
+                     "ran",
+                     "timing job (a measurement; always re-run)",
+                     step_error_timing_summary(result),
+                     written.string(),
+                     ""};
+  };
+  k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
+    return to_yaml(load_step_error_timing_job(file, c.overrides, c.options.profile));
+  };
+  return k;
+}
+
 std::string known_kinds() {
   std::string s = "train";
   for (const auto& k : builtin_job_kinds()) s += ", " + k.kind;
@@ -107,7 +131,7 @@ std::string known_kinds() {
 }  // namespace
 
 std::vector<JobKind> builtin_job_kinds() {
-  return {gcode_kind(), sweep_kind(), narx_kind()};
+  return {gcode_kind(), sweep_kind(), narx_kind(), step_error_timing_kind()};
 }
 
 std::optional<JobKind> find_job_kind(const std::string& kind) {

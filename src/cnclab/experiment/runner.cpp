@@ -108,11 +108,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   // Split.
   Rng split_rng(spec.seed, "split");
   rec.split = make_random_split(data.num_samples(), spec.split, split_rng);
-  if (rec.split.train.size() < 2) {
-    throw ConfigError(spec.source_file.string() + ": split.train leaves " +
-                      std::to_string(rec.split.train.size()) +
-                      " training samples; at least 2 are needed");
-  }
+  // (load_experiment checked that the training part is large enough.)
   Eigen::MatrixXd x_train = columns(data.inputs, rec.split.train);
   Eigen::MatrixXd y_train = columns(data.targets, rec.split.train);
   Eigen::MatrixXd x_val = columns(data.inputs, rec.split.validation);
@@ -120,10 +116,17 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   Eigen::MatrixXd x_test = columns(data.inputs, rec.split.test);
   Eigen::MatrixXd y_test = columns(data.targets, rec.split.test);
 
-  // Normalisation, fitted on the training split only (scaling.hpp).
+  // Normalisation: fitted on the training split only (scaling.hpp), or the
+  // upstream network's own (init_from.normaliser keep).
   const NormalisationSpec& norm = spec.normalisation;
-  rec.input_scaling = ScalingRecord::fit(norm.inputs, x_train, norm.input_range);
-  rec.target_scaling = ScalingRecord::fit(norm.targets, y_train, norm.target_range);
+  if (init_source && spec.init_from->normaliser == NormaliserSource::keep) {
+    check_same_scaling(init_source->record, norm, init_source->result_file);
+    rec.input_scaling = init_source->record.input_scaling;
+    rec.target_scaling = init_source->record.target_scaling;
+  } else {
+    rec.input_scaling = ScalingRecord::fit(norm.inputs, x_train, norm.input_range);
+    rec.target_scaling = ScalingRecord::fit(norm.targets, y_train, norm.target_range);
+  }
   const auto scale_x = [&](const Eigen::MatrixXd& m) { return rec.input_scaling.transform(m); };
   const auto scale_y = [&](const Eigen::MatrixXd& m) { return rec.target_scaling.transform(m); };
   const Eigen::MatrixXd xn_train = scale_x(x_train), yn_train = scale_y(y_train);
@@ -167,7 +170,12 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
     progress.update(e.epoch, status.str());
     return true;
   };
-  rec.training = train_network(spec.trainer, mlp, xn_train, yn_train, params, spec.seed, hooks);
+  if (trainer_epochs(spec.trainer) == 0) {
+    // trainer.epochs 0: evaluate the starting network as it is.
+    rec.training.message = "trainer.epochs 0: evaluation only, no parameter update";
+  } else {
+    rec.training = train_network(spec.trainer, mlp, xn_train, yn_train, params, spec.seed, hooks);
+  }
   progress.finish();
   rec.parameters = params;
   const bool ok = rec.training.termination != Termination::diverged;

@@ -134,11 +134,37 @@ void read_graph(const ConfigReader& root, const std::filesystem::path& base, Exp
     InitFromSpec from;
     from.experiment = init.require<std::string>("experiment");
     from.resolved_file = upstream_file(init, "experiment", from.experiment, base);
+    from.normaliser =
+        choice(init, "normaliser", to_string(from.normaliser), {"refit", "keep"}) == "keep"
+            ? NormaliserSource::keep
+            : NormaliserSource::refit;
     spec.init_from = from;
   }
   // The sweep block is read by `cnclab sweep` (sweep_spec.hpp); a run of the
   // file runs its base configuration.
   root.raw("sweep");
+}
+
+// The training part must be trainable: at least 2 samples, unless
+// trainer.epochs is 0 (evaluation only). With no training samples nothing can
+// be fitted, so the normaliser must come from init_from (keep) or be none.
+void check_training_samples(const ConfigReader& root, const ExperimentSpec& spec) {
+  const std::size_t n_train = spec.split.sizes(spec.dataset.generator->shape().samples).train;
+  const ConfigReader split = root.section("split");
+  const std::string key = spec.split.uses_counts() ? "train_count" : "train";
+  if (trainer_epochs(spec.trainer) > 0 && n_train < 2) {
+    split.fail(key, "leaves " + std::to_string(n_train) +
+                        " training samples; at least 2 are needed to train (trainer.epochs: 0 "
+                        "evaluates the starting network without training)");
+  }
+  const bool keeps = spec.init_from && spec.init_from->normaliser == NormaliserSource::keep;
+  const bool nothing_to_fit =
+      spec.normalisation.inputs == Scaling::none && spec.normalisation.targets == Scaling::none;
+  if (n_train == 0 && !keeps && !nothing_to_fit) {
+    split.fail(key,
+               "leaves no training samples to fit the normaliser on; use "
+               "init_from: {experiment: ..., normaliser: keep} (or normalisation none)");
+  }
 }
 
 LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override>& overrides,
@@ -183,6 +209,7 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
     }
   }
   read_graph(root, base, spec);
+  check_training_samples(root, spec);
   doc.check_all_consumed();
   return {spec, to_yaml(spec)};
 }
@@ -216,6 +243,10 @@ std::filesystem::path upstream_file(const ConfigReader& r, const std::string& ke
     r.fail(key, "no experiment file " + path.string());
   }
   return path.lexically_normal();
+}
+
+std::string to_string(NormaliserSource s) {
+  return s == NormaliserSource::keep ? "keep" : "refit";
 }
 
 std::string read_experiment_name(const ConfigReader& root) {
@@ -335,6 +366,7 @@ std::string to_yaml(const ExperimentSpec& spec) {
   if (spec.init_from) {
     out << Key << "init_from" << Value << BeginMap;
     out << Key << "experiment" << Value << spec.init_from->experiment;
+    out << Key << "normaliser" << Value << to_string(spec.init_from->normaliser);
     out << EndMap;
   }
   out << EndMap;

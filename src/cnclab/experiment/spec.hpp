@@ -47,15 +47,25 @@ struct NormalisationSpec {
   std::array<double, 2> target_range = {-1.0, 1.0};  // minmax only
 };
 
-// init_from: {experiment: FILE}: start training from the network parameters
-// another experiment's result holds (fine-tuning, transfer learning). The
-// upstream result is the one `cnclab run FILE` writes into the same results
-// folder; its network must have the same layer sizes and activations. The
-// normaliser is refitted on this experiment's training split (a `keep` choice
-// can be added here as another key).
+// init_from: {experiment: FILE, normaliser: refit|keep}: start training from
+// the network parameters another experiment's result holds (fine-tuning,
+// transfer learning). The upstream result is the one `cnclab run FILE` writes
+// into the same results folder; its network must have the same layer sizes
+// and activations. `normaliser` says where the input and target scaling come
+// from (seed 000 does not say which its transfer stages use):
+//   refit  fitted on this experiment's training split (`normalisation`), the
+//          default;
+//   keep   the upstream result's stored ScalingRecords, unchanged (the network
+//          sees new data through the old normaliser). Needs the same scaling
+//          methods in `normalisation`, and is the only choice with no
+//          training samples (split train 0, trainer.epochs 0).
+enum class NormaliserSource { refit, keep };
+std::string to_string(NormaliserSource s);
+
 struct InitFromSpec {
   std::string experiment;               // as written: path relative to this file
   std::filesystem::path resolved_file;  // the upstream experiment file
+  NormaliserSource normaliser = NormaliserSource::refit;
 };
 
 struct ExperimentSpec {

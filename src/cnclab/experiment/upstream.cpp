@@ -66,4 +66,22 @@ void check_same_network(const MlpOptions& upstream, const MlpOptions& ours,
   }
 }
 
+void check_same_scaling(const RunRecord& upstream, const NormalisationSpec& ours,
+                        const fs::path& upstream_result) {
+  const auto check = [&](const char* key, const ScalingRecord& theirs, Scaling method,
+                         const std::array<double, 2>& range) {
+    const bool same =
+        theirs.method == method &&
+        (method != Scaling::minmax || (theirs.y_min == range[0] && theirs.y_max == range[1]));
+    if (!same) {
+      throw ConfigError("init_from.normaliser keep: " + upstream_result.string() + " scaled its " +
+                        key + " with " + to_string(theirs.method) + " but normalisation." + key +
+                        " is " + to_string(method) +
+                        "; give the same normalisation (or normaliser: refit)");
+    }
+  };
+  check("inputs", upstream.input_scaling, ours.inputs, ours.input_range);
+  check("targets", upstream.target_scaling, ours.targets, ours.target_range);
+}
+
 }  // namespace cnclab

@@ -34,4 +34,10 @@ UpstreamResult load_upstream(const std::filesystem::path& experiment_file,
 void check_same_network(const MlpOptions& upstream, const MlpOptions& ours,
                         const std::filesystem::path& upstream_result);
 
+// init_from.normaliser keep reuses the upstream's ScalingRecords: they must
+// be of the methods (and min-max ranges) this experiment's `normalisation`
+// names. ConfigError naming both otherwise.
+void check_same_scaling(const RunRecord& upstream, const NormalisationSpec& ours,
+                        const std::filesystem::path& upstream_result);
+
 }  // namespace cnclab

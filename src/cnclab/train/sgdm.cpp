@@ -19,7 +19,6 @@ void SgdmOptions::validate() const {
     throw OptionError("momentum", std::to_string(momentum), "must be in [0, 1)");
   }
   if (batch_size < 1) throw OptionError("batch_size", "0", "must be at least 1");
-  if (epochs < 1) throw OptionError("epochs", "0", "must be at least 1");
 }
 
 Summary train_sgdm(SeparableObjective& objective, Eigen::VectorXd& params,

@@ -19,8 +19,10 @@ struct SgdmOptions {
   // Samples per update; 1 = seed 000's per-sample SGD. The last batch of an
   // epoch holds the remainder (n mod batch_size) and is used, not dropped.
   std::size_t batch_size = 1;
-  std::size_t epochs = 2000;  // seed 000: 2000
-  bool shuffle = true;        // new random sample order every epoch
+  // seed 000: 2000. 0 = no update at all: the parameters are returned
+  // bit-identical (an evaluation-only run of a given network).
+  std::size_t epochs = 2000;
+  bool shuffle = true;  // new random sample order every epoch
   // Stop after this many epochs without a lower validation loss and restore
   // the best parameters; 0 = off. Needs a validation set.
   std::size_t early_stop_patience = 0;

@@ -144,7 +144,8 @@ TextTable table5(const std::vector<Column>& columns, const Reference& ref) {
   return t;
 }
 
-void print_table5(const std::vector<IkVariant>& variants, const Reference& ref, std::ostream& out) {
+void print_table5(const std::vector<IkVariant>& variants, const Reference& ref, TableFormat format,
+                  std::ostream& out) {
   std::vector<const IkVariant*> shown;
   for (const auto& v : variants) {
     if (v.any()) shown.push_back(&v);
@@ -155,19 +156,19 @@ void print_table5(const std::vector<IkVariant>& variants, const Reference& ref, 
     for (const IkVariant* v : shown) columns.push_back({a, v});
     if (a < 3) columns.push_back({a, nullptr});
   }
-  out << "\nSeed 004 Table 5: the obtained MLP parameters (ours beside the paper's; A and C: ours "
-         "only)\n";
+  const std::string title =
+      "Seed 004 Table 5: the obtained MLP parameters (ours beside the paper's; A and C: ours only)";
   // More than 12 value columns do not fit a terminal: X, Y, Z, then A, C.
   if (columns.size() <= 12) {
-    out << "\n";
-    table5(columns, ref).print_aligned(out);
+    print_table_title(out, format, title);
+    table5(columns, ref).print(out, format);
   } else {
     const auto split =
         std::find_if(columns.begin(), columns.end(), [](const Column& c) { return c.axis >= 3; });
-    out << "\n";
-    table5({columns.begin(), split}, ref).print_aligned(out);
-    out << "\n";
-    table5({split, columns.end()}, ref).print_aligned(out);
+    print_table_title(out, format, title + ", X, Y, Z");
+    table5({columns.begin(), split}, ref).print(out, format);
+    print_table_title(out, format, title + ", A, C");
+    table5({split, columns.end()}, ref).print(out, format);
   }
 
   TextTable phys;
@@ -184,40 +185,40 @@ void print_table5(const std::vector<IkVariant>& variants, const Reference& ref, 
       phys.rows.push_back(cells);
     }
   }
-  out << "\n";
-  phys.print_aligned(out);
+  print_table_title(out, format, "Test error in machine units");
+  phys.print(out, format);
 
   const auto& s = variants.front().axes.front()->record;
   const std::string range =
       table_number(s.target_scaling.y_min) + ", " + table_number(s.target_scaling.y_max);
   const auto& text = ref.rows.at("text_split");
-  out << "\nNotes\n"
-      << "- Paper values: results/reference/ik_table5.yaml (" << ref.sources.at("mse_test")
-      << "; split text: " << ref.sources.at("text_split") << ").\n"
-      << "- Split: Table 5 prints " << integer(ref.rows.at("training_set")[0]) << " / "
-      << integer(ref.rows.at("test_set")[0]) << " / " << integer(ref.rows.at("validation_set")[0])
-      << " (training / test / validation), which adds up to "
-      << integer(ref.rows.at("training_set")[0] + ref.rows.at("test_set")[0] +
-                 ref.rows.at("validation_set")[0])
-      << ", not the " << integer(text[2]) << " samples; we follow the text ("
-      << ref.sources.at("text_split") << "): " << integer(text[0]) << " training, "
-      << integer(text[1]) << " test, the rest validation.\n"
-      << "- MSE in normalised units (metrics normalised_validation_mse, normalised_mse): targets "
-         "min-max scaled to ["
-      << range
-      << "] on the training split (sigmoid outputs); the paper does not state its scaling, so "
-         "its MSE values compare in magnitude only.\n"
-      << "- Validation MSE is that of the returned weights (best epoch under early stopping).\n"
-      << "- ours: the paper's sizes and SGDM settings (experiments/ik/); A and C networks are "
-         "not in the paper, their sizes and settings are ours (ik_a.yaml, ik_c.yaml).\n"
-      << "- search: the paper's heuristic search as a random search over both hidden sizes, "
-         "learning rate and momentum, selecting by validation MSE "
-         "(experiments/ik_search/).\n"
-      << "- trainbr: the ours networks trained with Levenberg-Marquardt + Bayesian "
-         "regularisation (experiments/ik_trainbr/; no learning rate or momentum).\n";
+  std::vector<std::string> notes = {
+      "Paper values: results/reference/ik_table5.yaml (" + ref.sources.at("mse_test") +
+          "; split text: " + ref.sources.at("text_split") + ").",
+      "Split: Table 5 prints " + integer(ref.rows.at("training_set")[0]) + " / " +
+          integer(ref.rows.at("test_set")[0]) + " / " + integer(ref.rows.at("validation_set")[0]) +
+          " (training / test / validation), which adds up to " +
+          integer(ref.rows.at("training_set")[0] + ref.rows.at("test_set")[0] +
+                  ref.rows.at("validation_set")[0]) +
+          ", not the " + integer(text[2]) + " samples; we follow the text (" +
+          ref.sources.at("text_split") + "): " + integer(text[0]) + " training, " +
+          integer(text[1]) + " test, the rest validation.",
+      "MSE in normalised units (metrics normalised_validation_mse, normalised_mse): targets "
+      "min-max scaled to [" +
+          range +
+          "] on the training split (sigmoid outputs); the paper does not state its scaling, so "
+          "its MSE values compare in magnitude only.",
+      "Validation MSE is that of the returned weights (best epoch under early stopping).",
+      "ours: the paper's sizes and SGDM settings (experiments/ik/); A and C networks are not in "
+      "the paper, their sizes and settings are ours (ik_a.yaml, ik_c.yaml).",
+      "search: the paper's heuristic search as a random search over both hidden sizes, learning "
+      "rate and momentum, selecting by validation MSE (experiments/ik_search/).",
+      "trainbr: the ours networks trained with Levenberg-Marquardt + Bayesian regularisation "
+      "(experiments/ik_trainbr/; no learning rate or momentum)."};
   for (const auto& v : variants) {
-    for (const auto& note : v.notes) out << "- " << v.label << ": " << note << "\n";
+    for (const auto& note : v.notes) notes.push_back(v.label + ": " + note);
   }
+  print_table_notes(out, format, notes);
 }
 
 // The variant's networks, with the sgdm network for an axis it lacks
@@ -232,7 +233,8 @@ std::array<const IkAxisRun*, 5> networks(const IkVariant& v, const IkVariant& sg
   return runs;
 }
 
-void print_machine_error(const std::vector<IkVariant>& variants, std::ostream& out) {
+void print_machine_error(const std::vector<IkVariant>& variants, TableFormat format,
+                         std::ostream& out) {
   const IkVariant& sgdm = variants.front();
   const IkAxisRun& reference = *sgdm.axes.front();
   const RunRecord& first = reference.record;
@@ -281,15 +283,17 @@ void print_machine_error(const std::vector<IkVariant>& variants, std::ostream& o
     add("X, Y, Z (A, C exact)", {0, 1, 2});
     add("A, C (X, Y, Z exact)", {3, 4});
   }
-  out << "\nMachine-space error (beyond the paper): predicted joint sets through forward "
-         "kinematics,\ncompared with the true pose, test split (n = "
-      << n << ", machine offset d = " << table_number(machine.options().offset_d) << " mm)\n\n";
-  t.print_aligned(out);
-  out << "\nNotes\n"
-      << "- tool tip: |P(predicted joints) - P(true joints)|; tool axis: angle between the two "
-         "tool orientations; p95 = 95th percentile (linear interpolation).\n"
-      << "- Rows with some joints exact show which networks the error comes from.\n";
-  for (const auto& note : notes) out << "- " << note << "\n";
+  print_table_title(out, format,
+                    "Machine-space error (beyond the paper): predicted joint sets through forward "
+                    "kinematics, compared with the true pose, test split (n = " +
+                        std::to_string(n) + ", machine offset d = " +
+                        table_number(machine.options().offset_d) + " mm)");
+  t.print(out, format);
+  notes.insert(notes.begin(),
+               {"tool tip: |P(predicted joints) - P(true joints)|; tool axis: angle between the "
+                "two tool orientations; p95 = 95th percentile (linear interpolation).",
+                "Rows with some joints exact show which networks the error comes from."});
+  print_table_notes(out, format, notes);
 }
 
 }  // namespace
@@ -297,8 +301,8 @@ void print_machine_error(const std::vector<IkVariant>& variants, std::ostream& o
 void print_ik_tables(const TablesOptions& options, std::ostream& out) {
   const std::vector<IkVariant> variants = load_ik_variants(options);
   const Reference ref = read_reference(options.reference_dir / "ik_table5.yaml");
-  print_table5(variants, ref, out);
-  print_machine_error(variants, out);
+  print_table5(variants, ref, options.format, out);
+  print_machine_error(variants, options.format, out);
 }
 
 }  // namespace cnclab
