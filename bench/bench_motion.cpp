@@ -3,17 +3,22 @@
 // 1 ms interpolation and the feed-drive simulator (axis-seconds per wall
 // second, i.e. multiples of real time).
 //
-// The path is a long epitrochoid-like curve (analytic_paths.hpp) standing in
-// for seed 002's random NURBS path until NURBS paths are adapted.
-// Usage: cnclab_bench_motion [TURNS]   (default 65 turns: about 172 s)
+// The path is a long epitrochoid-like curve (analytic_paths.hpp, closed form,
+// no cusp) or, with --nurbs, a random NURBS path like seed 002's.
+// Usage: cnclab_bench_motion [TURNS | --nurbs [CONTROL_POINTS]] [WINDOW COMMIT]
+//   default 65 turns (about 172 s); windows: FeedratePlannerOptions' defaults
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <memory>
 #include <numeric>
+#include <string>
 #include <vector>
 
+#include "cnclab/core/rng.hpp"
+#include "cnclab/data/nurbs_path.hpp"
 #include "cnclab/motion/analytic_paths.hpp"
 #include "cnclab/motion/contour_error.hpp"
 #include "cnclab/motion/feedrate_bounds.hpp"
@@ -31,11 +36,32 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 int main(int argc, char** argv) {
   using namespace cnclab;
-  const double turns = argc > 1 ? std::atof(argv[1]) : 65.0;
-  const EpitrochoidPath path(Vec2(0, 0), 100.0, 8.0, 7.0, turns);
-  const FeedratePlannerOptions options;
-  std::printf("path: epitrochoid R1 = 100 mm, R2 = 8 mm, k = 7, %.0f turns, %.0f mm\n", turns,
-              arc_length(path, 200000));
+  // --nurbs [CONTROL_POINTS]: seed 002's kind of path instead, a random
+  // planar NURBS (data/nurbs_path.hpp, default options, seed 1) with 1450
+  // control points: the ~58 m walk the following_error study plans (> 170 s).
+  const bool nurbs = argc > 1 && std::string(argv[1]) == "--nurbs";
+  std::unique_ptr<PlanarPath> path;
+  std::size_t arg = 1;
+  if (nurbs) {
+    RandomNurbsPathOptions o;
+    o.control_points = argc > 2 ? static_cast<std::size_t>(std::atol(argv[2])) : 1450;
+    Rng rng(1);
+    path = std::make_unique<NurbsPlanarPath>(random_planar_nurbs(o, rng));
+    std::printf("path: random planar NURBS, degree %d, %zu control points, seed 1, %.0f mm\n",
+                o.degree, o.control_points, arc_length(*path, 200000));
+    arg = 3;
+  } else {
+    const double turns = argc > 1 ? std::atof(argv[1]) : 65.0;
+    path = std::make_unique<EpitrochoidPath>(Vec2(0, 0), 100.0, 8.0, 7.0, turns);
+    std::printf("path: epitrochoid R1 = 100 mm, R2 = 8 mm, k = 7, %.0f turns, %.0f mm\n", turns,
+                arc_length(*path, 200000));
+    arg = 2;
+  }
+  FeedratePlannerOptions options;
+  if (argc > static_cast<int>(arg) + 1) {
+    options.window_intervals = static_cast<std::size_t>(std::atol(argv[arg]));
+    options.commit_intervals = static_cast<std::size_t>(std::atol(argv[arg + 1]));
+  }
   std::printf(
       "limits per axis: v %.0f mm/s, a %.0f mm/s^2, j %.0f mm/s^3; grid %.2f mm, "
       "windows of %zu intervals, %zu kept\n",
@@ -45,7 +71,7 @@ int main(int argc, char** argv) {
 
   auto t0 = std::chrono::steady_clock::now();
   const std::clock_t c0 = std::clock();
-  const FeedrateProfile profile = plan_feedrate(path, options);
+  const FeedrateProfile profile = plan_feedrate(*path, options);
   const double plan_seconds = seconds_since(t0);
   const double plan_cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   std::vector<int> iterations;
@@ -59,14 +85,14 @@ int main(int argc, char** argv) {
       std::accumulate(iterations.begin(), iterations.end(), 0.0) / iterations.size();
 
   t0 = std::chrono::steady_clock::now();
-  const double lower = velocity_acceleration_time(path, options.limits);
+  const double lower = velocity_acceleration_time(*path, options.limits);
   const double lower_seconds = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
-  const ConstantFeedrateProfile upper = constant_feedrate_time(path, options.limits);
+  const ConstantFeedrateProfile upper = constant_feedrate_time(*path, options.limits);
   const double upper_seconds = seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  const ReferenceTrajectory reference = interpolate(path, profile, 1e-3);
+  const ReferenceTrajectory reference = interpolate(*path, profile, 1e-3);
   const double interpolation_seconds = seconds_since(t0);
 
   const MachineOptions machine;
@@ -111,7 +137,7 @@ int main(int argc, char** argv) {
 
   t0 = std::chrono::steady_clock::now();
   const ContourErrorComparison contour =
-      compare_contour_estimates(path, reference, response.actual);
+      compare_contour_estimates(*path, reference, response.actual);
   const double contour_seconds = seconds_since(t0);
   const double exact_max = *std::max_element(contour.exact.begin(), contour.exact.end());
   std::printf(

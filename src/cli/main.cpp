@@ -194,9 +194,16 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   tables->add_option("--reference", tables_options.reference_dir, "Paper numbers folder")
       ->capture_default_str();
+  tables->add_option("--configs", tables_options.configs_dir, "Configs folder (study manifests)")
+      ->capture_default_str();
+  std::string tables_format = "text";
+  tables->add_option("--format", tables_format, "Output: text (aligned), md, csv or latex")
+      ->capture_default_str();
   tables->add_option("--profile", tables_options.profile,
                      "Tables of the results made with this profile (reproduce --quick: quick)");
-  tables->footer("Example:\n  cnclab tables ik    # seed 004 Table 5 and the machine-space error");
+  tables->footer(
+      "Examples:\n  cnclab tables ik    # seed 004 Table 5 and the machine-space error\n"
+      "  cnclab tables step-error --format md   # seed 000 Tables 2-8 as Markdown");
 
   auto* version = app.add_subcommand("version", "Print version, git commit and library versions");
   version->footer("Example:\n  cnclab version");
@@ -249,7 +256,10 @@ int main(int argc, char** argv) {
     if (*gcode) {
       return cnclab::gcode_command(toolpath, experiment, gcode_output, overrides, std::cout);
     }
-    if (*tables) return cnclab::tables_command(table, tables_options, std::cout);
+    if (*tables) {
+      tables_options.format = cnclab::parse_table_format(tables_format);
+      return cnclab::tables_command(table, tables_options, std::cout);
+    }
     if (*version) return cnclab::version_command(std::cout);
   } catch (const cnclab::ConfigError& e) {
     std::cerr << "cnclab: error: " << e.what() << "\n";

@@ -410,6 +410,77 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
   EXPECT_NE(t.out.find("Machine-space error"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("(n = 100,"), std::string::npos) << t.out;
 
+  // No search or trainbr results: said in the notes, the rest printed.
+  EXPECT_NE(t.out.find("- search: no results for any axis; X not available: "
+                       "experiments/ik_search/search_x.yaml: sweep job file not found"),
+            std::string::npos)
+      << t.out;
+  EXPECT_NE(t.out.find("- trainbr: no results for any axis; X not available: "
+                       "experiments/ik_trainbr/ik_x.yaml: experiment file not found"),
+            std::string::npos)
+      << t.out;
+  EXPECT_EQ(t.out.find("X trainbr"), std::string::npos) << t.out;
+
+  // A trainbr network for X only: its columns beside ours (other axes n/a),
+  // and its machine-space row with the other four networks taken from ours.
+  fs::create_directories(dir_ / "experiments/ik_trainbr");
+  write("experiments/ik_trainbr/ik_x.yaml",
+        "name: ik_trainbr_x\nseed: 4\n"
+        "dataset: {generator: ik_samples, targets: [X], options: {values_per_input: 3}}\n"
+        "split: {train_count: 100, test_count: 100}\n"
+        "normalisation: {inputs: minmax, targets: minmax, target_range: [0.1, 0.9]}\n"
+        "model: {hidden: [6, 4], hidden_activation: sigmoid, output_activation: sigmoid}\n"
+        "trainer: {type: trainbr, epochs: 3}\n");
+  ASSERT_EQ(cnclab("reproduce experiments/ik_trainbr --quiet").code, 0);
+  const Result b = cnclab("tables ik --reference " CNCLAB_SOURCE_DIR "/results/reference");
+  ASSERT_EQ(b.code, 0) << b.err << b.out;
+  EXPECT_EQ(words_of_line(b.out, "Training set"),
+            "Dataset Training set 100 100 1042 100 n/a 1042 100 n/a 1042");
+  EXPECT_EQ(words_of_line(b.out, "LR"), "Learning rate LR 0.3 - 0.11 0.3 n/a 0.71 0.3 n/a 0.71");
+  EXPECT_NE(b.out.find("- trainbr *: Y, Z, A, C from ours (no trainbr result)"), std::string::npos)
+      << b.out;
+  EXPECT_EQ(b.out.find("- trainbr: X not available"), std::string::npos) << b.out;
+  EXPECT_NE(b.out.find("- trainbr: C not available: experiments/ik_trainbr/ik_c.yaml: "
+                       "experiment file not found"),
+            std::string::npos)
+      << b.out;
+
+  // A search for X (kind: sweep) through reproduce: ran, then reused; the
+  // table shows the selected trial's sizes beside ours.
+  fs::create_directories(dir_ / "experiments/ik_search");
+  write("experiments/ik_search/search_x.yaml",
+        "kind: sweep\nname: ik_search_x\nexperiment: ../ik/ik_x.yaml\njobs: 2\n"
+        "sweep:\n  objective: {metric: normalised_validation_mse}\n"
+        "  parameters: {model.hidden: [[3, 2], [5, 3]]}\n");
+  const Result s1 = cnclab("reproduce experiments/ik_search --quiet");
+  ASSERT_EQ(s1.code, 2) << s1.err << s1.out;  // ik_x lacks normalised_validation_mse
+  EXPECT_NE(s1.out.find("is not among the experiment's metrics"), std::string::npos) << s1.out;
+  write("experiments/ik_search/search_x.yaml",
+        "kind: sweep\nname: ik_search_x\nexperiment: ../ik/ik_x.yaml\njobs: 2\n"
+        "overrides: ['metrics=[mse, normalised_validation_mse]']\n"
+        "sweep:\n  objective: {metric: normalised_validation_mse}\n"
+        "  parameters: {model.hidden: [[3, 2], [5, 3]]}\n");
+  const Result s2 = cnclab("reproduce experiments/ik_search --quiet");
+  ASSERT_EQ(s2.code, 0) << s2.err << s2.out;
+  EXPECT_NE(s2.out.find("ik_search_x                  ran          2 trial(s) had no result"),
+            std::string::npos)
+      << s2.out;
+  const Result s3 = cnclab("reproduce experiments/ik_search --quiet");
+  ASSERT_EQ(s3.code, 0) << s3.err << s3.out;
+  EXPECT_NE(s3.out.find("ik_search_x                  reused       sweep plan unchanged"),
+            std::string::npos)
+      << s3.out;
+  const Result c = cnclab("tables ik --reference " CNCLAB_SOURCE_DIR "/results/reference");
+  ASSERT_EQ(c.code, 0) << c.err << c.out;
+  const std::string hidden1 = words_of_line(c.out, "Hidden layer1");
+  EXPECT_TRUE(hidden1.rfind("Hidden layer1 6 3 6 25 6 n/a n/a 22", 0) == 0 ||
+              hidden1.rfind("Hidden layer1 6 5 6 25 6 n/a n/a 22", 0) == 0)
+      << c.out;
+  EXPECT_NE(c.out.find("- search: X: best of 2 complete trial(s) (2 planned) by "
+                       "normalised_validation_mse"),
+            std::string::npos)
+      << c.out;
+
   expect_one_line_error(cnclab("tables nosuch"), 2, "unknown table 'nosuch'; known: ik");
   const Result list = cnclab("tables");
   EXPECT_EQ(list.code, 0);

@@ -1,11 +1,14 @@
-// A per-axis IK run through the runner: target selection, count split and
-// min-max target scaling recorded in the result and recomputed here from the
-// dataset independently.
+// A per-axis IK run through the runner: target selection, count split,
+// min-max target scaling and the normalised test and validation MSEs recorded
+// in the result and recomputed here from the dataset independently.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "cnclab/data/dataset_file.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
+#include "cnclab/nn/mlp.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
@@ -18,6 +21,7 @@ split: {train_count: 120, test_count: 60}
 normalisation: {inputs: minmax, targets: minmax, target_range: [0.1, 0.9]}
 model: {hidden: [5, 4], hidden_activation: sigmoid, output_activation: sigmoid}
 trainer: {learning_rate: 0.3, momentum: 0.5, epochs: 3}
+metrics: [mse, normalised_mse, normalised_validation_mse]
 )";
 
 TEST(IkRun, OneAxisWithCountSplitAndMinMaxTargets) {
@@ -61,6 +65,28 @@ TEST(IkRun, OneAxisWithCountSplitAndMinMaxTargets) {
   const Eigen::MatrixXd mapped = r.target_scaling.transform(ends);
   EXPECT_NEAR(mapped(0, 0), 0.1, 1e-12);
   EXPECT_NEAR(mapped(0, 1), 0.9, 1e-12);
+
+  // The normalised MSEs the runner records, recomputed from the dataset
+  // file, the split, the recorded scalings and the stored network parameters.
+  const Mlp mlp(r.model);
+  const auto mse_over = [&](const std::vector<std::size_t>& idx) {
+    Eigen::MatrixXd x(d.inputs.rows(), static_cast<Eigen::Index>(idx.size()));
+    Eigen::MatrixXd y(1, static_cast<Eigen::Index>(idx.size()));
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      x.col(static_cast<Eigen::Index>(k)) = d.inputs.col(static_cast<Eigen::Index>(idx[k]));
+      y(0, static_cast<Eigen::Index>(k)) = d.targets(4, static_cast<Eigen::Index>(idx[k]));
+    }
+    const Eigen::MatrixXd out = mlp.predict(r.parameters, r.input_scaling.transform(x));
+    const Eigen::MatrixXd scaled = r.target_scaling.transform(y);
+    double sum = 0;
+    for (Eigen::Index k = 0; k < out.cols(); ++k) sum += std::pow(out(0, k) - scaled(0, k), 2);
+    return sum / static_cast<double>(out.cols());
+  };
+  ASSERT_EQ(r.split.validation.size(), 63u);
+  EXPECT_NEAR(r.metrics.at("normalised_validation_mse"), mse_over(r.split.validation), 1e-14);
+  EXPECT_NEAR(r.metrics.at("normalised_mse"), mse_over(r.split.test), 1e-14);
+  // Not the physical MSE (C in rad has another scale).
+  EXPECT_GT(std::abs(r.metrics.at("normalised_mse") - r.metrics.at("mse")), 1e-6);
 }
 
 TEST(IkRun, UnknownTargetIsAConfigError) {

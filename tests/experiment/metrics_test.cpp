@@ -13,12 +13,44 @@ TEST(Metrics, HandComputedValues) {
   Eigen::MatrixXd y(1, 4), p(1, 4);
   y << 1, 2, 3, 4;
   p << 1, 3, 3, 2;  // errors 0, 1, 0, -2
-  const auto m = regression_metrics(p, y, known_metrics());
+  const auto m = regression_metrics(p, y, physical_metrics());
   EXPECT_DOUBLE_EQ(m.at("mse"), 5.0 / 4);
   EXPECT_DOUBLE_EQ(m.at("rmse"), std::sqrt(5.0 / 4));
   EXPECT_DOUBLE_EQ(m.at("mae"), 3.0 / 4);
   EXPECT_DOUBLE_EQ(m.at("max_abs_error"), 2.0);
   EXPECT_DOUBLE_EQ(m.at("r2"), 1.0 - 5.0 / 5.0);  // Σ(y-ȳ)² = 5
+}
+
+// Normalised MSEs by hand: test outputs 0.2, 0.5 against 0.1, 0.9 ->
+// (0.01 + 0.16) / 2; validation 0.3, 0.3, 0.6 against 0.3, 0.5, 0.3 ->
+// (0 + 0.04 + 0.09) / 3. Physical metrics come from the physical matrices.
+TEST(Metrics, NormalisedTestAndValidationMseByHand) {
+  EvaluationData d;
+  d.test_predictions.resize(1, 2);
+  d.test_predictions << 10, 20;
+  d.test_targets.resize(1, 2);
+  d.test_targets << 10, 23;
+  d.test_outputs.resize(1, 2);
+  d.test_outputs << 0.2, 0.5;
+  d.test_scaled_targets.resize(1, 2);
+  d.test_scaled_targets << 0.1, 0.9;
+  d.validation_outputs.resize(1, 3);
+  d.validation_outputs << 0.3, 0.3, 0.6;
+  d.validation_scaled_targets.resize(1, 3);
+  d.validation_scaled_targets << 0.3, 0.5, 0.3;
+  const auto m = evaluation_metrics(d, known_metrics());
+  EXPECT_NEAR(m.at("normalised_mse"), (0.01 + 0.16) / 2, 1e-15);
+  EXPECT_NEAR(m.at("normalised_validation_mse"), (0.04 + 0.09) / 3, 1e-15);
+  EXPECT_DOUBLE_EQ(m.at("mse"), 9.0 / 2);
+  EXPECT_DOUBLE_EQ(m.at("max_abs_error"), 3.0);
+  EXPECT_EQ(m.size(), known_metrics().size());
+
+  // No validation split: NaN, not an error.
+  d.validation_outputs.resize(1, 0);
+  d.validation_scaled_targets.resize(1, 0);
+  EXPECT_TRUE(std::isnan(
+      evaluation_metrics(d, {"normalised_validation_mse"}).at("normalised_validation_mse")));
+  EXPECT_THROW(evaluation_metrics(d, {"validation_rmse"}), Error);
 }
 
 TEST(Metrics, PerfectPredictionHasR2One) {

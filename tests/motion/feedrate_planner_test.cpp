@@ -79,6 +79,7 @@ TEST(FeedratePlanner, RejectsBadOptionsAndCusps) {
   o.limits.axes[0].velocity = std::nan("");
   EXPECT_THROW(plan_feedrate(line, o), OptionError);
   o = {};
+  o.window_intervals = 240;
   o.commit_intervals = 205;  // overlap 35 mm < stopping distance 40 mm
   EXPECT_THROW(plan_feedrate(line, o), OptionError);
   // A cubic with a cusp: control polygon folded back on itself (C'(1/2) = 0).

@@ -33,7 +33,12 @@ inline const PlannedPath& planned_path(const std::string& name) {
   } else {
     p.path = std::make_unique<LinePath>(Vec2(0, 0), Vec2(150, 40));
   }
-  p.profile = plan_feedrate(*p.path);
+  // Windows smaller than the default, so that these short paths span
+  // several and the window junctions are tested.
+  FeedratePlannerOptions o;
+  o.window_intervals = 240;
+  o.commit_intervals = 180;
+  p.profile = plan_feedrate(*p.path, o);
   return cache.emplace(name, std::move(p)).first->second;
 }
 

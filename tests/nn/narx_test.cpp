@@ -65,6 +65,20 @@ TEST(Narx, ClosedLoopFeedsBackItsOwnOutputs) {
   for (Eigen::Index s = 0; s < sim.size(); ++s) EXPECT_NEAR(predicted(0, s), sim[s], 1e-13);
 }
 
+// Relative error of column p of the dynamic Jacobian against central
+// differences of the closed-loop simulation itself.
+double jacobian_column_error(const Narx& narx, const Eigen::VectorXd& w, const Eigen::VectorXd& v,
+                             const Eigen::VectorXd& e0, const Eigen::MatrixXd& jac,
+                             Eigen::Index p) {
+  const double h = 1e-6;
+  Eigen::VectorXd plus = w, minus = w;
+  plus[p] += h;
+  minus[p] -= h;
+  const Eigen::VectorXd fd =
+      (narx.simulate_closed_loop(plus, v, e0) - narx.simulate_closed_loop(minus, v, e0)) / (2 * h);
+  return (jac.col(p) - fd).cwiseAbs().maxCoeff() / (1.0 + fd.cwiseAbs().maxCoeff());
+}
+
 // The RTRL Jacobian against central differences of the closed-loop
 // simulation itself, for both delay conventions and tanh / sigmoid units.
 TEST(Narx, DynamicJacobianMatchesFiniteDifferences) {
@@ -82,22 +96,34 @@ TEST(Narx, DynamicJacobianMatchesFiniteDifferences) {
       e0.head(3) << 0.2, -0.4, 0.1;
       Eigen::MatrixXd jac;
       narx.simulate_closed_loop(w, v, e0, &jac);
-      const double h = 1e-6;
       double worst = 0.0;
       for (Eigen::Index p = 0; p < w.size(); ++p) {
-        Eigen::VectorXd plus = w, minus = w;
-        plus[p] += h;
-        minus[p] -= h;
-        const Eigen::VectorXd fd =
-            (narx.simulate_closed_loop(plus, v, e0) - narx.simulate_closed_loop(minus, v, e0)) /
-            (2 * h);
-        worst = std::max(
-            worst, (jac.col(p) - fd).cwiseAbs().maxCoeff() / (1.0 + fd.cwiseAbs().maxCoeff()));
+        worst = std::max(worst, jacobian_column_error(narx, w, v, e0, jac, p));
       }
       EXPECT_LT(worst, 1e-7) << d0 << " " << to_string(f);
       // Not a static Jacobian: feedback makes late rows depend on many steps.
       EXPECT_GT(jac.bottomRows(1).norm(), 0.0);
     }
+  }
+}
+
+// Over many of the recursion's internal 64-row blocks and a last partial
+// one: central differences for a spread of parameters (every kind: input,
+// feedback weights, biases, output weights).
+TEST(Narx, DynamicJacobianMatchesFiniteDifferencesOverLongSeries) {
+  const Narx narx(small(1));
+  Rng rng(5);
+  Eigen::VectorXd w(narx.num_parameters());
+  narx.initialise(w, rng);
+  const Eigen::Index n = 700;  // 697 steps: 10 full blocks and one of 57 rows
+  const Eigen::VectorXd v = smooth_input(n, 0.4);
+  Eigen::VectorXd e0 = Eigen::VectorXd::Zero(n);
+  e0.head(3) << 0.1, 0.3, -0.2;
+  Eigen::MatrixXd jac;
+  narx.simulate_closed_loop(w, v, e0, &jac);
+  ASSERT_EQ(jac.rows(), n - narx.first_step());
+  for (Eigen::Index p = 0; p < w.size(); p += 3) {
+    EXPECT_LT(jacobian_column_error(narx, w, v, e0, jac, p), 1e-7) << "parameter " << p;
   }
 }
 

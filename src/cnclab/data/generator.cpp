@@ -1,5 +1,6 @@
 #include "cnclab/data/generator.hpp"
 
+#include "cnclab/data/following_error.hpp"
 #include "cnclab/data/friedman1.hpp"
 #include "cnclab/data/ik_samples.hpp"
 #include "cnclab/data/step_error.hpp"
@@ -15,6 +16,10 @@ std::vector<GeneratorEntry> builtin_generators() {
       {"ik_samples",
        "TTTRR five-axis inverse kinematics: tool poses -> joints X, Y, Z, A, C (seed 004)",
        read_ik_samples},
+      {"following_error",
+       "axis following errors of a simulated biaxial machine on a random NURBS path: reference "
+       "velocity -> following error per axis, 10 runs averaged, csaps-smoothed (seed 002)",
+       read_following_error},
   };
 }
 

@@ -21,6 +21,21 @@ void StepErrorDatasetOptions::validate() const {
   }
 }
 
+void step_error_inputs(const ToolPathLine& path, std::size_t i, std::size_t k,
+                       Eigen::Ref<Eigen::VectorXd> x) {
+  const double du = (path.u[i + 1] - path.u[i]) / static_cast<double>(k + 1);
+  for (std::size_t j = 0; j < k; ++j) {
+    x.segment<3>(static_cast<Eigen::Index>(3 * j)) =
+        curve_point(path.curve, path.u[i] + du * static_cast<double>(j + 1));
+  }
+  const auto base = static_cast<Eigen::Index>(3 * k);
+  x.segment<3>(base) = path.cc[i];
+  x.segment<3>(base + 3) = path.cc[i + 1];
+  x.segment<3>(base + 6) = path.cl[i];
+  x.segment<3>(base + 9) = path.cl[i + 1];
+  x(base + 12) = path.tool_radius;
+}
+
 Dataset generate_step_error_dataset(const StepErrorDatasetOptions& o) {
   o.validate();
   const std::size_t n = o.num_samples(), k = o.curve_points;
@@ -36,18 +51,7 @@ Dataset generate_step_error_dataset(const StepErrorDatasetOptions& o) {
     const ToolPathLine path = plan_line(o.surface, o.tool_path, line);
     for (std::size_t i = 0; i + 1 < path.u.size(); ++i, ++col) {
       const StepError e = exact_step_error(path.segment(i), o.exact);
-      auto x = d.inputs.col(col);
-      const double du = (path.u[i + 1] - path.u[i]) / static_cast<double>(k + 1);
-      for (std::size_t j = 0; j < k; ++j) {
-        x.segment<3>(static_cast<Eigen::Index>(3 * j)) =
-            curve_point(path.curve, path.u[i] + du * static_cast<double>(j + 1));
-      }
-      const auto base = static_cast<Eigen::Index>(3 * k);
-      x.segment<3>(base) = path.cc[i];
-      x.segment<3>(base + 3) = path.cc[i + 1];
-      x.segment<3>(base + 6) = path.cl[i];
-      x.segment<3>(base + 9) = path.cl[i + 1];
-      x(base + 12) = o.tool_path.tool_radius;
+      step_error_inputs(path, i, k, d.inputs.col(col));
       d.targets(0, col) = e.error * kUmPerMm;
       d.metadata.col(col) << static_cast<double>(line), static_cast<double>(i), path.u[i],
           path.u[i + 1], path.v, e.convex ? 1.0 : 0.0;

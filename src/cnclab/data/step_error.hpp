@@ -47,6 +47,12 @@ struct StepErrorDatasetOptions {
 
 Dataset generate_step_error_dataset(const StepErrorDatasetOptions& options);
 
+// The 3K + 13 inputs of segment i (< path.u.size() - 1) of a planned line,
+// in the column order above, written to x (size 3K + 13). Sample s of the
+// dataset is segment s % (M - 1) of line s / (M - 1).
+void step_error_inputs(const ToolPathLine& path, std::size_t i, std::size_t k,
+                       Eigen::Ref<Eigen::VectorXd> x);
+
 // The registered generator `step_error`. Options (dataset.options):
 //   surface: configs/surfaces/surface1.yaml   # a path, resolved like include:
 //                                              # (relative to the naming file,

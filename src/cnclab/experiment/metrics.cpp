@@ -8,19 +8,70 @@
 
 namespace cnclab {
 
-const std::vector<std::string>& known_metrics() {
-  static const std::vector<std::string> names = {"mse", "rmse", "mae", "max_abs_error", "r2"};
-  return names;
-}
+namespace {
 
-std::map<std::string, double> regression_metrics(const Eigen::MatrixXd& predictions,
-                                                 const Eigen::MatrixXd& targets,
-                                                 const std::vector<std::string>& names) {
+void check_shapes(const Eigen::MatrixXd& predictions, const Eigen::MatrixXd& targets) {
   if (predictions.rows() != targets.rows() || predictions.cols() != targets.cols()) {
     throw Error("metrics: predictions are " + std::to_string(predictions.rows()) + "x" +
                 std::to_string(predictions.cols()) + " but targets " +
                 std::to_string(targets.rows()) + "x" + std::to_string(targets.cols()));
   }
+}
+
+bool contains(const std::vector<std::string>& list, const std::string& name) {
+  return std::find(list.begin(), list.end(), name) != list.end();
+}
+
+}  // namespace
+
+const std::vector<std::string>& physical_metrics() {
+  static const std::vector<std::string> names = {"mse", "rmse", "mae", "max_abs_error", "r2"};
+  return names;
+}
+
+const std::vector<std::string>& normalised_metrics() {
+  static const std::vector<std::string> names = {"normalised_mse", "normalised_validation_mse"};
+  return names;
+}
+
+const std::vector<std::string>& known_metrics() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> all = physical_metrics();
+    for (const auto& n : normalised_metrics()) all.push_back(n);
+    return all;
+  }();
+  return names;
+}
+
+double mean_squared_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  check_shapes(a, b);
+  if (a.size() == 0) return NAN;
+  return (a - b).array().square().sum() / static_cast<double>(a.size());
+}
+
+std::map<std::string, double> evaluation_metrics(const EvaluationData& d,
+                                                 const std::vector<std::string>& names) {
+  std::vector<std::string> physical;
+  std::map<std::string, double> out;
+  for (const auto& name : names) {
+    if (name == "normalised_mse") {
+      out[name] = mean_squared_error(d.test_outputs, d.test_scaled_targets);
+    } else if (name == "normalised_validation_mse") {
+      out[name] = mean_squared_error(d.validation_outputs, d.validation_scaled_targets);
+    } else if (contains(physical_metrics(), name)) {
+      physical.push_back(name);
+    } else {
+      throw Error("unknown metric '" + name + "'");
+    }
+  }
+  out.merge(regression_metrics(d.test_predictions, d.test_targets, physical));
+  return out;
+}
+
+std::map<std::string, double> regression_metrics(const Eigen::MatrixXd& predictions,
+                                                 const Eigen::MatrixXd& targets,
+                                                 const std::vector<std::string>& names) {
+  check_shapes(predictions, targets);
   const Eigen::ArrayXXd err = (predictions - targets).array();
   const double n = static_cast<double>(err.size());
   std::map<std::string, double> out;

@@ -1,5 +1,6 @@
 #include "cnclab/experiment/result_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -357,9 +358,17 @@ void print_result(const RunRecord& r, std::ostream& out) {
       out << "\n";
     }
   }
-  out << "metrics      (test split, " << join(r.target_units) << ")\n";
+  std::size_t width = 14;
+  bool normalised = false;
   for (const auto& [name, value] : r.metrics) {
-    out << "  " << std::left << std::setw(14) << name << format_metric(value) << "\n";
+    width = std::max(width, name.size() + 2);
+    normalised = normalised || name.starts_with("normalised_");
+  }
+  out << "metrics      (test split, " << join(r.target_units)
+      << (normalised ? "; normalised_*: the network's scaled units" : "") << ")\n";
+  for (const auto& [name, value] : r.metrics) {
+    out << "  " << std::left << std::setw(static_cast<int>(width)) << name << format_metric(value)
+        << "\n";
   }
   out << "config\n";
   std::size_t start = 0;

@@ -180,12 +180,19 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   rec.parameters = params;
   const bool ok = rec.training.termination != Termination::diverged;
 
-  // Evaluation in physical units.
+  // Evaluation in physical units and in the network's normalised units.
   if (ok) {
-    Eigen::MatrixXd pred = mlp.predict(params, xn_test);
-    rec.test_predictions = rec.target_scaling.inverse_transform(pred);
+    EvaluationData eval;
+    eval.test_outputs = mlp.predict(params, xn_test);
+    eval.test_scaled_targets = yn_test;
+    eval.validation_outputs =
+        xn_val.cols() > 0 ? mlp.predict(params, xn_val) : Eigen::MatrixXd(yn_val.rows(), 0);
+    eval.validation_scaled_targets = yn_val;
+    rec.test_predictions = rec.target_scaling.inverse_transform(eval.test_outputs);
     rec.test_targets = y_test;
-    rec.metrics = regression_metrics(rec.test_predictions, rec.test_targets, spec.metrics);
+    eval.test_predictions = rec.test_predictions;
+    eval.test_targets = rec.test_targets;
+    rec.metrics = evaluation_metrics(eval, spec.metrics);
   }
 
   rec.provenance.end_utc = utc_now_iso8601();

@@ -124,19 +124,6 @@ MlpOptions read_model(const ConfigReader& r) {
   return m;
 }
 
-// An upstream experiment file named at `key`, relative to the experiment's
-// folder `base`; it must exist.
-std::filesystem::path upstream_file(const ConfigReader& r, const std::string& key,
-                                    const std::string& text, const std::filesystem::path& base) {
-  const std::filesystem::path path =
-      std::filesystem::path(text).is_absolute() ? std::filesystem::path(text) : base / text;
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    r.fail(key, "no experiment file " + path.string());
-  }
-  return path.lexically_normal();
-}
-
 void read_graph(const ConfigReader& root, const std::filesystem::path& base, ExperimentSpec& spec) {
   spec.needs = root.get<std::vector<std::string>>("needs", {});
   for (const auto& text : spec.needs) {
@@ -246,6 +233,17 @@ std::vector<Override> parse_overrides(const std::vector<std::string>& texts) {
 }
 
 }  // namespace
+
+std::filesystem::path upstream_file(const ConfigReader& r, const std::string& key,
+                                    const std::string& text, const std::filesystem::path& base) {
+  const std::filesystem::path path =
+      std::filesystem::path(text).is_absolute() ? std::filesystem::path(text) : base / text;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    r.fail(key, "no experiment file " + path.string());
+  }
+  return path.lexically_normal();
+}
 
 std::string to_string(NormaliserSource s) {
   return s == NormaliserSource::keep ? "keep" : "refit";

@@ -129,4 +129,10 @@ std::string to_yaml(const ExperimentSpec& spec);
 // (letters, digits, '_', '-', '.'; no leading '.'), else ConfigError.
 std::string read_experiment_name(const ConfigReader& root);
 
+// An experiment file named at `key` (text as written), relative to the
+// folder `base` of the file that names it; ConfigError naming the key unless
+// it exists. Lexically normalised.
+std::filesystem::path upstream_file(const ConfigReader& r, const std::string& key,
+                                    const std::string& text, const std::filesystem::path& base);
+
 }  // namespace cnclab

@@ -42,11 +42,8 @@ SweepSpec resolve_spec(const fs::path& experiment, const SweepArguments& args,
 }
 
 std::string trial_text(const SweepPlan& plan, const PlannedTrial& t) {
-  std::string s;
-  for (std::size_t k = 0; k < plan.keys.size(); ++k) {
-    s += (k ? " " : "") + plan.keys[k] + "=" + t.values[k];
-  }
-  return s + (plan.repeats > 1 ? " repeat " + std::to_string(t.repeat) : "");
+  return point_text(plan.keys, t.values) +
+         (plan.repeats > 1 ? " repeat " + std::to_string(t.repeat) : "");
 }
 
 // --regenerate: regenerates every dataset the trials need once, here, before
@@ -55,7 +52,7 @@ std::string trial_text(const SweepPlan& plan, const PlannedTrial& t) {
 // under the cache's lock. A dataset that cannot be made is left to the
 // trials, which record the error.
 void regenerate_datasets(const SweepPlan& plan, const std::vector<std::size_t>& todo,
-                         const SweepCommandOptions& o, std::ostream* log) {
+                         const CommandOptions& o, std::ostream* log) {
   std::set<std::string> seen;
   for (std::size_t i : todo) {
     const ExperimentSpec& spec = plan.trials[i].experiment->spec;
@@ -64,16 +61,10 @@ void regenerate_datasets(const SweepPlan& plan, const std::vector<std::size_t>& 
                             spec.dataset.generator->options_yaml() + std::to_string(seed);
     if (!seen.insert(key).second) continue;
     try {
-      obtain_dataset(spec.dataset, seed, o.common.datasets_dir, log, true);
+      obtain_dataset(spec.dataset, seed, o.datasets_dir, log, true);
     } catch (const Error&) {
     }
   }
-}
-
-std::vector<TrialOutcome> read_outcomes(const fs::path& dir, const SweepPlan& plan) {
-  std::vector<TrialOutcome> out;
-  for (const auto& t : plan.trials) out.push_back(read_trial_outcome(dir, t));
-  return out;
 }
 
 // Cores this process may run on (the affinity mask: what Slurm or taskset
@@ -125,38 +116,28 @@ int summary_exit_code(const SweepSummary& s) {
 
 }  // namespace
 
-int sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
-                  std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
-                  std::ostream& out, std::ostream& log) {
-  const SweepArguments args = split_sweep_arguments(words);
-  const SweepSpec spec = resolve_spec(experiment, args, o);
-  const auto [shard, shards] =
-      o.shard.empty() ? std::pair<std::size_t, std::size_t>{1, 1} : parse_shard(o.shard);
-  SweepPlan plan = plan_sweep(experiment, args.overrides, seed, spec, o.common.profile);
-  const fs::path dir =
-      o.dir.empty() ? o.common.results_dir / plan.experiment / ("sweep-" + plan.hash().substr(0, 8))
-                    : o.dir;
-  store_plan(dir, plan);
-
-  std::vector<TrialOutcome> outcomes = read_outcomes(dir, plan);
-  const std::vector<std::size_t> mine = shard_trials(plan.trials.size(), shard, shards);
-  const std::size_t stale = invalidate_stale(plan, mine, o.common.results_dir, outcomes);
+SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
+                             const SweepExecuteOptions& o, std::ostream* note) {
+  SweepExecution ex;
+  ex.outcomes = read_trial_outcomes(dir, plan);
+  ex.mine = shard_trials(plan.trials.size(), o.shard, o.shards);
+  const std::size_t stale = invalidate_stale(plan, ex.mine, o.common.results_dir, ex.outcomes);
   std::vector<std::size_t> todo;
-  for (std::size_t i : mine) {
-    if (!outcomes[i].done()) todo.push_back(i);
+  for (std::size_t i : ex.mine) {
+    if (o.rerun || !ex.outcomes[i].done()) todo.push_back(i);
   }
   const std::size_t jobs = o.jobs > 0 ? o.jobs : available_cores();
-  std::ostream* note = o.common.quiet ? nullptr : &log;
   if (note) {
     *note << "sweep " << dir.string() << ": " << plan.trials.size() << " trials";
-    if (shards > 1) *note << ", shard " << shard << "/" << shards << " has " << mine.size();
+    if (o.shards > 1)
+      *note << ", shard " << o.shard << "/" << o.shards << " has " << ex.mine.size();
     if (plan.merged_duplicates)
       *note << " (" << plan.merged_duplicates << " duplicate samples merged)";
     if (stale) *note << "; " << stale << " to run again (upstream results changed)";
-    *note << "; " << mine.size() - todo.size() << " already done, running " << todo.size()
+    *note << "; " << ex.mine.size() - todo.size() << " already done, running " << todo.size()
           << " with " << std::min(jobs, std::max<std::size_t>(todo.size(), 1)) << " job(s)\n";
   }
-  if (o.common.regenerate) regenerate_datasets(plan, todo, o, note);
+  if (o.common.regenerate) regenerate_datasets(plan, todo, o.common, note);
 
   std::vector<TrialJob> pool_jobs;
   for (std::size_t i : todo) {
@@ -167,19 +148,19 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
   pool.jobs = jobs;
   pool.run.results_dir = o.common.results_dir;
   pool.run.datasets_dir = o.common.datasets_dir;
-  std::size_t finished = 0;
-  const int stopped = run_trial_pool(pool_jobs, pool, [&](std::size_t job, const TrialExit& exit) {
+  ex.ran = todo.size();
+  ex.stopped = run_trial_pool(pool_jobs, pool, [&](std::size_t job, const TrialExit& exit) {
     const std::size_t i = todo[job];
     if (exit.kind == TrialExit::Kind::interrupted) return;
-    outcomes[i] = read_trial_outcome(dir, plan.trials[i]);
-    if (outcomes[i].done()) {
+    ex.outcomes[i] = read_trial_outcome(dir, plan.trials[i]);
+    if (ex.outcomes[i].done()) {
       std::error_code ec;
       fs::remove(trial_error_path(dir, plan.trials[i].id), ec);  // a stale note of an earlier try
     }
-    ++finished;
+    ++ex.finished;
     if (!note) return;
-    const TrialOutcome& r = outcomes[i];
-    *note << "[" << finished << "/" << todo.size() << "] " << plan.trials[i].id << " "
+    const TrialOutcome& r = ex.outcomes[i];
+    *note << "[" << ex.finished << "/" << todo.size() << "] " << plan.trials[i].id << " "
           << trial_text(plan, plan.trials[i]) << ": ";
     if (r.status == TrialOutcome::Status::complete) {
       const auto it = r.metrics.find(plan.objective.metric);
@@ -189,10 +170,32 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
       *note << to_string(r.status) << ": " << (r.reason.empty() ? exit.message : r.reason) << "\n";
     }
   });
-  if (stopped != 0) {
-    out << "interrupted by signal " << stopped << ": " << finished << " of " << todo.size()
+  return ex;
+}
+
+int sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
+                  std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
+                  std::ostream& out, std::ostream& log) {
+  const SweepArguments args = split_sweep_arguments(words);
+  const SweepSpec spec = resolve_spec(experiment, args, o);
+  SweepExecuteOptions exec;
+  exec.common = o.common;
+  exec.jobs = o.jobs;
+  if (!o.shard.empty()) std::tie(exec.shard, exec.shards) = parse_shard(o.shard);
+  const std::size_t shard = exec.shard, shards = exec.shards;
+  SweepPlan plan = plan_sweep(experiment, args.overrides, seed, spec, o.common.profile);
+  const fs::path dir =
+      o.dir.empty() ? o.common.results_dir / plan.experiment / ("sweep-" + plan.hash().substr(0, 8))
+                    : o.dir;
+  store_plan(dir, plan);
+
+  const SweepExecution ex = execute_sweep(plan, dir, exec, o.common.quiet ? nullptr : &log);
+  const std::vector<TrialOutcome>& outcomes = ex.outcomes;
+  const std::vector<std::size_t>& mine = ex.mine;
+  if (ex.stopped != 0) {
+    out << "interrupted by signal " << ex.stopped << ": " << ex.finished << " of " << ex.ran
         << " trials finished; run the same command again to resume (finished trials are kept)\n";
-    return 128 + stopped;
+    return 128 + ex.stopped;
   }
 
   if (shards > 1) {
@@ -212,7 +215,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
 
 int sweep_merge_command(const fs::path& dir, std::ostream& out) {
   const SweepPlan plan = load_plan(dir);
-  const std::vector<TrialOutcome> outcomes = read_outcomes(dir, plan);
+  const std::vector<TrialOutcome> outcomes = read_trial_outcomes(dir, plan);
   const SweepSummary summary = summarize(plan, outcomes);
   write_summary(dir / "summary.h5", plan, outcomes, summary);
   print_summary(out, plan, outcomes, summary, dir);

@@ -58,13 +58,13 @@ Override override_of(const std::string& key, const YAML::Node& value) {
   return o;
 }
 
+}  // namespace
+
 std::string point_text(const std::vector<std::string>& keys, const std::vector<std::string>& v) {
   std::string s;
   for (std::size_t k = 0; k < keys.size(); ++k) s += (k ? " " : "") + keys[k] + "=" + v[k];
   return s;
 }
-
-}  // namespace
 
 std::string SweepPlan::to_yaml() const {
   using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;

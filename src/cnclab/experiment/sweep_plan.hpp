@@ -46,6 +46,10 @@ struct SweepPlan {
   std::string hash() const;
 };
 
+// "key=value key=value": a point's swept values (keys and values in plan order).
+std::string point_text(const std::vector<std::string>& keys,
+                       const std::vector<std::string>& values);
+
 // Expands and resolves every trial (loading each config validates it, so a
 // bad key or value stops the sweep before anything runs: ConfigError).
 // `overrides` are the plain overrides, `seed` the --seed option, `profile`

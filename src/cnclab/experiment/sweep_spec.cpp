@@ -271,8 +271,13 @@ SweepSpec read_sweep_block(const std::filesystem::path& file,
   for (const auto& key : root.keys()) {
     if (key != "sweep") root.raw(key);  // the experiment reader checks those
   }
+  SweepSpec spec = read_sweep_section(root.section("sweep"));
+  doc.check_all_consumed();
+  return spec;
+}
+
+SweepSpec read_sweep_section(const ConfigReader& s) {
   SweepSpec spec;
-  const ConfigReader s = root.section("sweep");
   if (s.has("method")) {
     const auto m = s.get<std::string>("method", "grid");
     if (m != "grid" && m != "random") s.fail("method", "must be one of: grid, random");
@@ -323,7 +328,6 @@ SweepSpec read_sweep_block(const std::filesystem::path& file,
     }
     spec.set(std::move(*p));
   }
-  doc.check_all_consumed();
   return spec;
 }
 

@@ -100,4 +100,9 @@ SweepSpec read_sweep_block(const std::filesystem::path& file,
                            const std::vector<std::string>& overrides,
                            const std::string& profile = {});
 
+class ConfigReader;
+// The same block from an open document (`s` is the `sweep:` section; a
+// `kind: sweep` job file's block, sweep_job.hpp). Marks what it reads.
+SweepSpec read_sweep_section(const ConfigReader& s);
+
 }  // namespace cnclab

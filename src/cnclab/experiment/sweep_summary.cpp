@@ -115,6 +115,12 @@ TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) 
   return o;
 }
 
+std::vector<TrialOutcome> read_trial_outcomes(const fs::path& dir, const SweepPlan& plan) {
+  std::vector<TrialOutcome> out;
+  for (const auto& t : plan.trials) out.push_back(read_trial_outcome(dir, t));
+  return out;
+}
+
 SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& outcomes) {
   SweepSummary s;
   std::map<std::size_t, PointStats> points;

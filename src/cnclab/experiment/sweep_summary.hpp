@@ -46,6 +46,9 @@ std::string to_string(TrialOutcome::Status status);
 
 // Reads the trial's result status (read_result_status) or error note from `dir`.
 TrialOutcome read_trial_outcome(const std::filesystem::path& dir, const PlannedTrial& trial);
+// The same for every trial of the plan (plan order).
+std::vector<TrialOutcome> read_trial_outcomes(const std::filesystem::path& dir,
+                                              const SweepPlan& plan);
 
 struct PointStats {
   std::size_t point = 0;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cnclab/core/error.hpp"
+
 namespace cnclab {
 namespace {
 
@@ -68,6 +70,108 @@ void TextTable::print_csv(std::ostream& out) const {
   };
   line(header);
   for (const auto& row : rows) line(row);
+}
+
+void TextTable::print_latex(std::ostream& out) const {
+  out << "\\begin{tabular}{" << std::string(header.size(), 'l') << "}\n\\hline\n";
+  const auto line = [&](const std::vector<std::string>& cells) {
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      out << (c ? " & " : "") << latex_escape(cells[c]);
+    out << " \\\\\n";
+  };
+  line(header);
+  out << "\\hline\n";
+  for (const auto& row : rows) line(row);
+  out << "\\hline\n\\end{tabular}\n";
+}
+
+void TextTable::print(std::ostream& out, TableFormat format) const {
+  switch (format) {
+    case TableFormat::text:
+      return print_aligned(out);
+    case TableFormat::markdown:
+      return print_markdown(out);
+    case TableFormat::csv:
+      return print_csv(out);
+    case TableFormat::latex:
+      return print_latex(out);
+  }
+}
+
+TableFormat parse_table_format(const std::string& name) {
+  if (name == "text") return TableFormat::text;
+  if (name == "md") return TableFormat::markdown;
+  if (name == "csv") return TableFormat::csv;
+  if (name == "latex") return TableFormat::latex;
+  throw ConfigError("--format: unknown format '" + name + "'; choose one of: text, md, csv, latex");
+}
+
+void print_table_title(std::ostream& out, TableFormat format, const std::string& title) {
+  switch (format) {
+    case TableFormat::text:
+      out << "\n" << title << "\n\n";
+      return;
+    case TableFormat::markdown:
+      out << "\n### " << title << "\n\n";
+      return;
+    case TableFormat::csv:
+      out << "\n# " << title << "\n";
+      return;
+    case TableFormat::latex:
+      out << "\n% " << title << "\n";
+      return;
+  }
+}
+
+void print_table_notes(std::ostream& out, TableFormat format,
+                       const std::vector<std::string>& notes) {
+  if (notes.empty()) return;
+  switch (format) {
+    case TableFormat::text:
+      out << "\nNotes\n";
+      for (const auto& n : notes) out << "- " << n << "\n";
+      return;
+    case TableFormat::markdown:
+      out << "\n";
+      for (const auto& n : notes) out << "- " << n << "\n";
+      return;
+    case TableFormat::csv:
+      for (const auto& n : notes) out << "# " << n << "\n";
+      return;
+    case TableFormat::latex:
+      for (const auto& n : notes) out << "% " << n << "\n";
+      return;
+  }
+}
+
+std::string latex_escape(const std::string& text) {
+  std::string s;
+  for (char c : text) {
+    switch (c) {
+      case '\\':
+        s += "\\textbackslash{}";
+        break;
+      case '~':
+        s += "\\textasciitilde{}";
+        break;
+      case '^':
+        s += "\\textasciicircum{}";
+        break;
+      case '&':
+      case '%':
+      case '$':
+      case '#':
+      case '_':
+      case '{':
+      case '}':
+        s += '\\';
+        s += c;
+        break;
+      default:
+        s += c;
+    }
+  }
+  return s;
 }
 
 std::string table_number(double value, int digits) {

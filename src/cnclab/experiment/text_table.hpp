@@ -1,12 +1,20 @@
 #pragma once
 // A table of text cells rendered for a terminal (aligned columns), as
-// Markdown or as CSV (RFC 4180 quoting). Shared by `sweep`, `compare` and
-// `tables`.
+// Markdown, as CSV (RFC 4180 quoting) or as a LaTeX tabular. Shared by
+// `sweep`, `compare` and `tables`.
 #include <ostream>
 #include <string>
 #include <vector>
 
 namespace cnclab {
+
+// How `cnclab tables --format` renders: text (aligned columns, the default),
+// md, csv, latex.
+enum class TableFormat { text, markdown, csv, latex };
+
+// "text", "md", "csv" or "latex"; anything else is a ConfigError naming the
+// value and the choices.
+TableFormat parse_table_format(const std::string& name);
 
 struct TextTable {
   std::vector<std::string> header;
@@ -15,7 +23,21 @@ struct TextTable {
   void print_aligned(std::ostream& out) const;
   void print_markdown(std::ostream& out) const;
   void print_csv(std::ostream& out) const;
+  // \begin{tabular}{l...} with \hline rules; cells escaped (latex_escape).
+  void print_latex(std::ostream& out) const;
+  void print(std::ostream& out, TableFormat format) const;
 };
+
+// Text outside the tables (titles, notes) in each format's own syntax, so a
+// document of several tables stays valid: a Markdown heading / list item, a
+// CSV comment line ("# ..."; CSV readers skip them with comment='#'), a
+// LaTeX comment ("% ...") or plain text.
+void print_table_title(std::ostream& out, TableFormat format, const std::string& title);
+void print_table_notes(std::ostream& out, TableFormat format,
+                       const std::vector<std::string>& notes);
+
+// The ten LaTeX special characters escaped (& % $ # _ { } ~ ^ and backslash); UTF-8 kept.
+std::string latex_escape(const std::string& text);
 
 // Numbers for paper tables: %.*g with `digits` significant digits; NaN as "-".
 std::string table_number(double value, int digits = 4);

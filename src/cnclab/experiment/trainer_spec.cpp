@@ -26,8 +26,7 @@ SgdmOptions read_sgdm(const ConfigReader& r) {
 }
 
 template <class Options>
-Options read_lm(const ConfigReader& r) {
-  Options t;
+Options read_lm(const ConfigReader& r, Options t = {}) {
   t.epochs = r.get<std::size_t>("epochs", t.epochs);
   t.goal = r.get<double>("goal", t.goal);
   t.mu = r.get<double>("mu", t.mu);
@@ -40,6 +39,10 @@ Options read_lm(const ConfigReader& r) {
 }
 
 }  // namespace
+
+TrainbrOptions read_trainbr_options(const ConfigReader& r, const TrainbrOptions& start) {
+  return read_lm<TrainbrOptions>(r, start);
+}
 
 std::string trainer_name(const TrainerSpec& trainer) {
   return kTrainerNames[trainer.index()];

@@ -27,6 +27,9 @@ bool is_levenberg_marquardt(const TrainerSpec& trainer);
 
 // Reads and validates the `trainer` section (type defaults to sgdm).
 TrainerSpec read_trainer(const ConfigReader& r);
+// trainbr's keys (epochs, goal, mu, mu_dec, mu_inc, mu_max, min_gradient)
+// without `type`, each defaulting to `start`'s value; validated.
+TrainbrOptions read_trainbr_options(const ConfigReader& r, const TrainbrOptions& start);
 // The section with every option resolved (a map value).
 void emit_trainer(YAML::Emitter& out, const TrainerSpec& trainer);
 

@@ -43,11 +43,14 @@ struct FeedratePlannerOptions {
   // grid_spacing = 1 mm; without it the first interval alone costs ~1 %).
   double end_refinement_length = 4.0;
   std::size_t end_refinement = 8;      // >= 1; 1 = off
-  std::size_t window_intervals = 240;  // intervals per NLP window
+  std::size_t window_intervals = 720;  // intervals per NLP window
   // Intervals kept per window (< window_intervals); the other 60 mm are the
-  // overlap. Cost per path length ~ window / commit: 240/180 costs 0.7x of
-  // 120/60 at the same result (measured on the epitrochoid test path).
-  std::size_t commit_intervals = 180;
+  // overlap. Cost per path length ~ window / commit at a roughly constant
+  // iteration count: 240/180 costs 0.7x of 120/60, and 720/660 0.85x of
+  // 240/180 (planning CPU time, 20 turns of the benchmark epitrochoid:
+  // 33.4 s against 39.5 s, 36 against 34 Ipopt iterations per window, the
+  // same 53.09 s traversal time; scripts/bench_motion 20 WINDOW COMMIT).
+  std::size_t commit_intervals = 660;
   double tolerance = 1e-8;       // Ipopt `tol` (scaled NLP, see feedrate_nlp.hpp)
   int max_iterations = 500;      // Ipopt `max_iter` per window
   RegularityOptions regularity;  // cusp check before planning

@@ -29,6 +29,15 @@ class MinMaxNormaliser {
   void fit(const Eigen::MatrixXd& data);
   Eigen::MatrixXd transform(const Eigen::MatrixXd& data) const;
   Eigen::MatrixXd inverse_transform(const Eigen::MatrixXd& scaled) const;
+  // One value of feature i (0 <= i < features(), unchecked), the same
+  // arithmetic as transform / inverse_transform; no allocation (real-time use).
+  double transform(Eigen::Index i, double x) const noexcept {
+    return (x - offset_[i]) * gain_[i] + y_min_;
+  }
+  double inverse_transform(Eigen::Index i, double y) const noexcept {
+    return (y - y_min_) / gain_[i] + offset_[i];
+  }
+  Eigen::Index features() const { return x_min_.size(); }
 
   const Eigen::VectorXd& x_min() const { return x_min_; }
   const Eigen::VectorXd& x_max() const { return x_max_; }

@@ -86,41 +86,63 @@ Eigen::VectorXd Narx::simulate_closed_loop(const Eigen::VectorXd& params, const 
     throw Error("NARX parameters: " + std::to_string(w_count) + " values, the network has " +
                 std::to_string(num_parameters()));
   }
-  // Views into the flat vector (Mlp layout).
-  const Eigen::Map<const Eigen::MatrixXd> w1(params.data(), h, n);
-  const Eigen::Map<const Eigen::VectorXd> b1(params.data() + h * n, h);
-  const Eigen::Map<const Eigen::RowVectorXd> w2(params.data() + h * n + h, h);
-  const double b2 = params[h * n + 2 * h];
+  const Eigen::Map<const Eigen::MatrixXd> w1(params.data(), h, n);  // Mlp layout
+  const Eigen::Map<const Eigen::VectorXd> w2(params.data() + h * n + h, h);
 
   // e_full(t): initial states then predictions.
   Eigen::VectorXd e_full(v.size());
   e_full.head(t0) = e_initial.head(t0);
-  if (jacobian != nullptr) jacobian->setZero(steps, w_count);
-  Eigen::VectorXd x(n), a(h);
-  Eigen::MatrixXd delta(h, 1);  // w2_i f'(z_i)
+  Eigen::VectorXd x(n), a(h), delta(h);  // delta_i = w2_i f'(z_i)
+  // RTRL rows are built in a row-major scratch (each step's row contiguous,
+  // the recursion reads the de rows before it) and copied to the
+  // column-major Jacobian kBlock rows at a time: writing and re-reading
+  // rows of a (steps x W) column-major matrix directly strides by `steps`
+  // doubles per entry: 1.4x the CPU time at 87,000 steps (12 neurons, 4/4).
+  constexpr Eigen::Index kBlock = 64;
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor sens;  // rows [0, de): the de rows before the block; [de, de + kBlock): the block
+  if (jacobian != nullptr) {
+    jacobian->resize(steps, w_count);
+    sens.setZero(de + kBlock, w_count);
+  }
   for (Eigen::Index s = 0; s < steps; ++s) {
     const Eigen::Index t = t0 + s;
     for (Eigen::Index j = 0; j < dv; ++j) x[j] = v[t - d0 - j];
     for (Eigen::Index k = 1; k <= de; ++k) x[dv + k - 1] = e_full[t - k];
-    a = w1 * x + b1;
-    apply_activation(options_.hidden_activation, a);
-    e_full[t] = w2.dot(a) + b2;
+    e_full[t] = step(params, x, a);
     if (jacobian == nullptr) continue;
-    delta.col(0) = w2.transpose();
+    delta = w2;
     multiply_derivative(options_.hidden_activation, a, delta);
-    auto row = jacobian->row(s);
+    const Eigen::Index r = de + s % kBlock;
+    auto row = sens.row(r);
     // Direct term df/dw at x(t).
-    for (Eigen::Index j = 0; j < n; ++j) row.segment(j * h, h) = (delta.col(0) * x[j]).transpose();
-    row.segment(h * n, h) = delta.col(0).transpose();
+    for (Eigen::Index j = 0; j < n; ++j) row.segment(j * h, h) = delta.transpose() * x[j];
+    row.segment(h * n, h) = delta.transpose();
     row.segment(h * n + h, h) = a.transpose();
     row[h * n + 2 * h] = 1.0;
-    // Through the fed-back predictions: df/de(t-k) = sum_i delta_i W1(i, dv+k-1).
-    for (Eigen::Index k = 1; k <= de && s - k >= 0; ++k) {
-      const double gain = delta.col(0).dot(w1.col(dv + k - 1));
-      row += gain * jacobian->row(s - k);
-    }
+    // Through the fed-back predictions: df/de(t-k) = sum_i delta_i W1(i, dv+k-1);
+    // S = 0 on the initial states (the zero rows before the first block).
+    for (Eigen::Index k = 1; k <= de; ++k) row += delta.dot(w1.col(dv + k - 1)) * sens.row(r - k);
+    const bool block_full = s % kBlock == kBlock - 1 || s == steps - 1;
+    if (!block_full) continue;
+    const Eigen::Index rows = s % kBlock + 1;
+    jacobian->middleRows(s + 1 - rows, rows) = sens.middleRows(de, rows);
+    sens.topRows(de) = sens.middleRows(rows, de).eval();  // the last de rows
   }
   return e_full.tail(steps);
+}
+
+double Narx::step(const Eigen::VectorXd& params, const Eigen::VectorXd& x,
+                  Eigen::VectorXd& hidden) const noexcept {
+  const auto h = static_cast<Eigen::Index>(options_.hidden);
+  const Eigen::Index n = x.size();
+  const Eigen::Map<const Eigen::MatrixXd> w1(params.data(), h, n);
+  const Eigen::Map<const Eigen::VectorXd> b1(params.data() + h * n, h);
+  const Eigen::Map<const Eigen::VectorXd> w2(params.data() + h * n + h, h);
+  hidden.noalias() = w1 * x;
+  hidden += b1;
+  apply_activation(options_.hidden_activation, hidden);
+  return w2.dot(hidden) + params[h * n + 2 * h];
 }
 
 }  // namespace cnclab

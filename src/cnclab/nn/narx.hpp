@@ -73,6 +73,14 @@ class Narx {
                                        const Eigen::VectorXd& e_initial,
                                        Eigen::MatrixXd* jacobian = nullptr) const;
 
+  // Eq. 1 at one step: from the regressor x (num_inputs(), layout above)
+  // writes the hidden activations f(h_i) into `hidden` (size H) and returns
+  // e(t). Sizes are the caller's contract (params: num_parameters()). No
+  // heap allocation: simulate_closed_loop and the real-time predictor
+  // (narx_predictor.hpp) both step through here, so they agree bit for bit.
+  double step(const Eigen::VectorXd& params, const Eigen::VectorXd& x,
+              Eigen::VectorXd& hidden) const noexcept;
+
  private:
   void check_series(const Eigen::VectorXd& v, const Eigen::VectorXd& e) const;
 

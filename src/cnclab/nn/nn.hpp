@@ -5,4 +5,5 @@
 #include "cnclab/nn/minmax.hpp"
 #include "cnclab/nn/mlp.hpp"
 #include "cnclab/nn/narx.hpp"
+#include "cnclab/nn/narx_predictor.hpp"
 #include "cnclab/nn/zscore.hpp"

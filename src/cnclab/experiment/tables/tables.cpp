@@ -1,8 +1,15 @@
 #include "cnclab/experiment/tables/tables.hpp"
 
+#include "cnclab/experiment/tables/contour_error_tables.hpp"
 #include "cnclab/experiment/tables/ik_tables.hpp"
+#include "cnclab/experiment/tables/step_error_tables.hpp"
 
 namespace cnclab {
+
+double normalised_test_mse(const RunRecord& r) {
+  const ScalingRecord& y = r.target_scaling;
+  return (y.transform(r.test_predictions) - y.transform(r.test_targets)).array().square().mean();
+}
 
 std::vector<TableEntry> builtin_tables() {
   return {
@@ -10,6 +17,14 @@ std::vector<TableEntry> builtin_tables() {
        "seed 004 Table 5 (IK networks per axis, ours vs paper) and the machine-space error of the "
        "predicted joints",
        print_ik_tables},
+      {"contour-error",
+       "seed 002: NARX training methods, architecture sweep, contour-error estimates and the "
+       "contour predictor's accuracy (simulated machine)",
+       print_contour_error_tables},
+      {"step-error",
+       "seed 000 Tables 2-8 (step-error BP network: dropout, surface 1, fine-tuning on surfaces 2 "
+       "and 3, timing), ours vs paper, and the normaliser keep/refit comparison",
+       print_step_error_tables},
   };
 }
 

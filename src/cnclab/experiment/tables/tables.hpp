@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/experiment/run_record.hpp"
+#include "cnclab/experiment/text_table.hpp"
 
 namespace cnclab {
 
@@ -16,6 +18,8 @@ struct TablesOptions {
   std::filesystem::path results_dir = "results";              // where `run`/`reproduce` wrote
   std::filesystem::path experiments_dir = "experiments";      // the experiment YAML files
   std::filesystem::path reference_dir = "results/reference";  // transcribed paper numbers
+  std::filesystem::path configs_dir = "configs";              // study manifests (configs/studies)
+  TableFormat format = TableFormat::text;                     // `--format`
   // The profiles: entry the results were made with (`reproduce --quick`:
   // "quick"); experiments load with it to find their result files.
   std::string profile;
@@ -33,6 +37,10 @@ struct TableEntry {
   // Prints the table(s); throws MissingResults when results are absent.
   std::function<void(const TablesOptions&, std::ostream&)> print;
 };
+
+// Test MSE in the normalised units the network was trained in: the mean of
+// (T(prediction) - T(target))^2 with T the run's target scaling.
+double normalised_test_mse(const RunRecord& r);
 
 // The built-in tables in a fixed order; a new list each call.
 std::vector<TableEntry> builtin_tables();

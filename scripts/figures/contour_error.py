@@ -1,0 +1,120 @@
+#!/usr/bin/python3
+"""Figures like seed 002's Figs. 4, 5, 8-11, 13 and 14 from the NARX study.
+
+Usage: /usr/bin/python3 scripts/figures/contour_error.py [RESULTS_DIR]
+
+Reads the newest complete result of experiments/contour_error/training_methods.yaml
+(RESULTS_DIR/contour_error_training_methods/*.h5, written by `cnclab reproduce`),
+its validation series (first run: two-stage, seed 1) and the dataset it names,
+and writes PNGs to RESULTS_DIR/figures/contour_error/ (each written to a
+temporary name, then renamed).
+"""
+import glob
+import os
+import sys
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def newest_result(results):
+    files = [f for f in glob.glob(os.path.join(results, "contour_error_training_methods", "*.h5"))
+             if not os.path.basename(f).startswith(".")]
+    for f in sorted(files, key=os.path.getmtime, reverse=True):
+        with h5py.File(f, "r") as h:
+            if h.attrs.get("complete", 0) == 1:
+                return f
+    sys.exit(f"contour_error.py: no complete result under {results}/contour_error_training_methods;"
+             " run `cnclab reproduce experiments/contour_error` first")
+
+
+def save(fig, out_dir, name):
+    path = os.path.join(out_dir, name)
+    tmp = os.path.join(out_dir, "." + name + ".partial.png")
+    fig.savefig(tmp, dpi=120, bbox_inches="tight")
+    plt.close(fig)
+    os.replace(tmp, path)
+    print("wrote", path)
+
+
+def main():
+    results = sys.argv[1] if len(sys.argv) > 1 else "results"
+    out_dir = os.path.join(results, "figures", "contour_error")
+    os.makedirs(out_dir, exist_ok=True)
+    result = newest_result(results)
+    with h5py.File(result, "r") as h:
+        names = [n.decode() for n in h["series_names"][()]]
+        series = {n: h["series"][:, i] for i, n in enumerate(names)}
+        dataset_file = h["dataset"].attrs["file"]
+        if isinstance(dataset_file, bytes):
+            dataset_file = dataset_file.decode()
+    with h5py.File(dataset_file, "r") as d:
+        meta_names = [n.decode() for n in d["metadata_names"][()]]
+        meta = {n: d["metadata"][:, i] for i, n in enumerate(meta_names)}
+
+    # Fig. 4: the random NURBS tool path (reference positions).
+    fig, ax = plt.subplots(figsize=(6, 6))
+    ax.plot(meta["ref_x"], meta["ref_y"], lw=0.4)
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_aspect("equal")
+    ax.set_title("Random NURBS tool path (cf. seed 002 Fig. 4)")
+    save(fig, out_dir, "fig04_toolpath.png")
+
+    # Fig. 5: axis reference velocities, training and validation halves.
+    t = meta["time"]
+    fig, axes = plt.subplots(2, 1, figsize=(10, 5), sharex=True)
+    half = t[len(t) // 2]
+    for ax, axis in zip(axes, "xy"):
+        ax.plot(t, meta["v_ref_" + axis], lw=0.3)
+        ax.axvline(half, color="k", ls="--", lw=0.8)
+        ax.set_ylabel(f"v_{axis} [mm/s]")
+    axes[-1].set_xlabel("time [s] (dashed: training | validation)")
+    axes[0].set_title("Axial reference velocities, NARX inputs (cf. Fig. 5)")
+    save(fig, out_dir, "fig05_velocities.png")
+
+    tv = series["time"]
+    for axis, (fig_pred, fig_err) in zip("xy", [(8, 10), (9, 11)]):
+        if "e_" + axis not in series:
+            continue
+        e, e_hat = series["e_" + axis], series["e_hat_" + axis]
+        fig, ax = plt.subplots(figsize=(10, 3.5))
+        ax.plot(tv, e, color="tab:blue", lw=0.4, label="actual (simulated)")
+        ax.plot(tv, e_hat, color="tab:green", lw=0.4, label="predicted (closed loop)")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel(f"following error {axis.upper()} [µm]")
+        ax.legend(loc="upper right")
+        ax.set_title(f"Predicted and actual following error, {axis.upper()} axis "
+                     f"(cf. Fig. {fig_pred})")
+        save(fig, out_dir, f"fig{fig_pred:02d}_following_error_{axis}.png")
+        fig, ax = plt.subplots(figsize=(10, 3))
+        ax.plot(tv, e_hat - e, lw=0.4)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("prediction error [µm]")
+        ax.set_title(f"Following error prediction error, {axis.upper()} axis (cf. Fig. {fig_err})")
+        save(fig, out_dir, f"fig{fig_err:02d}_prediction_error_{axis}.png")
+
+    if "contour_hat" in series and np.isfinite(series["contour_hat"]).any():
+        c, c_hat = series["contour_exact"], series["contour_hat"]
+        fig, ax = plt.subplots(figsize=(10, 3.5))
+        ax.plot(tv, c_hat, color="tab:blue", lw=0.4, label="predicted (Taylor, NARX)")
+        ax.plot(tv, c, color="tab:green", lw=0.4, label="actual (exact, simulated)")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("contour error [µm]")
+        ax.legend(loc="upper right")
+        ax.set_title("Predicted and actual contour error, validation set (cf. Fig. 13)")
+        save(fig, out_dir, "fig13_contour_error.png")
+        fig, ax = plt.subplots(figsize=(10, 3))
+        ax.plot(tv, c_hat - c, lw=0.4)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("prediction error [µm]")
+        ax.set_title("Contour error prediction error, validation set (cf. Fig. 14)")
+        save(fig, out_dir, "fig14_contour_prediction_error.png")
+
+
+if __name__ == "__main__":
+    main()

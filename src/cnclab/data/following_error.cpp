@@ -1,0 +1,294 @@
+#include "cnclab/data/following_error.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
+#include "cnclab/core/resources.hpp"
+#include "cnclab/motion/contour_error.hpp"
+#include "cnclab/motion/interpolator.hpp"
+#include "cnclab/motion/smoothing_spline.hpp"
+
+namespace cnclab {
+namespace {
+
+constexpr double kUmPerMm = 1000.0;
+constexpr const char* kAxis[2] = {"x", "y"};
+
+const std::vector<std::string> kMetadata = {"time",
+                                            "u",
+                                            "ref_x",
+                                            "ref_y",
+                                            "actual_x",
+                                            "actual_y",
+                                            "v_ref_x",
+                                            "v_ref_y",
+                                            "e_ref_x",
+                                            "e_ref_y",
+                                            "d1_x",
+                                            "d1_y",
+                                            "d2_x",
+                                            "d2_y",
+                                            "contour_exact",
+                                            "contour_taylor",
+                                            "contour_tangent",
+                                            "contour_osculating",
+                                            "validation"};
+const std::vector<std::string> kMetadataUnits = {"s",    "1",  "mm", "mm", "mm", "mm", "mm/s",
+                                                 "mm/s", "µm", "µm", "mm", "mm", "mm", "mm",
+                                                 "µm",   "µm", "µm", "µm", "1"};
+
+}  // namespace
+
+void FollowingErrorOptions::validate() const {
+  auto prefixed = [](const std::string& prefix, auto&& f) {
+    try {
+      f();
+    } catch (const OptionError& e) {
+      throw OptionError(prefix + e.field(), e.value(), e.rule());
+    }
+  };
+  prefixed("path.", [&] { path.validate(); });
+  prefixed("", [&] { planner.validate(); });
+  prefixed("machine.", [&] { machine.validate(); });
+  if (runs < 1 || runs > 1000) {
+    throw OptionError("runs", std::to_string(runs), "must be in [1, 1000]");
+  }
+  if (!(smoothing >= 0.0 && smoothing <= 1.0)) {
+    throw OptionError("smoothing", shortest_double(smoothing), "must be in [0, 1] (csaps p)");
+  }
+  if (samples != 0 && samples < 8) {
+    throw OptionError("samples", std::to_string(samples), "must be 0 (whole run) or >= 8");
+  }
+}
+
+Eigen::VectorXd normalise_minmax(const Eigen::VectorXd& x, const std::string& what,
+                                 ColumnRange* range) {
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    if (!std::isfinite(x[i])) {
+      throw Error(what + ": sample " + std::to_string(i) + " is " + shortest_double(x[i]) +
+                  " (not finite); cannot normalise");
+    }
+  }
+  const double lo = x.size() ? x.minCoeff() : 0.0, hi = x.size() ? x.maxCoeff() : 0.0;
+  if (!(hi > lo)) {
+    throw Error(what + ": constant column (min = max = " + shortest_double(lo) +
+                "); cannot map to [-1, 1]");
+  }
+  if (range) *range = {lo, hi};
+  // MATLAB mapminmax: y = (ymax - ymin)(x - xmin)/(xmax - xmin) + ymin.
+  Eigen::VectorXd y = ((x.array() - lo) / (hi - lo) * 2.0 - 1.0).matrix();
+  return y;
+}
+
+Dataset generate_following_error_dataset(const FollowingErrorOptions& o, Rng& rng) {
+  o.validate();
+  // 1. Path, feedrate, 1 ms references.
+  const NurbsPlanarPath path(random_planar_nurbs(o.path, rng));
+  const std::uint64_t run_seed = rng.next_u64();
+  const FeedrateProfile profile = plan_feedrate(path, o.planner);
+  const ReferenceTrajectory ref = interpolate(path, profile, o.machine.timing.controller_period);
+  const Eigen::Index total = ref.samples();
+  if (o.samples != 0 && static_cast<std::size_t>(total) < o.samples) {
+    std::ostringstream m;
+    m << "following_error: the planned run has " << total << " samples (" << profile.total_time()
+      << " s) < samples = " << o.samples << "; raise path.control_points (now "
+      << o.path.control_points << ") or lower samples";
+    throw Error(m.str());
+  }
+  const Eigen::Index n = o.samples == 0 ? total : static_cast<Eigen::Index>(o.samples);
+  check_memory(static_cast<double>(n) * (kMetadata.size() + 4 + 2 * o.runs) * 8.0,
+               "following_error dataset");
+
+  // 2. `runs` repetitions, each with its own noise streams; mean of the runs.
+  Eigen::MatrixX2d mean_error = Eigen::MatrixX2d::Zero(total, 2);
+  for (std::size_t k = 0; k < o.runs; ++k) {
+    const MachineResponse r =
+        simulate_machine(o.machine, ref, derive_seed(run_seed, "run/" + std::to_string(k)));
+    mean_error += r.following_error;
+  }
+  mean_error /= static_cast<double>(o.runs);
+
+  // 3. csaps smoothing on the sample index (see smoothing_spline.hpp), of the
+  // kept samples.
+  Eigen::VectorXd index(n);
+  for (Eigen::Index i = 0; i < n; ++i) index[i] = static_cast<double>(i);
+  Eigen::MatrixX2d e(n, 2);  // [mm]
+  for (int a = 0; a < 2; ++a) {
+    const Eigen::VectorXd raw = mean_error.col(a).head(n);
+    e.col(a) = SmoothingSpline::fit(index, raw, o.smoothing).values();
+  }
+
+  // 4. Columns, contour errors and the normalisation.
+  Dataset d;
+  d.inputs.resize(2, n);
+  d.targets.resize(2, n);
+  d.metadata.resize(static_cast<Eigen::Index>(kMetadata.size()), n);
+  for (int a = 0; a < 2; ++a) {
+    const Eigen::VectorXd v = ref.velocity.col(a).head(n);
+    const Eigen::VectorXd err_um = e.col(a) * kUmPerMm;
+    d.inputs.row(a) = normalise_minmax(v, std::string("v_ref_") + kAxis[a]).transpose();
+    d.targets.row(a) = normalise_minmax(err_um, std::string("e_ref_") + kAxis[a]).transpose();
+  }
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const PathPoint p = path.evaluate(ref.u[static_cast<std::size_t>(k)]);
+    const Vec2 r = ref.position.row(k).transpose();
+    const Vec2 actual = r - e.row(k).transpose();
+    const double exact = project_to_path(path, actual, ref.u[static_cast<std::size_t>(k)]).distance;
+    d.metadata.col(k) << ref.time[static_cast<std::size_t>(k)], ref.u[static_cast<std::size_t>(k)],
+        r.x(), r.y(), actual.x(), actual.y(), ref.velocity(k, 0), ref.velocity(k, 1),
+        e(k, 0) * kUmPerMm, e(k, 1) * kUmPerMm, p.d1.x(), p.d1.y(), p.d2.x(), p.d2.y(),
+        exact * kUmPerMm, std::abs(taylor_contour_error(p, actual)) * kUmPerMm,
+        tangent_line_contour_error(p, actual) * kUmPerMm,
+        osculating_circle_contour_error(p, actual) * kUmPerMm, k >= n / 2 ? 1.0 : 0.0;
+  }
+  d.input_names = {"v_x", "v_y"};
+  d.input_units = {"1", "1"};
+  d.target_names = {"e_x", "e_y"};
+  d.target_units = {"1", "1"};
+  d.metadata_names = kMetadata;
+  d.metadata_units = kMetadataUnits;
+  d.generator = "following_error";
+  d.validate();
+  return d;
+}
+
+FollowingErrorRanges following_error_ranges(const Dataset& d) {
+  auto range = [&](const std::string& name) {
+    const Eigen::Index row = d.metadata_row(name);
+    if (row < 0) throw Error("following_error dataset: no metadata column " + name);
+    return ColumnRange{d.metadata.row(row).minCoeff(), d.metadata.row(row).maxCoeff()};
+  };
+  FollowingErrorRanges r;
+  for (int a = 0; a < 2; ++a) {
+    r.velocity[a] = range(std::string("v_ref_") + kAxis[a]);
+    r.following_error[a] = range(std::string("e_ref_") + kAxis[a]);
+  }
+  return r;
+}
+
+std::size_t first_validation_sample(const Dataset& d) {
+  return d.num_samples() / 2;
+}
+
+std::string machine_yaml(const MachineOptions& m, const std::string& in) {
+  std::ostringstream out;
+  auto num = [&](const std::string& pad, const char* key, double v) {
+    out << pad << key << ": " << shortest_double(v) << "\n";
+  };
+  out << in << "name: " << m.name << "\n" << in << "timing:\n";
+  const std::string t = in + "  ";
+  num(t, "controller_period", m.timing.controller_period);
+  num(t, "velocity_loop_period", m.timing.velocity_loop_period);
+  num(t, "integration_step", m.timing.integration_step);
+  out << in << "axes:\n";
+  for (int i = 0; i < 2; ++i) {
+    const FeedDriveOptions& a = m.axes[static_cast<std::size_t>(i)];
+    out << in << "  " << kAxis[i] << ":\n";
+    const std::string p = in + "    ";
+    num(p, "motor_inertia", a.motor_inertia);
+    num(p, "screw_inertia", a.screw_inertia);
+    num(p, "table_mass", a.table_mass);
+    num(p, "screw_lead", a.screw_lead);
+    num(p, "torque_limit", a.torque_limit);
+    num(p, "viscous_friction", a.viscous_friction);
+    num(p, "coulomb_friction", a.coulomb_friction);
+    num(p, "static_friction", a.static_friction);
+    num(p, "stribeck_velocity", a.stribeck_velocity);
+    num(p, "backlash", a.backlash);
+    num(p, "lead_error_amplitude", a.lead_error_amplitude);
+    num(p, "lead_error_phase", a.lead_error_phase);
+    num(p, "position_gain", a.position_gain);
+    num(p, "velocity_feedforward", a.velocity_feedforward);
+    num(p, "velocity_gain", a.velocity_gain);
+    num(p, "velocity_integral_time", a.velocity_integral_time);
+    num(p, "scale_resolution", a.scale_resolution);
+    num(p, "scale_noise", a.scale_noise);
+    out << p << "motor_encoder_counts: " << a.motor_encoder_counts << "\n";
+  }
+  return out.str();
+}
+
+FollowingErrorGenerator::FollowingErrorGenerator(FollowingErrorOptions options)
+    : options_(std::move(options)) {
+  options_.validate();
+}
+
+std::string FollowingErrorGenerator::options_yaml() const {
+  const FollowingErrorOptions& o = options_;
+  const RandomNurbsPathOptions& p = o.path;
+  const AxisLimits& l = o.planner.limits.axes[0];
+  std::ostringstream out;
+  out << "path:\n  degree: " << p.degree << "\n  control_points: " << p.control_points
+      << "\n  x_min: " << shortest_double(p.x_min) << "\n  x_max: " << shortest_double(p.x_max)
+      << "\n  y_min: " << shortest_double(p.y_min) << "\n  y_max: " << shortest_double(p.y_max)
+      << "\n  step_min: " << shortest_double(p.step_min)
+      << "\n  step_max: " << shortest_double(p.step_max)
+      << "\n  max_turn: " << shortest_double(p.max_turn)
+      << "\n  weight_min: " << shortest_double(p.weight_min)
+      << "\n  weight_max: " << shortest_double(p.weight_max)
+      << "\n  min_curvature_radius: " << shortest_double(p.min_curvature_radius)
+      << "\nlimits:\n  velocity: " << shortest_double(l.velocity)
+      << "\n  acceleration: " << shortest_double(l.acceleration)
+      << "\n  jerk: " << shortest_double(l.jerk)
+      << "\ngrid_spacing: " << shortest_double(o.planner.grid_spacing) << "\nmachine:\n"
+      << machine_yaml(o.machine, "  ") << "runs: " << o.runs
+      << "\nsmoothing: " << shortest_double(o.smoothing) << "\nsamples: " << o.samples << "\n";
+  return out.str();
+}
+
+namespace {
+
+MachineOptions read_machine_option(const ConfigReader& r) {
+  // Absent: the struct defaults, which are configs/machines/biaxial_router.yaml's.
+  if (!r.has("machine")) return MachineOptions{};
+  const YAML::Node node = r.raw("machine");
+  if (node.IsMap()) return read_machine(r.section("machine"));
+  if (!node.IsScalar()) r.fail("machine", "expected a file name or a map");
+  const SourceLocation where = r.location("machine");
+  const std::filesystem::path file = where.line > 0 ? resolve_config_path(where.file, node.Scalar())
+                                                    : std::filesystem::path(node.Scalar());
+  try {
+    return load_machine(file);
+  } catch (const ConfigError& e) {
+    r.fail("machine", e.what());
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<const DatasetGenerator> read_following_error(const ConfigReader& r) {
+  FollowingErrorOptions o;
+  const ConfigReader p = r.section("path");
+  RandomNurbsPathOptions& path = o.path;
+  path.degree = static_cast<int>(p.get<std::int64_t>("degree", path.degree));
+  path.control_points = p.get<std::size_t>("control_points", path.control_points);
+  path.x_min = p.get<double>("x_min", path.x_min);
+  path.x_max = p.get<double>("x_max", path.x_max);
+  path.y_min = p.get<double>("y_min", path.y_min);
+  path.y_max = p.get<double>("y_max", path.y_max);
+  path.step_min = p.get<double>("step_min", path.step_min);
+  path.step_max = p.get<double>("step_max", path.step_max);
+  path.max_turn = p.get<double>("max_turn", path.max_turn);
+  path.weight_min = p.get<double>("weight_min", path.weight_min);
+  path.weight_max = p.get<double>("weight_max", path.weight_max);
+  path.min_curvature_radius = p.get<double>("min_curvature_radius", path.min_curvature_radius);
+  p.validate([&] { path.validate(); });
+  const ConfigReader l = r.section("limits");
+  AxisLimits limits;
+  limits.velocity = l.get<double>("velocity", limits.velocity);
+  limits.acceleration = l.get<double>("acceleration", limits.acceleration);
+  limits.jerk = l.get<double>("jerk", limits.jerk);
+  l.validate([&] { limits.validate(); });
+  o.planner.limits.axes = {limits, limits};
+  o.planner.grid_spacing = r.get<double>("grid_spacing", o.planner.grid_spacing);
+  o.machine = read_machine_option(r);
+  o.runs = r.get<std::size_t>("runs", o.runs);
+  o.smoothing = r.get<double>("smoothing", o.smoothing);
+  o.samples = r.get<std::size_t>("samples", o.samples);
+  r.validate([&] { o.validate(); });
+  return std::make_shared<FollowingErrorGenerator>(std::move(o));
+}
+
+}  // namespace cnclab

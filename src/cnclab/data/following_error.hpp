@@ -1,0 +1,115 @@
+#pragma once
+// Seed 002's data recipe (Sec. II) on the simulated machine: a random NURBS
+// tool path (nurbs_path.hpp), its jerk-limited minimum-time feedrate
+// (motion/feedrate_planner.hpp, Ipopt), the 1 ms interpolator, the simulated
+// biaxial feed drives run `runs` times (repeatability: each run draws its
+// scale noise from its own stream), the runs averaged, the averaged following
+// errors smoothed with the csaps-equivalent spline (p on the sample index,
+// motion/smoothing_spline.hpp), inputs and targets normalised to [-1, 1]
+// (MATLAB mapminmax over the whole run, as the paper normalises before
+// dividing the set), the first half for training, the second for validation.
+//
+// Columns (N samples at the controller period):
+//   inputs  (2, "1"):  v_x, v_y  reference axis velocity, mapminmax to [-1, 1]
+//   targets (2, "1"):  e_x, e_y  smoothed mean following error, mapminmax to [-1, 1]
+//   metadata (not inputs; physical units):
+//     time [s], u (path parameter), ref_x, ref_y [mm] reference position,
+//     actual_x, actual_y [mm] = ref - e (the "actual position" of the logged
+//     following error), v_ref_x, v_ref_y [mm/s], e_ref_x, e_ref_y [µm]
+//     following error (mean of the runs, smoothed), d1_x, d1_y, d2_x, d2_y
+//     (C'(u), C''(u): the interpolator's geometry the Taylor estimate needs),
+//     contour_exact, contour_taylor, contour_tangent, contour_osculating [µm]
+//     (motion/contour_error.hpp; Taylor as |eps_c|), validation (0 first
+//     half, 1 second half).
+// The normalisation ranges are stored with the data they were fitted on:
+// they are exactly [min, max] of the physical columns v_ref_* and e_ref_*,
+// recovered by following_error_ranges() (no separate copy to disagree).
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/data/dataset.hpp"
+#include "cnclab/data/generator.hpp"
+#include "cnclab/data/nurbs_path.hpp"
+#include "cnclab/motion/feedrate_planner.hpp"
+#include "cnclab/motion/machine.hpp"
+
+namespace cnclab {
+
+struct FollowingErrorOptions {
+  // The random tool path. Default 1450 control points: a walk of ~58 m, which
+  // the planner turns into > 172 s at seed 002's limits.
+  RandomNurbsPathOptions path = [] {
+    RandomNurbsPathOptions o;
+    o.control_points = 1450;
+    return o;
+  }();
+  FeedratePlannerOptions planner;  // limits: seed 002's 300 mm/s, 2000 mm/s^2, 50000 mm/s^3
+  MachineOptions machine;          // configs/machines/biaxial_router.yaml
+  std::size_t runs = 10;           // seed 002: "repeated 10 times", >= 1
+  double smoothing = 5e-2;         // csaps p (seed 002), on the sample index; in [0, 1]
+  // Samples kept from the start of the run (seed 002: "over 170000"); the
+  // run must be at least this long. 0 = the whole run. >= 8 otherwise.
+  std::size_t samples = 172'000;
+
+  void validate() const;  // OptionError naming the field
+};
+
+// Per-column mapminmax: physical [min, max] -> [-1, 1].
+struct ColumnRange {
+  double min = 0.0, max = 0.0;
+};
+struct FollowingErrorRanges {
+  std::array<ColumnRange, 2> velocity;         // v_ref_x, v_ref_y [mm/s]
+  std::array<ColumnRange, 2> following_error;  // e_ref_x, e_ref_y [µm]
+};
+
+// y = -1 + 2 (x - min) / (max - min): exactly -1 at min and 1 at max.
+// Throws cnclab::Error naming `what` and the sample for a non-finite value,
+// or when max == min (a constant column cannot be normalised).
+Eigen::VectorXd normalise_minmax(const Eigen::VectorXd& x, const std::string& what,
+                                 ColumnRange* range = nullptr);
+
+Dataset generate_following_error_dataset(const FollowingErrorOptions& options, Rng& rng);
+
+// The ranges of a following_error dataset's normalisation, from its metadata;
+// cnclab::Error if a column is missing.
+FollowingErrorRanges following_error_ranges(const Dataset& dataset);
+
+// Index of the first validation sample (the second half: N / 2).
+std::size_t first_validation_sample(const Dataset& dataset);
+
+// The resolved machine as YAML (keys as in configs/machines/*.yaml, under
+// the given indent), for cache keys.
+std::string machine_yaml(const MachineOptions& machine, const std::string& indent);
+
+// The registered generator `following_error`. Options (dataset.options):
+//   path: {degree, control_points, x_min, x_max, y_min, y_max, step_min,
+//          step_max, max_turn, weight_min, weight_max, min_curvature_radius}
+//   limits: {velocity, acceleration, jerk}     # both axes
+//   grid_spacing: 1                            # planner grid [mm]
+//   machine: configs/machines/biaxial_router.yaml   # a file or the map inline
+//   runs: 10
+//   smoothing: 0.05
+//   samples: 172000
+class FollowingErrorGenerator : public DatasetGenerator {
+ public:
+  explicit FollowingErrorGenerator(FollowingErrorOptions options);  // validates
+  std::string name() const override { return "following_error"; }
+  int version() const override { return 1; }
+  DatasetShape shape() const override { return {options_.samples, 2, 2}; }
+  std::string options_yaml() const override;
+  Dataset generate(Rng& rng) const override {
+    return generate_following_error_dataset(options_, rng);
+  }
+  const FollowingErrorOptions& options() const { return options_; }
+
+ private:
+  FollowingErrorOptions options_;
+};
+
+std::shared_ptr<const DatasetGenerator> read_following_error(const ConfigReader& options);
+
+}  // namespace cnclab
