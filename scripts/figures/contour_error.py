@@ -28,8 +28,10 @@ def newest_result(results):
         with h5py.File(f, "r") as h:
             if h.attrs.get("complete", 0) == 1:
                 return f
-    sys.exit(f"contour_error.py: no complete result under {results}/contour_error_training_methods;"
-             " run `cnclab reproduce experiments/contour_error` first")
+    # Exit 3: inputs missing (scripts/figures/run skips the figure with this note).
+    print(f"contour_error.py: no complete result under {results}/contour_error_training_methods;"
+          " run `cnclab reproduce experiments/contour_error` first", file=sys.stderr)
+    sys.exit(3)
 
 
 def save(fig, out_dir, name):

@@ -83,11 +83,16 @@ std::string reference_text(const ConfigReader& root, const std::string& section,
   return s.require<std::string>("text") + " (" + s.require<std::string>("source") + ")";
 }
 
-void print_training_methods(const NarxStudyResult& r, const ConfigReader& ref, std::ostream& out) {
-  out << "\nContour error (seed 002 Sec. II): NARX training methods, " << r.runs.size()
-      << " runs; closed-loop prediction of the whole validation half (" << r.validation_samples
-      << " steps; trained on " << r.train_samples << ")\n"
-      << "Simulated machine biaxial_router; errors in µm, mean ± std over the stable runs.\n";
+void print_training_methods(const NarxStudyResult& r, const ConfigReader& ref, TableFormat f,
+                            std::ostream& out) {
+  print_table_title(out, f,
+                    "Contour error (seed 002 Sec. II): NARX training methods, " +
+                        std::to_string(r.runs.size()) +
+                        " runs; closed-loop prediction of the whole validation half (" +
+                        std::to_string(r.validation_samples) + " steps; trained on " +
+                        std::to_string(r.train_samples) +
+                        "). Simulated machine biaxial_router; errors in µm, mean ± std over the "
+                        "stable runs.");
   TextTable t;
   t.header = {"method", "stable"};
   for (const auto& a : r.axes) {
@@ -129,16 +134,19 @@ void print_training_methods(const NarxStudyResult& r, const ConfigReader& ref, s
   zero.push_back("-");
   zero.push_back("-");
   t.rows.push_back(zero);
-  t.print_aligned(out);
-  out << "Paper: two_stage: " << reference_text(ref, "training_methods", "two_stage")
-      << "\n       closed_loop_only: "
-      << reference_text(ref, "training_methods", "closed_loop_only")
-      << "\n       open_loop_only: " << reference_text(ref, "training_methods", "open_loop_only")
-      << "\n";
+  t.print(out, f);
+  print_table_notes(
+      out, f,
+      {"Paper, two_stage: " + reference_text(ref, "training_methods", "two_stage"),
+       "Paper, closed_loop_only: " + reference_text(ref, "training_methods", "closed_loop_only"),
+       "Paper, open_loop_only: " + reference_text(ref, "training_methods", "open_loop_only")});
 }
 
-void print_architecture(const NarxStudyResult& r, const ConfigReader& ref, std::ostream& out) {
-  out << "\nContour error: NARX architecture sweep (two-stage trainbr), mean over seeds, µm\n";
+void print_architecture(const NarxStudyResult& r, const ConfigReader& ref, TableFormat f,
+                        std::ostream& out) {
+  print_table_title(out, f,
+                    "Contour error: NARX architecture sweep (two-stage trainbr), mean over seeds, "
+                    "µm");
   TextTable t;
   t.header = {"hidden", "delays (in/fb)", "parameters", "stable"};
   for (const auto& a : r.axes) t.header.push_back("RMS " + a);
@@ -184,14 +192,18 @@ void print_architecture(const NarxStudyResult& r, const ConfigReader& ref, std::
     row.push_back(k.h == paper_h && k.di == paper_d && k.df == paper_d ? "<- paper's choice" : "");
     t.rows.push_back(row);
   }
-  t.print_aligned(out);
-  out << "Paper: " << paper_h << " tanh neurons, " << paper_d
-      << " input and feedback delays: " << reference_text(ref, "architecture", "claim") << "\n";
+  t.print(out, f);
+  print_table_notes(
+      out, f,
+      {"Paper: " + std::to_string(paper_h) + " tanh neurons, " + std::to_string(paper_d) +
+       " input and feedback delays: " + reference_text(ref, "architecture", "claim")});
 }
 
-void print_estimates(const NarxStudyResult& r, const ConfigReader& ref, std::ostream& out) {
-  out << "\nContour error estimates vs the exact contour error (Newton projection) on the "
-         "simulated data, validation half, µm\n";
+void print_estimates(const NarxStudyResult& r, const ConfigReader& ref, TableFormat f,
+                     std::ostream& out) {
+  print_table_title(out, f,
+                    "Contour error estimates vs the exact contour error (Newton projection) on the "
+                    "simulated data, validation half, µm");
   TextTable t;
   t.header = {"estimate", "mean |est - exact|", "max |est - exact|"};
   for (const auto& e : r.estimates) {
@@ -200,13 +212,16 @@ void print_estimates(const NarxStudyResult& r, const ConfigReader& ref, std::ost
   t.rows.push_back({"(exact contour error itself)",
                     table_number(r.exact_contour_mean_um, 3) + " (mean)",
                     table_number(r.exact_contour_max_um, 3) + " (max)"});
-  t.print_aligned(out);
-  out << "Paper: " << reference_text(ref, "contour", "estimate") << "\n";
+  t.print(out, f);
+  print_table_notes(out, f, {"Paper: " + reference_text(ref, "contour", "estimate")});
 }
 
-void print_predictor(const NarxStudyResult& r, const ConfigReader& ref, std::ostream& out) {
-  out << "\nContour error predictor (Taylor estimate from the NARX-predicted following errors) vs "
-         "the \"actual\" (exact, simulated) contour error, validation half, µm\n";
+void print_predictor(const NarxStudyResult& r, const ConfigReader& ref, TableFormat f,
+                     std::ostream& out) {
+  print_table_title(out, f,
+                    "Contour error predictor (Taylor estimate from the NARX-predicted following "
+                    "errors) vs the \"actual\" (exact, simulated) contour error, validation half, "
+                    "µm");
   TextTable t;
   t.header = {"runs", "RMS (mean ± std)", "RMS best", "max (mean ± std)", "zero predictor RMS"};
   std::vector<double> rms, mx;
@@ -225,11 +240,12 @@ void print_predictor(const NarxStudyResult& r, const ConfigReader& ref, std::ost
   // the exact contour error's RMS.
   t.rows.push_back({"two_stage, " + std::to_string(s.n) + " stable", mean_std(s),
                     table_number(best, 3), mean_std(stats(mx)), "see note"});
-  t.print_aligned(out);
-  out << "(zero predictor: contour RMS = RMS of the exact contour error; its mean is "
-      << table_number(r.exact_contour_mean_um, 3) << " µm, max "
-      << table_number(r.exact_contour_max_um, 3) << " µm)\n";
-  out << "Paper: " << reference_text(ref, "contour", "accuracy") << "\n";
+  t.print(out, f);
+  print_table_notes(out, f,
+                    {"zero predictor: contour RMS = RMS of the exact contour error; its mean is " +
+                         table_number(r.exact_contour_mean_um, 3) + " µm, max " +
+                         table_number(r.exact_contour_max_um, 3) + " µm",
+                     "Paper: " + reference_text(ref, "contour", "accuracy")});
 }
 
 }  // namespace
@@ -240,14 +256,14 @@ void print_contour_error_tables(const TablesOptions& o, std::ostream& out) {
   const ConfigDocument ref_doc = ConfigDocument::load(ref_file);
   const ConfigReader ref = ref_doc.root();
   const NarxStudyResult methods = load_study(o, "training_methods.yaml");
-  print_training_methods(methods, ref, out);
+  print_training_methods(methods, ref, o.format, out);
   try {
-    print_architecture(load_study(o, "architecture.yaml"), ref, out);
+    print_architecture(load_study(o, "architecture.yaml"), ref, o.format, out);
   } catch (const MissingResults& e) {
-    out << "\n(architecture table not printed: " << e.what() << ")\n";
+    print_table_notes(out, o.format, {"architecture table not printed: " + std::string(e.what())});
   }
-  print_estimates(methods, ref, out);
-  print_predictor(methods, ref, out);
+  print_estimates(methods, ref, o.format, out);
+  print_predictor(methods, ref, o.format, out);
 }
 
 }  // namespace cnclab
