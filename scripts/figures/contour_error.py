@@ -84,38 +84,65 @@ def main():
         if "e_" + axis not in series:
             continue
         e, e_hat = series["e_" + axis], series["e_hat_" + axis]
-        fig, ax = plt.subplots(figsize=(10, 3.5))
-        ax.plot(tv, e, color="tab:blue", lw=0.4, label="actual (simulated)")
-        ax.plot(tv, e_hat, color="tab:green", lw=0.4, label="predicted (closed loop)")
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel(f"following error {axis.upper()} [µm]")
-        ax.legend(loc="upper right")
-        ax.set_title(f"Predicted and actual following error, {axis.upper()} axis "
-                     f"(cf. Fig. {fig_pred})")
-        save(fig, out_dir, f"fig{fig_pred:02d}_following_error_{axis}.png")
-        fig, ax = plt.subplots(figsize=(10, 3))
-        ax.plot(tv, e_hat - e, lw=0.4)
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("prediction error [µm]")
-        ax.set_title(f"Following error prediction error, {axis.upper()} axis (cf. Fig. {fig_err})")
-        save(fig, out_dir, f"fig{fig_err:02d}_prediction_error_{axis}.png")
+        centre = zoom_centre(tv, e)
+        series_figure(out_dir, f"fig{fig_pred:02d}_following_error_{axis}.png", tv,
+                      [(e, dict(color="tab:blue", label="actual (simulated)")),
+                       (e_hat, dict(color="tab:green", label="predicted (closed loop)"))],
+                      centre, f"following error {axis.upper()} [µm]",
+                      f"Predicted and actual following error, {axis.upper()} axis "
+                      f"(cf. Fig. {fig_pred})")
+        series_figure(out_dir, f"fig{fig_err:02d}_prediction_error_{axis}.png", tv,
+                      [(e_hat - e, dict(color="tab:red"))], centre, "prediction error [µm]",
+                      f"Following error prediction error, {axis.upper()} axis "
+                      f"(cf. Fig. {fig_err})")
 
     if "contour_hat" in series and np.isfinite(series["contour_hat"]).any():
         c, c_hat = series["contour_exact"], series["contour_hat"]
-        fig, ax = plt.subplots(figsize=(10, 3.5))
-        ax.plot(tv, c_hat, color="tab:blue", lw=0.4, label="predicted (Taylor, NARX)")
-        ax.plot(tv, c, color="tab:green", lw=0.4, label="actual (exact, simulated)")
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("contour error [µm]")
-        ax.legend(loc="upper right")
-        ax.set_title("Predicted and actual contour error, validation set (cf. Fig. 13)")
-        save(fig, out_dir, "fig13_contour_error.png")
-        fig, ax = plt.subplots(figsize=(10, 3))
-        ax.plot(tv, c_hat - c, lw=0.4)
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("prediction error [µm]")
-        ax.set_title("Contour error prediction error, validation set (cf. Fig. 14)")
-        save(fig, out_dir, "fig14_contour_prediction_error.png")
+        centre = zoom_centre(tv, c)
+        series_figure(out_dir, "fig13_contour_error.png", tv,
+                      [(c, dict(color="tab:green", label="actual (exact, simulated)")),
+                       (c_hat, dict(color="tab:blue", label="predicted (Taylor, NARX)"))],
+                      centre, "contour error [µm]",
+                      "Predicted and actual contour error, validation set (cf. Fig. 13)")
+        series_figure(out_dir, "fig14_contour_prediction_error.png", tv,
+                      [(c_hat - c, dict(color="tab:red"))], centre, "prediction error [µm]",
+                      "Contour error prediction error, validation set (cf. Fig. 14)")
+
+
+# Seconds shown in the lower, zoomed panel of the time-series figures: the
+# whole validation half (~86 s at 1 ms) is too dense to read, the paper's
+# Figs. 8-14 show a few seconds.
+ZOOM_SECONDS = 3.0
+
+
+def zoom_centre(t, y):
+    """Where to zoom: the time of the largest |y| (the most telling stretch)."""
+    finite = np.where(np.isfinite(y), np.abs(y), -np.inf)
+    return float(t[int(np.argmax(finite))])
+
+
+def series_figure(out_dir, name, t, curves, centre, ylabel, title):
+    """Upper panel: the whole series, the zoom window shaded; lower panel: the
+    ZOOM_SECONDS around `centre`, y limits fitted to what it shows."""
+    lo = max(float(t[0]), centre - ZOOM_SECONDS / 2)
+    hi = min(float(t[-1]), lo + ZOOM_SECONDS)
+    lo = max(float(t[0]), hi - ZOOM_SECONDS)
+    window = (t >= lo) & (t <= hi)
+    fig, (ax_all, ax_zoom) = plt.subplots(2, 1, figsize=(10, 6.5))
+    for y, style in curves:
+        ax_all.plot(t, y, lw=0.3, **style)
+        ax_zoom.plot(t[window], y[window], lw=0.9, **style)
+    ax_all.axvspan(lo, hi, color="0.5", alpha=0.25, lw=0)
+    ax_all.set_ylabel(ylabel)
+    ax_all.set_title(title)
+    ax_zoom.set_xlim(lo, hi)
+    ax_zoom.set_xlabel("time [s]")
+    ax_zoom.set_ylabel(ylabel)
+    ax_zoom.set_title(f"zoom: {lo:.1f}-{hi:.1f} s (shaded above)", fontsize=9)
+    if any("label" in style for _, style in curves):
+        ax_zoom.legend(loc="upper right")
+    fig.tight_layout()
+    save(fig, out_dir, name)
 
 
 if __name__ == "__main__":

@@ -83,6 +83,10 @@ int main(int argc, char** argv) {
                       "Run every experiment even if its result is current");
   reproduce->add_flag("--regenerate", common.regenerate, "Regenerate datasets even when cached");
   reproduce->add_option("--profile", common.profile, kProfileHelp);
+  reproduce->add_option("--jobs,-j", common.jobs,
+                        "Experiments trained at once, each in its own process, once their "
+                        "upstream results are ready (default: the number of cores this process "
+                        "may use; 1 shows each run's progress)");
   bool quick = false;
   reproduce->add_flag("--quick", quick,
                       "Same as --profile quick: fewer epochs and samples, same code paths "

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "common/process.hpp"
 #include "common/temp_dir.hpp"
@@ -499,6 +500,91 @@ TEST(GraphCli, ReproduceRunsUpstreamFirstAndReusesUntilUpstreamChanges) {
   const Result cycle = sh(dir.path(), kCnclab + " reproduce c1.yaml --quiet");
   EXPECT_EQ(cycle.code, 2);
   EXPECT_NE(cycle.err.find("cycle"), std::string::npos) << cycle.err;
+}
+
+// A diamond a -> {b, c} -> d with 2 jobs: b and c wait for a, d for both;
+// every result equals the one-job run bit for bit, and d records the results
+// of b and c it started from.
+TEST(GraphCli, ParallelReproduceWaitsForUpstreamAndMatchesOneJob) {
+  TempDir tmp;
+  const fs::path one = tmp / "one", two = tmp / "two";
+  for (const fs::path& dir : {one, two}) {
+    fs::create_directories(dir);
+    write_upstream(dir, 3);
+    std::ofstream(dir / "b.yaml")
+        << "include: up.yaml\nname: b\ninit_from: {experiment: up.yaml}\n";
+    std::ofstream(dir / "c.yaml") << "include: up.yaml\nname: c\ntrainer: {epochs: 2}\n"
+                                     "init_from: {experiment: up.yaml}\n";
+    std::ofstream(dir / "d.yaml") << "include: up.yaml\nname: d\nneeds: [b.yaml, c.yaml]\n";
+  }
+  const Result serial = sh(one, kCnclab + " reproduce d.yaml --jobs 1");
+  ASSERT_EQ(serial.code, 0) << serial.err << serial.out;
+  const Result parallel = sh(two, kCnclab + " reproduce d.yaml --jobs 2");
+  ASSERT_EQ(parallel.code, 0) << parallel.err << parallel.out;
+  EXPECT_NE(parallel.err.find("training up to 2 at once"), std::string::npos) << parallel.err;
+  // The log says when each run starts and ends: up ends before b and c
+  // start, and d starts after both ended.
+  const std::string& log = parallel.err;
+  const auto at = [&](const std::string& text) {
+    const auto pos = log.find(text);
+    EXPECT_NE(pos, std::string::npos) << text << " in\n" << log;
+    return pos;
+  };
+  const auto up_done = at("] up (upstream) ran in");
+  EXPECT_LT(up_done, at("] b (upstream) (no result"));
+  EXPECT_LT(up_done, at("] c (upstream) (no result"));
+  EXPECT_LT(at("] b (upstream) ran in"), at("] d (no result"));
+  EXPECT_LT(at("] c (upstream) ran in"), at("] d (no result"));
+
+  const auto result_of = [](const fs::path& dir, const std::string& name) {
+    const fs::path folder = dir / "results" / name;
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(folder)) files.push_back(e.path());
+    EXPECT_EQ(files.size(), 1u) << folder;  // and no error note left behind
+    return read_result(files.at(0));
+  };
+  for (const std::string name : {"up", "b", "c", "d"}) {
+    const RunRecord a = result_of(one, name), b = result_of(two, name);
+    EXPECT_EQ(a.resolved_yaml, b.resolved_yaml) << name;
+    EXPECT_EQ(a.parameters, b.parameters) << name;
+    EXPECT_EQ(a.test_predictions, b.test_predictions) << name;
+  }
+  const RunRecord d = result_of(two, "d");
+  ASSERT_EQ(d.upstream.size(), 2u);
+  EXPECT_EQ(d.upstream[0].identity, result_identity(result_of(two, "b")));
+  EXPECT_EQ(d.upstream[1].identity, result_identity(result_of(two, "c")));
+  // Everything current: nothing runs.
+  const Result again = sh(two, kCnclab + " reproduce d.yaml --jobs 2 --quiet");
+  EXPECT_EQ(again.out.find("ran "), std::string::npos) << again.out;
+}
+
+// A diverged training fails `run` and `reproduce` (exit 1) unless the
+// experiment says `may_diverge: true`; the result records the divergence
+// either way.
+TEST(GraphCli, MayDivergeMakesADivergedRunAResult) {
+  TempDir dir;
+  std::ofstream(dir / "blowup.yaml") << "include: " << kExperiment
+                                     << "\nname: blowup\ndataset: {options: {samples: 200}}\n"
+                                        "model: {hidden_activation: relu}\n"
+                                        "trainer: {epochs: 5, learning_rate: 1e6}\n";
+  std::ofstream(dir / "allowed.yaml") << "include: blowup.yaml\nname: allowed\nmay_diverge: true\n";
+  const Result failed = sh(dir.path(), kCnclab + " reproduce blowup.yaml --quiet");
+  EXPECT_EQ(failed.code, 1) << failed.out;
+  EXPECT_NE(failed.out.find("ran, FAILED"), std::string::npos) << failed.out;
+  EXPECT_EQ(sh(dir.path(), kCnclab + " run blowup.yaml --quiet").code, 1);
+
+  const Result allowed = sh(dir.path(), kCnclab + " reproduce allowed.yaml --quiet");
+  EXPECT_EQ(allowed.code, 0) << allowed.out;
+  EXPECT_NE(allowed.out.find("ran, diverged"), std::string::npos) << allowed.out;
+  EXPECT_NE(allowed.out.find("(allowed: may_diverge)"), std::string::npos) << allowed.out;
+  const Result reused = sh(dir.path(), kCnclab + " reproduce allowed.yaml --quiet");
+  EXPECT_EQ(reused.code, 0);
+  EXPECT_NE(reused.out.find("reused, diverged"), std::string::npos) << reused.out;
+  const Result run = sh(dir.path(), kCnclab + " run allowed.yaml --quiet");
+  EXPECT_EQ(run.code, 0) << run.out;
+  EXPECT_NE(run.out.find("diverged"), std::string::npos) << run.out;
+  EXPECT_NE(sh(dir.path(), kCnclab + " validate allowed.yaml").out.find("may_diverge: true"),
+            std::string::npos);
 }
 
 TEST(GraphCli, SweepTrialsRunAgainWhenTheirUpstreamChanged) {

@@ -1,9 +1,10 @@
 // The quick profile of experiments/contour_error end to end (same code paths
 // as the full study: dataset generator, both NARX studies, the tables):
-// structure of the results and tables, and a trained NARX that beats the
-// zero predictor.
+// structure of the results and tables, a trained NARX that beats the zero
+// predictor, and the figures drawn from the results.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -47,6 +48,16 @@ TEST(ContourErrorQuick, ReproduceAndTables) {
                              "zero predictor", "architecture sweep", "<- paper's choice", "taylor",
                              "tangent", "osculating", "Contour error predictor", "Paper:"}) {
     EXPECT_NE(text.find(needle), std::string::npos) << needle << "\n" << text;
+  }
+  // The figures script draws from these results (Figs. 4, 5, 8-11, 13, 14).
+  const std::string figures = "/usr/bin/python3 " CNCLAB_SOURCE_DIR
+                              "/scripts/figures/contour_error.py '" +
+                              results.string() + "' > /dev/null";
+  ASSERT_EQ(std::system(figures.c_str()), 0) << figures;
+  for (const char* png : {"fig04_toolpath.png", "fig05_velocities.png",
+                          "fig08_following_error_x.png", "fig11_prediction_error_y.png",
+                          "fig13_contour_error.png", "fig14_contour_prediction_error.png"}) {
+    EXPECT_TRUE(fs::exists(results / "figures" / "contour_error" / png)) << png;
   }
 }
 

@@ -2,6 +2,7 @@
 // The CLI's commands as library functions (src/cli only wires arguments).
 // Each returns the exit code: 0 ok, 1 run failed; bad configuration throws
 // ConfigError (exit 2), other problems cnclab::Error (exit 1).
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -21,6 +22,9 @@ struct CommandOptions {
   // --profile NAME: the experiment files' `profiles: {NAME: ...}` overrides
   // (core/config.hpp); `reproduce --quick` is --profile quick.
   std::string profile;
+  // reproduce --jobs N: experiments trained at once, each in its own process
+  // (0 = the cores this process may use).
+  std::size_t jobs = 0;
 };
 
 int run_command(const std::filesystem::path& experiment, const std::vector<std::string>& overrides,

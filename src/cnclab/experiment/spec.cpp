@@ -209,6 +209,7 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
     }
   }
   read_graph(root, base, spec);
+  spec.may_diverge = root.get<bool>("may_diverge", false);
   check_training_samples(root, spec);
   doc.check_all_consumed();
   return {spec, to_yaml(spec)};
@@ -369,6 +370,7 @@ std::string to_yaml(const ExperimentSpec& spec) {
     out << Key << "normaliser" << Value << to_string(spec.init_from->normaliser);
     out << EndMap;
   }
+  if (spec.may_diverge) out << Key << "may_diverge" << Value << true;
   out << EndMap;
   return std::string(out.c_str()) + "\n";
 }

@@ -86,6 +86,13 @@ struct ExperimentSpec {
   std::vector<std::string> needs;
   std::vector<std::filesystem::path> needs_files;  // resolved paths of `needs`
   std::optional<InitFromSpec> init_from;
+  // may_diverge: true says a diverged training is this experiment's expected
+  // outcome, not a failure: a sweep point whose settings are known to be
+  // unstable (seed 000 Table 2 with the paper's settings) still is a result,
+  // shown as "diverged" in its table. `run` and `reproduce` then exit 0; the
+  // result keeps status "failed" with the reason. Default false: a diverged
+  // run is a failure (exit 1).
+  bool may_diverge = false;
 
   std::filesystem::path source_file;
   // The `profiles:` entry applied when loading ("" = none; core/config.hpp).

@@ -1,10 +1,7 @@
 #include "cnclab/experiment/sweep_command.hpp"
 
-#include <sched.h>
-
 #include <map>
 #include <set>
-#include <thread>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/dataset_cache.hpp"
@@ -65,16 +62,6 @@ void regenerate_datasets(const SweepPlan& plan, const std::vector<std::size_t>& 
     } catch (const Error&) {
     }
   }
-}
-
-// Cores this process may run on (the affinity mask: what Slurm or taskset
-// grants), at least 1.
-std::size_t available_cores() {
-  cpu_set_t set;
-  if (sched_getaffinity(0, sizeof set, &set) == 0) {
-    return static_cast<std::size_t>(std::max(1, CPU_COUNT(&set)));
-  }
-  return std::max<std::size_t>(1, std::thread::hardware_concurrency());
 }
 
 // Trials with init_from/needs whose upstream results changed since they ran
@@ -141,7 +128,8 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
 
   std::vector<TrialJob> pool_jobs;
   for (std::size_t i : todo) {
-    pool_jobs.push_back({&*plan.trials[i].experiment, trial_result_path(dir, plan.trials[i].id),
+    pool_jobs.push_back({pool_jobs.size(), &*plan.trials[i].experiment,
+                         trial_result_path(dir, plan.trials[i].id),
                          trial_error_path(dir, plan.trials[i].id)});
   }
   PoolOptions pool;

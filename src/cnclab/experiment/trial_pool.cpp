@@ -1,16 +1,20 @@
 #include "cnclab/experiment/trial_pool.hpp"
 
+#include <sched.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <ctime>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
+#include <thread>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/io/atomic_file.hpp"
@@ -22,6 +26,7 @@ constexpr int kExitResult = 0;    // result written (status complete)
 constexpr int kExitFailed = 1;    // result written (status failed: diverged)
 constexpr int kExitError = 3;     // no result; error note written
 constexpr int kExitOrphaned = 4;  // parent gone before the trial started
+constexpr int kExitConfig = 5;    // no result; ConfigError, its text in the error note
 
 void write_note(const std::filesystem::path& path, const std::string& text) {
   AtomicOutput out(path);
@@ -32,7 +37,7 @@ void write_note(const std::filesystem::path& path, const std::string& text) {
   out.commit();
 }
 
-[[noreturn]] void run_child(const TrialJob& job, const RunOptions& base, pid_t parent,
+[[noreturn]] void run_child(const TrialJob& job, const PoolOptions& options, pid_t parent,
                             const sigset_t& original_mask) {
   // The pool's blocked signals are the parent's business; a trial dies on
   // SIGINT/SIGTERM like any program, and with its parent.
@@ -43,12 +48,15 @@ void write_note(const std::filesystem::path& path, const std::string& text) {
   if (::getppid() != parent) ::_exit(kExitOrphaned);
   int code = kExitError;
   try {
-    RunOptions run = base;
+    RunOptions run = options.run;
     run.result_file = job.result_file;
-    run.log = nullptr;
-    run.progress = ProgressMode::quiet;
+    if (!options.trial_output) {
+      run.log = nullptr;
+      run.progress = ProgressMode::quiet;
+    }
     code = run_experiment(*job.experiment, run).ok ? kExitResult : kExitFailed;
   } catch (const std::exception& e) {
+    if (dynamic_cast<const ConfigError*>(&e)) code = kExitConfig;
     try {
       write_note(job.error_file, e.what());
     } catch (const std::exception&) {
@@ -79,7 +87,28 @@ std::string signal_text(int sig) {
 
 }  // namespace
 
+std::size_t available_cores() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) {
+    return static_cast<std::size_t>(std::max(1, CPU_COUNT(&set)));
+  }
+  return std::max<std::size_t>(1, std::thread::hardware_concurrency());
+}
+
 int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options,
+                   const std::function<void(std::size_t, const TrialExit&)>& on_done) {
+  std::size_t next = 0;
+  const auto next_ready = [&]() -> std::optional<TrialJob> {
+    if (next == jobs.size()) return std::nullopt;
+    TrialJob job = jobs[next];
+    job.index = next++;
+    return job;
+  };
+  return run_trial_pool(next_ready, options, on_done);
+}
+
+int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
+                   const PoolOptions& options,
                    const std::function<void(std::size_t, const TrialExit&)>& on_done) {
   if (options.jobs < 1) throw ConfigError("--jobs 0: must be at least 1");
   sigset_t watched;
@@ -90,13 +119,13 @@ int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options
   const BlockedSignals blocked(watched);
   const pid_t self = ::getpid();
 
-  std::map<pid_t, std::size_t> running;
-  std::size_t next = 0;
+  std::map<pid_t, TrialJob> running;
+  std::optional<TrialJob> pending;  // taken from next_ready, not yet started (fork failed)
   int stop_signal = 0;
   const auto reap = [&](pid_t pid, int status) {
     const auto it = running.find(pid);
     if (it == running.end()) return;  // not a trial (e.g. a read probe)
-    const std::size_t job = it->second;
+    const TrialJob job = it->second;
     running.erase(it);
     TrialExit exit;
     if (WIFEXITED(status)) {
@@ -105,6 +134,7 @@ int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options
                                                              : TrialExit::Kind::error;
       if (code == kExitOrphaned) exit.kind = TrialExit::Kind::interrupted;
       if (exit.kind == TrialExit::Kind::error) exit.message = "exit code " + std::to_string(code);
+      exit.config_error = code == kExitConfig;
     } else {
       const int sig = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
       if (stop_signal != 0) {
@@ -113,16 +143,18 @@ int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options
         exit.kind = TrialExit::Kind::error;
         exit.message = "trial process killed by " + signal_text(sig);
         try {
-          write_note(jobs[job].error_file, exit.message);
+          write_note(job.error_file, exit.message);
         } catch (const std::exception&) {
         }
       }
     }
-    on_done(job, exit);
+    on_done(job.index, exit);
   };
 
-  while ((stop_signal == 0 && next < jobs.size()) || !running.empty()) {
-    while (stop_signal == 0 && next < jobs.size() && running.size() < options.jobs) {
+  for (;;) {
+    while (stop_signal == 0 && running.size() < options.jobs) {
+      if (!pending) pending = next_ready();
+      if (!pending) break;
       std::cout.flush();
       std::cerr.flush();
       const pid_t pid = ::fork();
@@ -131,17 +163,24 @@ int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options
           throw Error(std::string("cannot fork a trial: ") + std::strerror(errno));
         break;  // retry when a slot frees
       }
-      if (pid == 0) run_child(jobs[next], options.run, self, blocked.original());
-      running[pid] = next++;
+      if (pid == 0) run_child(*pending, options, self, blocked.original());
+      running.emplace(pid, std::move(*pending));
+      pending.reset();
     }
-    // Reap everything that ended, then wait for the next event.
+    // Reap everything that ended (on_done may make more jobs ready), then
+    // wait for the next event.
+    bool reaped = false;
     for (;;) {
       int status = 0;
       const pid_t pid = ::waitpid(-1, &status, WNOHANG);
       if (pid <= 0) break;
       reap(pid, status);
+      reaped = true;
     }
-    if (running.empty()) continue;
+    if (running.empty()) {
+      if (stop_signal == 0 && (reaped || pending)) continue;
+      break;
+    }
     const timespec tick{1, 0};  // also a safety net against a missed SIGCHLD
     siginfo_t info;
     const int sig = ::sigtimedwait(&watched, &info, &tick);

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 namespace cnclab {
 
 struct TrialJob {
+  std::size_t index = 0;  // the caller's number for it, passed back to on_done
   const LoadedExperiment* experiment = nullptr;
   std::filesystem::path result_file;  // where the trial's result goes
   std::filesystem::path error_file;   // written when the trial stops without a result
@@ -31,18 +33,35 @@ struct TrialJob {
 // How a child ended.
 struct TrialExit {
   enum class Kind { result, error, interrupted } kind = Kind::result;
-  std::string message;  // error: the exception text or the signal that killed it
+  std::string message;        // error: the exception text or the signal that killed it
+  bool config_error = false;  // error: the run threw a ConfigError (its text is in error_file)
 };
 
 struct PoolOptions {
   std::size_t jobs = 1;  // trials at once (>= 1)
-  RunOptions run;        // results_dir, datasets_dir; log and result_file are set per trial
+  RunOptions run;        // results_dir, datasets_dir; result_file is set per trial
+  // false: trials run silently (run.log and run.progress are ignored), as
+  // parallel trials' output would interleave; true: they write to run.log.
+  bool trial_output = false;
 };
 
-// Runs `jobs` and calls `on_done` in the parent as each trial ends. Returns 0
-// when all ran, or the number of the signal (SIGINT, SIGTERM) that stopped
-// the sweep early; trials not started then are simply not run.
+// Cores this process may run on (the affinity mask: what Slurm or taskset
+// grants), at least 1: the default number of parallel trials.
+std::size_t available_cores();
+
+// Runs `jobs` and calls `on_done` in the parent as each trial ends, with the
+// job's position in `jobs`. Returns 0 when all ran, or the number of the
+// signal (SIGINT, SIGTERM) that stopped the sweep early; trials not started
+// then are simply not run.
 int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options,
                    const std::function<void(std::size_t job, const TrialExit&)>& on_done);
+
+// Jobs that become ready as others end (a dependency graph): whenever a slot
+// is free the pool asks `next_ready` for a job that can start now, nullopt
+// when none can yet; `on_done` (called with the job's `index`) may make more
+// ready. Ends when nothing runs and `next_ready` has nothing; returns as above.
+int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
+                   const PoolOptions& options,
+                   const std::function<void(std::size_t index, const TrialExit&)>& on_done);
 
 }  // namespace cnclab
