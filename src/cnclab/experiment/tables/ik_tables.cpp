@@ -172,8 +172,7 @@ void print_table5(const std::vector<IkVariant>& variants, const Reference& ref, 
   }
 
   TextTable phys;
-  phys.header = {
-      "Test error in machine units", "", "X [mm]", "Y [mm]", "Z [mm]", "A [deg]", "C [deg]"};
+  phys.header = {"metric", "variant", "X [mm]", "Y [mm]", "Z [mm]", "A [deg]", "C [deg]"};
   for (const char* name : {"rmse", "max_abs_error"}) {
     for (const IkVariant* v : shown) {
       std::vector<std::string> cells = {name == std::string("rmse") ? "RMSE" : "max |error|",
