@@ -368,6 +368,11 @@ TEST_F(Cli, DegenerateGrooveIsAUsageErrorAndWritesNothing) {
                         "trochoid.step = 0");
   expect_one_line_error(cnclab("gcode helix " + kGroove + " -o g.nc"), 2, "unknown tool path");
   EXPECT_TRUE(outputs().empty());
+  // validate of an invalid job file says only what is wrong, never "valid".
+  const Result v = cnclab("validate " + kGroove + " trochoid.step=0");
+  EXPECT_EQ(v.code, 2);
+  EXPECT_EQ(v.out, "");
+  EXPECT_NE(v.err.find("trochoid.step = 0"), std::string::npos) << v.err;
 }
 
 // Five tiny axis networks on a 3^5 grid, then `tables ik` reads their results

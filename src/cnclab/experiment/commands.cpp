@@ -82,8 +82,9 @@ int validate_command(const fs::path& experiment, const std::vector<std::string>&
                      std::optional<std::uint64_t> seed, const CommandOptions& options,
                      std::ostream& out) {
   if (const auto job = job_of(experiment, overrides, seed, options, nullptr)) {
-    out << "# " << experiment.string() << ": valid; resolved configuration:\n"
-        << job->first.resolved_yaml(experiment, job->second);
+    // Resolved before anything is printed: an invalid file prints no "valid".
+    const std::string resolved = job->first.resolved_yaml(experiment, job->second);
+    out << "# " << experiment.string() << ": valid; resolved configuration:\n" << resolved;
     return 0;
   }
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed, options.profile);
