@@ -59,6 +59,7 @@ class GraphRun {
     pool.run.regenerate_dataset = false;  // done once per dataset in start()
     // One experiment at a time: its progress may go to the log as it runs.
     pool.trial_output = jobs == 1 && log_;
+    if (!pool.trial_output) pool.on_tick = [this] { heartbeat(); };
     return run_trial_pool([this] { return next_ready(); }, pool,
                           [this](std::size_t i, const TrialExit& exit) { finished(i, exit); });
   }
@@ -182,6 +183,7 @@ class GraphRun {
     s.started = std::chrono::steady_clock::now();
     ++started_;
     if (log_) *log_ << "[run " << started_ << "] " << display_name(i) << " (" << why << ")\n";
+    last_log_ = s.started;
     return TrialJob{i, &exp, path, error_note(path)};
   }
 
@@ -216,7 +218,25 @@ class GraphRun {
       *log_ << "[done " << ++finished_ << "/" << started_ << "] " << display_name(i) << " "
             << s.row->action << " in " << std::fixed << std::setprecision(1) << seconds << " s"
             << std::defaultfloat << "\n";
+      last_log_ = std::chrono::steady_clock::now();
     }
+  }
+
+  // Long runs say they are still running: every kHeartbeat without another
+  // line, "[running] NAME 2m05s, ..." (the trials themselves are silent).
+  void heartbeat() {
+    constexpr std::chrono::seconds kHeartbeat{30};
+    const auto now = std::chrono::steady_clock::now();
+    if (!log_ || now - last_log_ < kHeartbeat) return;
+    std::string line;
+    for (std::size_t i = 0; i < graph_.size(); ++i) {
+      if (state_[i].stage != NodeState::Stage::running) continue;
+      const auto s = std::chrono::duration_cast<std::chrono::seconds>(now - state_[i].started);
+      line += (line.empty() ? "" : ", ") + display_name(i) + " " + std::to_string(s.count() / 60) +
+              "m" + (s.count() % 60 < 10 ? "0" : "") + std::to_string(s.count() % 60) + "s";
+    }
+    if (!line.empty()) *log_ << "[running] " << line << "\n";
+    last_log_ = now;
   }
 
   // Experiment i has its result in state_[i].record (ran or reused): its row.
@@ -254,6 +274,7 @@ class GraphRun {
   std::vector<NodeState> state_;
   std::set<fs::path> regenerated_;
   std::size_t started_ = 0, finished_ = 0;
+  std::chrono::steady_clock::time_point last_log_ = std::chrono::steady_clock::now();
   int exit_code_ = 0;
 };
 

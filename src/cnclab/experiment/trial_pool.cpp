@@ -184,6 +184,7 @@ int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
     const timespec tick{1, 0};  // also a safety net against a missed SIGCHLD
     siginfo_t info;
     const int sig = ::sigtimedwait(&watched, &info, &tick);
+    if (options.on_tick) options.on_tick();
     if ((sig == SIGINT || sig == SIGTERM) && stop_signal == 0) {
       stop_signal = sig;
       for (const auto& [pid, job] : running) ::kill(pid, SIGTERM);

@@ -43,6 +43,8 @@ struct PoolOptions {
   // false: trials run silently (run.log and run.progress are ignored), as
   // parallel trials' output would interleave; true: they write to run.log.
   bool trial_output = false;
+  // Called in the parent about once a second while trials run (progress).
+  std::function<void()> on_tick;
 };
 
 // Cores this process may run on (the affinity mask: what Slurm or taskset
