@@ -89,6 +89,14 @@ class GraphRun {
     state_[i].problem = std::move(problem);
   }
 
+  // Experiment i has no result: a configuration error (exit 2) or another
+  // error (exit 1), with the text that says why.
+  void fail(std::size_t i, bool config_error, const std::string& why, const std::string& detail) {
+    finish(i, {display_name(i), config_error ? "CONFIG ERROR" : "ERROR", why, detail, ""},
+           config_error ? "configuration error" : "error");
+    exit_code_ = config_error ? 2 : std::max(exit_code_, 1);
+  }
+
   // The next experiment to train whose upstream are done; experiments that
   // are current, blocked or broken are settled on the way.
   std::optional<TrialJob> next_ready() {
@@ -111,11 +119,8 @@ class GraphRun {
   std::optional<std::string> decide(std::size_t i) {
     const GraphNode& node = graph_[i];
     if (!node.experiment) {
-      finish(i,
-             {node.file.string(), node.config_error ? "CONFIG ERROR" : "ERROR", node.load_error, "",
-              ""},
-             "failed to load");
-      exit_code_ = node.config_error ? 2 : std::max(exit_code_, 1);
+      fail(i, node.config_error, node.load_error, "");
+      state_[i].problem = "failed to load";
       return std::nullopt;
     }
     std::vector<CurrentUpstream> upstream;
@@ -171,10 +176,7 @@ class GraphRun {
       }
       fs::create_directories(path.parent_path());
     } catch (const std::exception& e) {
-      const bool config = dynamic_cast<const ConfigError*>(&e) != nullptr;
-      finish(i, {display_name(i), config ? "CONFIG ERROR" : "ERROR", why, e.what(), ""},
-             config ? "configuration error" : "error");
-      exit_code_ = config ? 2 : std::max(exit_code_, 1);
+      fail(i, dynamic_cast<const ConfigError*>(&e) != nullptr, why, e.what());
       return std::nullopt;
     }
     NodeState& s = state_[i];
@@ -199,19 +201,14 @@ class GraphRun {
       return;
     }
     if (exit.kind == TrialExit::Kind::error) {
-      std::string text = read_note(error_note(path));
-      finish(i,
-             {display_name(i), exit.config_error ? "CONFIG ERROR" : "ERROR", s.why,
-              text.empty() ? exit.message : text, ""},
-             exit.config_error ? "configuration error" : "error");
-      exit_code_ = exit.config_error ? 2 : std::max(exit_code_, 1);
+      const std::string text = read_note(error_note(path));
+      fail(i, exit.config_error, s.why, text.empty() ? exit.message : text);
     } else {
       try {
         s.record = read_result(path);
         settle(i, "ran", s.why);
       } catch (const Error& e) {
-        finish(i, {display_name(i), "ERROR", s.why, e.what(), ""}, "error");
-        exit_code_ = std::max(exit_code_, 1);
+        fail(i, false, s.why, e.what());
       }
     }
     if (log_) {
