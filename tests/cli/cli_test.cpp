@@ -101,6 +101,22 @@ TEST_F(Cli, WrongTypeIsUsageError) {
                         "trainer.epochs = many: expected a non-negative integer");
 }
 
+// Issue 22 item 1: an experiment whose dataset include was forgotten trains
+// on nothing: exit 2 naming the missing key and the fragments that provide it,
+// and no result written.
+TEST_F(Cli, ExperimentWithoutDatasetIsUsageErrorNamingTheFragments) {
+  const fs::path file =
+      write("nodata.yaml", "name: nodata\nseed: 1\ninclude: " CNCLAB_SOURCE_DIR
+                           "/configs/trainers/sgdm_minibatch.yaml\nmodel: {hidden: [4]}\n");
+  fs::create_directories(dir_ / "configs/datasets");
+  write("configs/datasets/surface_a.yaml", "dataset: {generator: step_error}\n");
+  expect_one_line_error(cnclab("run " + file.string() + " --quiet"), 2,
+                        "nodata.yaml: dataset.generator: is required (what data the experiment "
+                        "learns); the fragments in configs/datasets/ provide one (include: "
+                        "configs/datasets/NAME.yaml): surface_a.yaml");
+  EXPECT_TRUE(outputs().empty());
+}
+
 TEST_F(Cli, OutOfRangeNamesValueAndRule) {
   const Result r = cnclab(quick("trainer.momentum=1.5"));
   expect_one_line_error(r, 2, "override trainer.momentum=1.5: trainer.momentum = 1.5:");
@@ -391,7 +407,7 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
               "split: {train_count: 100, test_count: 100}\n"
               "normalisation: {inputs: minmax, targets: minmax, target_range: [0.1, 0.9]}\n"
               "model: {hidden: [6, 4], hidden_activation: sigmoid, output_activation: sigmoid}\n"
-              "trainer: {learning_rate: 0.3, momentum: 0.5, epochs: 3}\n");
+              "trainer: {type: sgdm, learning_rate: 0.3, momentum: 0.5, epochs: 3}\n");
   }
   write("experiments/trochoid/g.yaml", "include: " + kGroove +
                                            "\nname: g\ntrochoid: {groove_length: 40}\n"
@@ -481,8 +497,8 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
   EXPECT_TRUE(hidden1.rfind("Hidden layer1 6 3 6 25 6 n/a n/a 22", 0) == 0 ||
               hidden1.rfind("Hidden layer1 6 5 6 25 6 n/a n/a 22", 0) == 0)
       << c.out;
-  EXPECT_NE(c.out.find("- search: X: best of 2 complete trial(s) (2 planned) by "
-                       "normalised_validation_mse"),
+  EXPECT_NE(c.out.find("- search: X: the best point by mean normalised_validation_mse of 2 (2 "
+                       "complete trial(s) of 2 planned), its median repeat"),
             std::string::npos)
       << c.out;
 

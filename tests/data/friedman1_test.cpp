@@ -109,8 +109,10 @@ TEST(Friedman1, RegistryReadsOptionsAndRoundTripsThem) {
   EXPECT_EQ(shape.inputs, 6u);
   EXPECT_EQ(shape.outputs, 1u);
 
-  const ConfigDocument again = ConfigDocument::parse(
-      "options:\n" + std::string("  samples: 4\n  inputs: 6\n  noise_std: 0.1\n"), "again");
+  const ConfigDocument again =
+      ConfigDocument::parse("generator: friedman1\noptions:\n" +
+                                std::string("  samples: 4\n  inputs: 6\n  noise_std: 0.1\n"),
+                            "again");
   EXPECT_EQ(read_generator(again.root())->options_yaml(), generator->options_yaml());
 
   Rng a(5), b(5);
@@ -132,8 +134,13 @@ TEST(Friedman1, RegistryRejectsUnknownGeneratorsAndOptions) {
   EXPECT_NE(
       message("generator: friedman2\n").find("generator = friedman2: must be one of: friedman1"),
       std::string::npos);
-  EXPECT_NE(message("options: {inputs: 3}\n").find("options.inputs = 3"), std::string::npos);
-  EXPECT_NE(message("options: {sample: 3}\n").find("unknown key"), std::string::npos);
+  EXPECT_NE(message("generator: friedman1\noptions: {inputs: 3}\n").find("options.inputs = 3"),
+            std::string::npos);
+  EXPECT_NE(message("generator: friedman1\noptions: {sample: 3}\n").find("unknown key"),
+            std::string::npos);
+  // No default generator (issue 22): a forgotten one is an error, not friedman1.
+  EXPECT_NE(message("options: {samples: 3}\n").find("generator: is required (one of: friedman1"),
+            std::string::npos);
 }
 
 }  // namespace

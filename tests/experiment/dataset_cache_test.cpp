@@ -16,10 +16,11 @@ namespace {
 namespace fs = std::filesystem;
 
 DatasetSpec friedman(std::size_t samples) {
-  const LoadedExperiment e =
-      parse_experiment("name: t\nseed: 1\ndataset: {generator: friedman1, options: {samples: " +
-                           std::to_string(samples) + "}}\n",
-                       "t.yaml");
+  const LoadedExperiment e = parse_experiment(
+      "name: t\nseed: 1\nmodel: {}\ntrainer: {type: sgdm}\ndataset: {generator: "
+      "friedman1, options: {samples: " +
+          std::to_string(samples) + "}}\n",
+      "t.yaml");
   return e.spec.dataset;
 }
 

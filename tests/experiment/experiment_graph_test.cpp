@@ -14,7 +14,10 @@ namespace {
 namespace fs = std::filesystem;
 
 void write(const fs::path& p, const std::string& name, const std::string& extra) {
-  std::ofstream(p) << "name: " << name << "\nseed: 1\n" << extra;
+  std::ofstream(p)
+      << "name: " << name
+      << "\nseed: 1\ndataset: {generator: friedman1}\nmodel: {}\ntrainer: {type: sgdm}\n"
+      << extra;
 }
 
 TEST(ExperimentGraph, UpstreamComesFirstAndIsAddedWhenNotRequested) {

@@ -24,14 +24,14 @@ const char* kUpstream = R"(name: up
 seed: 5
 dataset: {generator: friedman1, options: {samples: 200, inputs: 6, noise_std: 0.5}}
 model: {hidden: [8], hidden_activation: tanh, init: {weights: {type: xavier}}}
-trainer: {learning_rate: 0.01, momentum: 0.9, batch_size: 10, epochs: 20}
+trainer: {type: sgdm, learning_rate: 0.01, momentum: 0.9, batch_size: 10, epochs: 20}
 )";
 
 std::string downstream(const std::string& extra, int epochs = 5) {
   return "name: down\nseed: 6\n"
          "dataset: {generator: friedman1, seed: 99, options: {samples: 300, inputs: 6}}\n"
          "model: {hidden: [8], hidden_activation: tanh}\n"
-         "trainer: {learning_rate: 0.01, momentum: 0.9, batch_size: 10, epochs: " +
+         "trainer: {type: sgdm, learning_rate: 0.01, momentum: 0.9, batch_size: 10, epochs: " +
          std::to_string(epochs) + "}\n" + extra;
 }
 

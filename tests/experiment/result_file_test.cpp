@@ -22,7 +22,7 @@ const char* kYaml = R"(name: tiny
 seed: 5
 dataset: {generator: friedman1, options: {samples: 120, inputs: 6, noise_std: 0.5}}
 model: {hidden: [8], hidden_activation: tanh, init: {weights: {type: xavier}}}
-trainer: {learning_rate: 0.01, momentum: 0.9, batch_size: 8, epochs: 4}
+trainer: {type: sgdm, learning_rate: 0.01, momentum: 0.9, batch_size: 8, epochs: 4}
 )";
 
 std::vector<double> read_raw(hid_t file, const char* name, hsize_t* rows, hsize_t* cols) {

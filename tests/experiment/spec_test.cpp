@@ -7,7 +7,14 @@
 namespace cnclab {
 namespace {
 
-const std::string kMinimal = "name: t\nseed: 3\n";
+// What every experiment must name (issue 22: no silent default dataset,
+// model or trainer), and the rest of a minimal experiment.
+const std::string kHead = "name: t\nseed: 3\n";
+const std::string kDataset = "dataset: {generator: friedman1}\n";
+const std::string kModel = "model: {type: mlp}\n";
+const std::string kTrainer = "trainer: {type: sgdm}\n";
+const std::string kNoTrainer = kHead + kDataset + kModel;
+const std::string kMinimal = kNoTrainer + kTrainer;
 
 std::string error_of(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
   try {
@@ -42,16 +49,33 @@ TEST(Spec, OverridesAreTypedAsYaml) {
 TEST(Spec, RequiredKeysAndUnknownKeys) {
   EXPECT_NE(error_of("seed: 1\n").find("name"), std::string::npos);
   EXPECT_NE(error_of("name: x\n").find("seed"), std::string::npos);
-  EXPECT_NE(error_of(kMinimal + "trainr: {}\n").find("e.yaml:3:1: trainr: unknown key"),
+  EXPECT_NE(error_of(kMinimal + "trainr: {}\n").find("e.yaml:6:1: trainr: unknown key"),
             std::string::npos);
-  EXPECT_NE(error_of(kMinimal + "dataset:\n  options:\n    sample: 10\n")
+  EXPECT_NE(error_of(kHead + kModel + kTrainer +
+                     "dataset:\n  generator: friedman1\n  options:\n    sample: 10\n")
                 .find("dataset.options.sample: unknown key (did you mean 'samples'?)"),
             std::string::npos);
 }
 
+// Issue 22 item 1: an experiment that forgets its dataset include must not
+// train on a built-in data set; model and trainer type are required too.
+TEST(Spec, DatasetGeneratorModelAndTrainerTypeAreRequired) {
+  EXPECT_NE(error_of(kHead + kModel + kTrainer).find("dataset.generator: is required"),
+            std::string::npos)
+      << error_of(kHead + kModel + kTrainer);
+  EXPECT_NE(error_of(kHead + kModel + kTrainer + "dataset: {options: {samples: 10}}\n")
+                .find("dataset.generator: is required"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + kDataset + kTrainer).find("model: is required"), std::string::npos);
+  EXPECT_NE(error_of(kNoTrainer).find("trainer.type: is required (sgdm, lm or trainbr)"),
+            std::string::npos);
+  EXPECT_NE(error_of(kNoTrainer + "trainer: {epochs: 3}\n").find("trainer.type: is required"),
+            std::string::npos);
+}
+
 TEST(Spec, OutOfRangeValuesNameKeyValueAndLocation) {
-  EXPECT_NE(error_of(kMinimal + "trainer:\n  momentum: 1.5\n")
-                .find("e.yaml:4:13: trainer.momentum = 1.5"),
+  EXPECT_NE(error_of(kNoTrainer + "trainer:\n  type: sgdm\n  momentum: 1.5\n")
+                .find("e.yaml:7:13: trainer.momentum = 1.5"),
             std::string::npos);
   EXPECT_NE(error_of(kMinimal, {"split.train=1.2"}).find("split.train = 1.2"), std::string::npos);
   EXPECT_NE(error_of(kMinimal, {"model.dropout.keep_probability=0"})
@@ -95,7 +119,7 @@ TEST(Spec, GraphKeysAndSweepBlock) {
 }
 
 TEST(Spec, LevenbergMarquardtTrainersWithMatlabDefaults) {
-  const auto lm = parse_experiment(kMinimal + "trainer: {type: lm}\n", "e.yaml");
+  const auto lm = parse_experiment(kNoTrainer + "trainer: {type: lm}\n", "e.yaml");
   const auto& l = std::get<LmOptions>(lm.spec.trainer);
   EXPECT_EQ(l.mu, 1e-3);  // trainlm
   EXPECT_EQ(l.epochs, 1000u);
@@ -104,7 +128,8 @@ TEST(Spec, LevenbergMarquardtTrainersWithMatlabDefaults) {
                                   "  min_gradient: 1e-07"),
             std::string::npos)
       << lm.resolved_yaml;
-  const auto br = parse_experiment(kMinimal + "trainer: {type: trainbr, mu_max: 1e8}\n", "e.yaml");
+  const auto br =
+      parse_experiment(kNoTrainer + "trainer: {type: trainbr, mu_max: 1e8}\n", "e.yaml");
   const auto& b = std::get<TrainbrOptions>(br.spec.trainer);
   EXPECT_EQ(b.mu, 5e-3);  // trainbr
   EXPECT_EQ(b.mu_max, 1e8);
@@ -117,10 +142,10 @@ TEST(Spec, LevenbergMarquardtTrainersWithMatlabDefaults) {
 }
 
 TEST(Spec, TrainerErrorsNameKeyValueAndRule) {
-  EXPECT_NE(error_of(kMinimal + "trainer:\n  type: adam\n")
-                .find("e.yaml:4:9: trainer.type = adam: must be one of: sgdm, lm, trainbr"),
+  EXPECT_NE(error_of(kNoTrainer + "trainer:\n  type: adam\n")
+                .find("e.yaml:6:9: trainer.type = adam: must be one of: sgdm, lm, trainbr"),
             std::string::npos)
-      << error_of(kMinimal + "trainer:\n  type: adam\n");
+      << error_of(kNoTrainer + "trainer:\n  type: adam\n");
   EXPECT_NE(error_of(kMinimal, {"trainer={type: lm, mu: -1}"})
                 .find("trainer.mu = -1: must be a finite number > 0"),
             std::string::npos);
@@ -160,7 +185,7 @@ TEST(Spec, NormalisationMinMax) {
 namespace cnclab {
 namespace {
 
-const std::string kIk = "name: ik\nseed: 1\ndataset:\n  generator: ik_samples\n";
+const std::string kIk = kHead + kModel + kTrainer + "dataset:\n  generator: ik_samples\n";
 
 TEST(SpecIk, TargetsCountsAndMinmaxReadAndRoundTrip) {
   const auto a = parse_experiment(kIk +

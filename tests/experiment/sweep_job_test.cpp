@@ -30,7 +30,7 @@ dataset: {generator: ik_samples, targets: [X], options: {values_per_input: 3}}
 split: {train_count: 120, test_count: 60}
 normalisation: {inputs: minmax, targets: minmax, target_range: [0.1, 0.9]}
 model: {hidden: [5, 4], hidden_activation: sigmoid, output_activation: sigmoid}
-trainer: {learning_rate: 0.3, momentum: 0.5, epochs: 40}
+trainer: {type: sgdm, learning_rate: 0.3, momentum: 0.5, epochs: 40}
 metrics: [mse, normalised_mse, normalised_validation_mse]
 )";
 

@@ -84,6 +84,38 @@ TEST(SweepSummary, MeanAndSampleStdOverRepeatsAndRanking) {
   EXPECT_EQ(max.best_trial, 1);        // rmse 4.0
 }
 
+// Issue 22's case: the best single trial (0.030) is a lucky repeat of the
+// worse point (mean 4.83); the best trial must be a repeat of the best point.
+TEST(SweepSummary, BestTrialIsOfTheBestPointNotTheBestSingleTrial) {
+  const SweepPlan plan = plan_of(false);
+  std::vector<TrialOutcome> o = {complete(0.030, 0), complete(9.63, 0),   // point 0: mean 4.83
+                                 complete(0.065, 0), complete(0.060, 0),  // point 1: mean 0.0625
+                                 TrialOutcome{},     TrialOutcome{}};
+  const SweepSummary s = summarize(plan, o);
+  ASSERT_EQ(s.points[0].point, 1u);
+  // Two repeats ranked best first: 0.060 (trial 3), 0.065; (n - 1) / 2 = 0.
+  EXPECT_EQ(s.best_trial, 3);
+  std::ostringstream table;
+  print_summary(table, plan, o, s, "sweep");
+  EXPECT_NE(table.str().find("rmse 0.06 (median repeat of the rank-1 point by the objective, 2 "
+                             "complete)"),
+            std::string::npos)
+      << table.str();
+}
+
+// Three complete repeats: the middle one by the objective, whatever the order.
+TEST(SweepSummary, BestTrialIsTheMedianRepeat) {
+  SweepPlan plan = plan_of(true);
+  plan.repeats = 3;
+  plan.trials.resize(3);
+  for (std::size_t r = 0; r < 3; ++r) plan.trials[r].point = 0, plan.trials[r].repeat = r;
+  const SweepSummary s = summarize(plan, {complete(3.0, 0), complete(1.0, 0), complete(2.0, 0)});
+  EXPECT_EQ(s.best_trial, 2);  // rmse 2.0 of {3, 1, 2}
+  // A failed repeat does not count: of {3, 1} maximised, (2 - 1) / 2 = 0 gives 3.0.
+  const SweepSummary f = summarize(plan, {complete(3.0, 0), complete(1.0, 0), failed("x")});
+  EXPECT_EQ(f.best_trial, 0);
+}
+
 TEST(SweepSummary, FileHoldsTheTableInPlanAndRankOrder) {
   testing::TempDir dir;
   const SweepPlan plan = plan_of(false);
@@ -95,6 +127,13 @@ TEST(SweepSummary, FileHoldsTheTableInPlanAndRankOrder) {
   EXPECT_EQ(f.attribute_int("/", "failed"), 1);
   EXPECT_EQ(f.attribute_int("/", "missing"), 1);
   EXPECT_EQ(f.attribute_string("/", "best_trial"), plan.trials[2].id);
+  EXPECT_EQ(f.attribute_string("/", "best_trial_rule"),
+            "median repeat of the rank-1 point by the objective");
+  // Each ranked point names its trials (rank order: points 1, 0, 2).
+  EXPECT_EQ(f.read_strings("/points/trials"),
+            (std::vector<std::string>{plan.trials[2].id + "," + plan.trials[3].id,
+                                      plan.trials[0].id + "," + plan.trials[1].id,
+                                      plan.trials[4].id + "," + plan.trials[5].id}));
   EXPECT_EQ(f.read_strings("/trials/status"),
             (std::vector<std::string>{"complete", "complete", "complete", "complete", "failed",
                                       "missing"}));

@@ -22,7 +22,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   try {
-    cnclab::parse_experiment("name: f\nseed: 1\n", "fuzz.yaml", {text});
+    cnclab::parse_experiment(
+        "name: f\nseed: 1\ndataset: {generator: friedman1}\nmodel: {}\ntrainer: {type: sgdm}\n",
+        "fuzz.yaml", {text});
   } catch (const cnclab::ConfigError& e) {
     const std::string msg = e.what();
     if (msg.find("fuzz.yaml") == std::string::npos && msg.find("override") == std::string::npos) {

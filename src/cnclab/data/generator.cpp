@@ -24,11 +24,16 @@ std::vector<GeneratorEntry> builtin_generators() {
 }
 
 std::shared_ptr<const DatasetGenerator> read_generator(const ConfigReader& dataset_section) {
-  const auto name = dataset_section.get<std::string>("generator", "friedman1");
   std::string known;
+  for (const auto& entry : builtin_generators()) known += (known.empty() ? "" : ", ") + entry.name;
+  // No default generator: a dataset block that forgets it must not silently
+  // become some built-in benchmark.
+  if (!dataset_section.has("generator")) {
+    dataset_section.fail("generator", "is required (one of: " + known + ")");
+  }
+  const auto name = dataset_section.require<std::string>("generator");
   for (const auto& entry : builtin_generators()) {
     if (entry.name == name) return entry.read(dataset_section.section("options"));
-    known += (known.empty() ? "" : ", ") + entry.name;
   }
   dataset_section.fail("generator", "must be one of: " + known);
 }

@@ -46,7 +46,9 @@ JobKind gcode_kind() {
 JobKind sweep_kind() {
   JobKind k;
   k.kind = "sweep";
-  k.summary = "a sweep of an experiment file, selecting the best trial by its objective";
+  k.summary =
+      "a sweep of an experiment file, selecting the median repeat of its best point by the "
+      "objective";
   k.run = [](const fs::path& file, const JobContext& c) {
     const SweepJob job = load_sweep_job(file, c.overrides, c.options.profile);
     const SweepJobOutcome r = run_sweep_job(job, c.options, c.log);

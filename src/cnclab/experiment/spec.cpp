@@ -2,6 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <filesystem>
+
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
@@ -51,6 +54,47 @@ Initializer read_initializer(const ConfigReader& r, const Initializer& fallback)
   }
   r.validate([&] { init.validate(); });
   return init;
+}
+
+// "; the fragments in configs/<group>/ provide one: a.yaml, b.yaml" for the
+// nearest configs/<group>/ in `base` or an ancestor of it ("" when none).
+std::string fragment_hint(const std::filesystem::path& base, const std::string& group) {
+  std::error_code ec;
+  for (auto dir = std::filesystem::absolute(base, ec); !ec; dir = dir.parent_path()) {
+    const auto folder = dir / "configs" / group;
+    if (std::filesystem::is_directory(folder, ec)) {
+      std::vector<std::string> names;
+      for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+        if (entry.path().extension() == ".yaml") names.push_back(entry.path().filename().string());
+      }
+      std::sort(names.begin(), names.end());
+      if (names.empty()) return "";
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      return "; the fragments in " + (std::filesystem::path("configs") / group).string() +
+             "/ provide one (include: configs/" + group + "/NAME.yaml): " + list;
+    }
+    if (dir == dir.parent_path()) break;
+  }
+  return "";
+}
+
+// What an experiment is about has no default (README: "never a silent
+// default"): a forgotten dataset include must not train on some built-in
+// data set. The dataset generator, the model block and the trainer type are
+// required; everything inside them keeps the defaults of the key table.
+void require_subject(const ConfigReader& root, const std::filesystem::path& base) {
+  if (!root.section("dataset").has("generator")) {
+    root.section("dataset").fail("generator", "is required (what data the experiment learns)" +
+                                                  fragment_hint(base, "datasets"));
+  }
+  if (!root.has("model")) {
+    root.fail("model", "is required (the network, e.g. model: {type: mlp, hidden: [28, 20]})");
+  }
+  if (!root.section("trainer").has("type")) {
+    root.section("trainer").fail(
+        "type", "is required (sgdm, lm or trainbr)" + fragment_hint(base, "trainers"));
+  }
 }
 
 }  // namespace
@@ -182,6 +226,7 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
   spec.name = read_experiment_name(root);
   spec.description = root.get<std::string>("description", "");
   spec.seed = root.require<std::uint64_t>("seed");
+  require_subject(root, base);
   spec.dataset = read_dataset_spec(root.section("dataset"));
   spec.split = read_split(root.section("split"), spec.dataset.generator->shape().samples);
   const ConfigReader norm = root.section("normalisation");

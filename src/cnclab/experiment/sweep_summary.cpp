@@ -21,6 +21,7 @@ namespace {
 constexpr const char* kSummaryFormat = "cnclab-sweep-summary";
 constexpr int kSummaryVersion = 1;
 const double kNaN = std::nan("");
+constexpr const char* kBestTrialRule = "median repeat of the rank-1 point by the objective";
 
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -43,6 +44,24 @@ bool better(double a, double b, bool maximize) {
   return maximize ? a > b : a < b;
 }
 
+// The median repeat of a point by the objective, among its complete trials:
+// of n ranked best first, the one at (n - 1) / 2, so for an even n the better
+// of the two middle ones. A trial of the best point, typical of it: the best
+// single trial of a sweep may be a lucky repeat of a worse point.
+std::size_t median_trial(const SweepPlan& plan, const std::vector<TrialOutcome>& outcomes,
+                         const PointStats& point) {
+  std::vector<std::size_t> done;
+  for (std::size_t i : point.trials) {
+    if (outcomes[i].status == TrialOutcome::Status::complete) done.push_back(i);
+  }
+  const std::string& objective = plan.objective.metric;
+  std::stable_sort(done.begin(), done.end(), [&](std::size_t a, std::size_t b) {
+    return better(metric_or_nan(outcomes[a].metrics, objective),
+                  metric_or_nan(outcomes[b].metrics, objective), plan.objective.maximize);
+  });
+  return done[(done.size() - 1) / 2];
+}
+
 bool parse_number(const std::string& s, double& v) {
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   return ec == std::errc() && ptr == s.data() + s.size() && !s.empty();
@@ -60,6 +79,14 @@ void write_values(H5File& f, const std::string& name, const std::vector<std::str
     numbers.push_back(v);
   }
   f.write_vector(name, numbers);
+}
+
+// "id1,id2,...": a point's trials in repeat order (their result files are
+// trials/<id>.h5 in the sweep folder).
+std::string trial_ids(const SweepPlan& plan, const PointStats& p) {
+  std::string ids;
+  for (std::size_t i : p.trials) ids += (ids.empty() ? "" : ",") + plan.trials[i].id;
+  return ids;
 }
 
 std::string mean_std_text(const PointStats& p, const std::string& metric) {
@@ -135,13 +162,6 @@ SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& o
     switch (o.status) {
       case TrialOutcome::Status::complete:
         ++s.complete, ++p.complete;
-        if (s.best_trial < 0 ||
-            better(
-                metric_or_nan(o.metrics, objective),
-                metric_or_nan(outcomes[static_cast<std::size_t>(s.best_trial)].metrics, objective),
-                plan.objective.maximize)) {
-          s.best_trial = static_cast<std::ptrdiff_t>(i);
-        }
         break;
       case TrialOutcome::Status::failed:
         ++s.failed, ++p.failed;
@@ -180,6 +200,9 @@ SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& o
     return better(metric_or_nan(a.mean, objective), metric_or_nan(b.mean, objective),
                   plan.objective.maximize);
   });
+  if (!s.points.empty() && s.points.front().complete > 0) {
+    s.best_trial = static_cast<std::ptrdiff_t>(median_trial(plan, outcomes, s.points.front()));
+  }
   return s;
 }
 
@@ -202,6 +225,7 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
     f.set_attribute("/", "missing", static_cast<std::int64_t>(s.missing));
     if (s.best_trial >= 0) {
       f.set_attribute("/", "best_trial", plan.trials[static_cast<std::size_t>(s.best_trial)].id);
+      f.set_attribute("/", "best_trial_rule", std::string(kBestTrialRule));
     }
     f.write_string("/plan", plan.to_yaml());
 
@@ -236,12 +260,15 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
     }
 
     std::vector<std::int64_t> p_index, p_complete, p_failed;
+    std::vector<std::string> p_trials;
     for (const auto& p : s.points) {
       p_index.push_back(static_cast<std::int64_t>(p.point));
       p_complete.push_back(static_cast<std::int64_t>(p.complete));
       p_failed.push_back(static_cast<std::int64_t>(p.failed));
+      p_trials.push_back(trial_ids(plan, p));
     }
     f.write_int64s("/points/point", p_index);
+    f.write_strings("/points/trials", p_trials);
     f.write_int64s("/points/complete", p_complete);
     f.write_int64s("/points/failed", p_failed);
     for (std::size_t k = 0; k < plan.keys.size(); ++k) {
@@ -309,7 +336,8 @@ void print_summary(std::ostream& out, const SweepPlan& plan,
   if (s.best_trial >= 0) {
     const auto i = static_cast<std::size_t>(s.best_trial);
     out << "best trial: " << (dir / outcomes[i].result_file).string() << "  " << objective << " "
-        << format_metric(metric_or_nan(outcomes[i].metrics, objective)) << "\n";
+        << format_metric(metric_or_nan(outcomes[i].metrics, objective)) << " (" << kBestTrialRule
+        << ", " << s.points.front().complete << " complete)\n";
   }
 }
 

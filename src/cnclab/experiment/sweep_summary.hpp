@@ -8,14 +8,16 @@
 //                      experiment, method, repeats, objective_metric,
 //                      objective_mode (min|max), plan_hash, counts trials,
 //                      complete_trials, failed, errors, missing; best_trial (id, when
-//                      any trial completed); complete = 1 (written last)
+//                      any trial completed) and best_trial_rule (text); complete = 1
+//                      (written last)
 //   /plan              the sweep plan (sweep.yaml text)
 //   /trials/{id, status, reason, result_file, seed}   strings, one per trial (plan order)
 //   /trials/{point, repeat}                           int64
 //   /trials/parameters/<key>   float64 when every value is a number, else strings (YAML)
 //   /trials/metrics/<metric>   float64, NaN where the trial has no metrics
 //   /points/...                one row per point, ranked by the objective (best first):
-//                              point, parameters/<key>, complete, failed,
+//                              point, trials (its trial ids "id1,id2,..." in
+//                              repeat order), parameters/<key>, complete, failed,
 //                              metrics/<metric>/{mean, std} (std over repeats, n - 1; NaN if n < 2)
 #include <cstddef>
 #include <filesystem>
@@ -61,7 +63,11 @@ struct PointStats {
 struct SweepSummary {
   std::vector<PointStats> points;  // best first; points without results last
   std::size_t complete = 0, failed = 0, errors = 0, missing = 0;
-  std::ptrdiff_t best_trial = -1;  // index into plan.trials; -1: none complete
+  // The best point is the first of `points` (best objective mean over its
+  // complete repeats); the best trial is its median repeat by the objective
+  // (of n ranked best first, the one at (n - 1) / 2), never a lucky repeat of a
+  // worse point. Index into plan.trials; -1: no trial complete.
+  std::ptrdiff_t best_trial = -1;
 };
 
 SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& outcomes);

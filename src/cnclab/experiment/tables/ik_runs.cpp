@@ -57,8 +57,10 @@ IkAxisRun load_search_axis(const TablesOptions& o, const std::string& axis, std:
                          (o.experiments_dir / "ik_search").string() + "`");
   }
   if (!s.selected) throw Error(file.string() + ": no trial of the search completed");
-  note = axis + ": best of " + std::to_string(s.summary.complete) + " complete trial(s) (" +
-         std::to_string(s.plan.trials.size()) + " planned) by " + s.plan.objective.metric;
+  note = axis + ": the best point by mean " + s.plan.objective.metric + " of " +
+         std::to_string(s.summary.points.size()) + " (" + std::to_string(s.summary.complete) +
+         " complete trial(s) of " + std::to_string(s.plan.trials.size()) +
+         " planned), its median repeat";
   return checked(axis, s.selected_result(), *s.plan.trials[*s.selected].experiment,
                  s.selected_result());
 }
