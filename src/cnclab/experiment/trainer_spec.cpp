@@ -4,6 +4,7 @@
 #include <iterator>
 #include <type_traits>
 
+#include "cnclab/core/fields.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/spec_text.hpp"
 
@@ -15,25 +16,14 @@ constexpr const char* kTrainerNames[] = {"sgdm", "lm", "trainbr"};
 
 SgdmOptions read_sgdm(const ConfigReader& r) {
   SgdmOptions t;
-  t.learning_rate = r.get<double>("learning_rate", t.learning_rate);
-  t.momentum = r.get<double>("momentum", t.momentum);
-  t.batch_size = r.get<std::size_t>("batch_size", t.batch_size);
-  t.epochs = r.get<std::size_t>("epochs", t.epochs);
-  t.shuffle = r.get<bool>("shuffle", t.shuffle);
-  t.early_stop_patience = r.get<std::size_t>("early_stop_patience", t.early_stop_patience);
+  sgdm_fields().read(r, t);
   r.validate([&] { t.validate(); });
   return t;
 }
 
 template <class Options>
 Options read_lm(const ConfigReader& r, Options t = {}) {
-  t.epochs = r.get<std::size_t>("epochs", t.epochs);
-  t.goal = r.get<double>("goal", t.goal);
-  t.mu = r.get<double>("mu", t.mu);
-  t.mu_dec = r.get<double>("mu_dec", t.mu_dec);
-  t.mu_inc = r.get<double>("mu_inc", t.mu_inc);
-  t.mu_max = r.get<double>("mu_max", t.mu_max);
-  t.min_gradient = r.get<double>("min_gradient", t.min_gradient);
+  lm_fields().read(r, t);
   r.validate([&] { t.validate(); });
   return t;
 }
@@ -77,20 +67,9 @@ void emit_trainer(YAML::Emitter& out, const TrainerSpec& trainer) {
       [&](const auto& t) {
         using T = std::decay_t<decltype(t)>;
         if constexpr (std::is_same_v<T, SgdmOptions>) {
-          out << Key << "learning_rate" << Value << shortest_double(t.learning_rate);
-          out << Key << "momentum" << Value << shortest_double(t.momentum);
-          out << Key << "batch_size" << Value << t.batch_size;
-          out << Key << "epochs" << Value << t.epochs;
-          out << Key << "shuffle" << Value << t.shuffle;
-          out << Key << "early_stop_patience" << Value << t.early_stop_patience;
+          sgdm_fields().emit(out, t);
         } else {
-          out << Key << "epochs" << Value << t.epochs;
-          out << Key << "goal" << Value << shortest_double(t.goal);
-          out << Key << "mu" << Value << shortest_double(t.mu);
-          out << Key << "mu_dec" << Value << shortest_double(t.mu_dec);
-          out << Key << "mu_inc" << Value << shortest_double(t.mu_inc);
-          out << Key << "mu_max" << Value << shortest_double(t.mu_max);
-          out << Key << "min_gradient" << Value << shortest_double(t.min_gradient);
+          lm_fields().emit(out, t);
         }
       },
       trainer);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/fields.hpp"
 #include "cnclab/train/lm.hpp"
 #include "cnclab/train/normal_equations.hpp"
 #include "cnclab/train/trainbr.hpp"
@@ -20,12 +21,6 @@ std::string text(double x) {
   std::ostringstream s;
   s << x;
   return s.str();
-}
-
-void check_finite_positive(const char* field, double v) {
-  if (!(v > 0) || !std::isfinite(v)) {
-    throw OptionError(field, text(v), "must be a finite number > 0");
-  }
 }
 
 Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& params,
@@ -139,21 +134,30 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
 
 }  // namespace
 
+const FieldList<LmOptions>& lm_fields() {
+  using O = LmOptions;
+  static const auto fields =
+      FieldList<O>()
+          .field("epochs", &O::epochs, "maximum accepted steps (trainlm/trainbr: 1000)",
+                 Rule::at_least(1))
+          .field("goal", &O::goal,
+                 "stop when the objective F <= goal (lm: E_D; trainbr: βE_D + αE_W)",
+                 Rule::non_negative())
+          .field("mu", &O::mu, "initial damping μ (trainlm: 0.001, trainbr: 0.005)",
+                 Rule::positive())
+          .field("mu_dec", &O::mu_dec, "μ ← μ·mu_dec after a successful step, in (0, 1)",
+                 Rule::in(0, false, 1, false))
+          .field("mu_inc", &O::mu_inc, "μ ← μ·mu_inc after a failed step, > 1", Rule::above(1))
+          .field("mu_max", &O::mu_max,
+                 "stop when no step with μ <= mu_max lowers the objective (1e10)", Rule::positive())
+          .field("min_gradient", &O::min_gradient, "stop when 2‖Jᵀe‖ < min_gradient (1e-7)",
+                 Rule::non_negative());
+  return fields;
+}
+
 void LmOptions::validate() const {
-  if (epochs < 1) throw OptionError("epochs", "0", "must be at least 1");
-  if (!(goal >= 0) || !std::isfinite(goal)) {
-    throw OptionError("goal", text(goal), "must be a finite number >= 0");
-  }
-  check_finite_positive("mu", mu);
-  check_finite_positive("mu_max", mu_max);
+  lm_fields().check(*this);
   if (mu > mu_max) throw OptionError("mu", text(mu), "must not exceed mu_max = " + text(mu_max));
-  if (!(mu_dec > 0 && mu_dec < 1)) throw OptionError("mu_dec", text(mu_dec), "must be in (0, 1)");
-  if (!(mu_inc > 1) || !std::isfinite(mu_inc)) {
-    throw OptionError("mu_inc", text(mu_inc), "must be a finite number > 1");
-  }
-  if (!(min_gradient >= 0) || !std::isfinite(min_gradient)) {
-    throw OptionError("min_gradient", text(min_gradient), "must be a finite number >= 0");
-  }
 }
 
 double effective_parameters(const Eigen::MatrixXd& jtj_lower, double alpha, double beta) {

@@ -19,6 +19,9 @@
 
 namespace cnclab {
 
+template <class S>
+class FieldList;
+
 struct LmOptions {
   std::size_t epochs = 1000;  // maximum number of accepted steps (trainlm: 1000)
   double goal = 0;            // stop when F <= goal; lm: F = E_D (sum of squares) (trainlm: 0)
@@ -34,6 +37,11 @@ struct LmOptions {
   // 0 < mu_dec < 1 < mu_inc.
   void validate() const;
 };
+
+// The YAML fields of LmOptions (`trainer:` with type lm or trainbr; block_rows
+// is a tuning knob, not part of a config), declared once (core/fields.hpp);
+// validate() checks their rules and mu <= mu_max.
+const FieldList<LmOptions>& lm_fields();
 
 struct LmHooks {
   // Loss on held-out data at the end of each epoch (stored in EpochRecord).

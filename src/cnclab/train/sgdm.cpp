@@ -7,18 +7,31 @@
 #include <vector>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/fields.hpp"
 
 namespace cnclab {
 
+const FieldList<SgdmOptions>& sgdm_fields() {
+  using O = SgdmOptions;
+  static const auto fields =
+      FieldList<O>()
+          .field("learning_rate", &O::learning_rate,
+                 "η: v ← βv − η∇E, w ← w + v (seed 000 Eq. 14; seed 000: 1e-5)", Rule::positive())
+          .field("momentum", &O::momentum, "β ∈ [0, 1) (seed 000: 0.8)",
+                 Rule::in(0, true, 1, false))
+          .field("batch_size", &O::batch_size,
+                 "samples per update; 1 = per-sample SGD as in seed 000", Rule::at_least(1))
+          .field("epochs", &O::epochs,
+                 "passes over the training split; 0 = evaluation only (parameters unchanged)")
+          .field("shuffle", &O::shuffle, "new random sample order every epoch")
+          .field("early_stop_patience", &O::early_stop_patience,
+                 "stop after this many epochs without a lower validation loss, restoring the "
+                 "best parameters (0 = off)");
+  return fields;
+}
+
 void SgdmOptions::validate() const {
-  if (!(learning_rate > 0) || !std::isfinite(learning_rate)) {
-    throw OptionError("learning_rate", std::to_string(learning_rate),
-                      "must be a finite number > 0");
-  }
-  if (!(momentum >= 0 && momentum < 1)) {
-    throw OptionError("momentum", std::to_string(momentum), "must be in [0, 1)");
-  }
-  if (batch_size < 1) throw OptionError("batch_size", "0", "must be at least 1");
+  sgdm_fields().check(*this);
 }
 
 Summary train_sgdm(SeparableObjective& objective, Eigen::VectorXd& params,

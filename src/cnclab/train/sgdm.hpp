@@ -13,6 +13,9 @@
 
 namespace cnclab {
 
+template <class S>
+class FieldList;
+
 struct SgdmOptions {
   double learning_rate = 1e-5;  // eta > 0 (seed 000: 1e-5)
   double momentum = 0.8;        // beta in [0, 1) (seed 000: 0.8)
@@ -29,6 +32,10 @@ struct SgdmOptions {
 
   void validate() const;
 };
+
+// The YAML fields of SgdmOptions (`trainer:` with type sgdm), declared once
+// (core/fields.hpp); validate() checks their rules.
+const FieldList<SgdmOptions>& sgdm_fields();
 
 struct SgdmHooks {
   // Loss on held-out data at the end of each epoch (evaluation mode).
