@@ -122,6 +122,38 @@ TEST(SweepCli, TwoJobsGiveBitIdenticalTrialsToOneJob) {
   EXPECT_NE(one.out.find("6 complete, 0 failed"), std::string::npos) << one.out;
 }
 
+// Issue 22 item 3: config groups. `trainer=NAME` replaces the block with
+// configs/trainers/NAME.yaml (finer overrides apply after it, wherever they
+// stand), so a sweep can compare trainers; a missing group name is exit 2
+// naming the fragments there are.
+TEST(SweepCli, ConfigGroupsReplaceTheTrainerBlockAndCanBeSwept) {
+  TempDir dir;
+  const Result v = sh(dir.path(), kCnclab + " validate " + kExperiment + " trainer=trainbr");
+  ASSERT_EQ(v.code, 0) << v.err;
+  EXPECT_NE(v.out.find("trainer:\n  type: trainbr\n  epochs: 1000\n  goal: 0\n  mu: 0.005"),
+            std::string::npos)
+      << v.out;
+  EXPECT_EQ(v.out.find("learning_rate"), std::string::npos) << v.out;
+  const Result s = sh(dir.path(), kCnclab + " sweep " + kExperiment +
+                                      " trainer=sgdm_minibatch,trainbr trainer.epochs=2 "
+                                      "dataset.options.samples=120 model.hidden=[4] --quiet "
+                                      "--data-dir data --dir s --jobs 1");
+  ASSERT_EQ(s.code, 0) << s.err << s.out;
+  ASSERT_EQ(trial_files(dir / "s").size(), 2u);
+  std::set<std::string> types;
+  for (const auto& f : trial_files(dir / "s")) {
+    const RunRecord r = read_result(f);
+    types.insert(r.trainer);
+    EXPECT_NE(r.resolved_yaml.find("epochs: 2\n"), std::string::npos) << r.resolved_yaml;
+  }
+  EXPECT_EQ(types, (std::set<std::string>{"sgdm", "trainbr"}));
+  const Result bad = sh(dir.path(), kCnclab + " validate " + kExperiment + " trainer=adam");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("no config group file configs/trainers/adam.yaml"), std::string::npos)
+      << bad.err;
+  EXPECT_NE(bad.err.find("trainbr.yaml"), std::string::npos) << bad.err;
+}
+
 TEST(SweepCli, RerunSkipsCompleteTrials) {
   TempDir dir;
   ASSERT_EQ(sh(dir.path(), kCnclab + " sweep " + sweep_args("--jobs 2 --dir s")).code, 0);

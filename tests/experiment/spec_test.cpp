@@ -141,6 +141,30 @@ TEST(Spec, LevenbergMarquardtTrainersWithMatlabDefaults) {
   EXPECT_EQ(std::get<TrainbrOptions>(o.spec.trainer).epochs, 7u);
 }
 
+// Issue 22 item 3: switching trainer.type drops the keys only the old trainer
+// has (one note names them) and keeps the shared ones; a key of no trainer is
+// still an unknown key.
+TEST(Spec, SwitchingTrainerTypeDropsTheOldTrainersKeysWithANote) {
+  const std::string sgdm =
+      kNoTrainer + "trainer: {type: sgdm, learning_rate: 0.01, momentum: 0.9, epochs: 7}\n";
+  const auto a = parse_experiment(sgdm, "e.yaml", {"trainer.type=trainbr"});
+  ASSERT_TRUE(std::holds_alternative<TrainbrOptions>(a.spec.trainer));
+  EXPECT_EQ(std::get<TrainbrOptions>(a.spec.trainer).epochs, 7u);  // shared key kept
+  ASSERT_EQ(a.notes.size(), 1u);
+  EXPECT_EQ(a.notes[0],
+            "trainer.type is trainbr: dropped learning_rate, momentum (keys of another trainer)");
+  EXPECT_EQ(a.resolved_yaml.find("learning_rate"), std::string::npos);
+  EXPECT_TRUE(parse_experiment(sgdm, "e.yaml").notes.empty());
+  // Written together with the type they do not belong to: still unknown keys
+  // (a mistake, not a switch).
+  EXPECT_NE(error_of(kNoTrainer + "trainer: {type: lm, learning_rate: 0.01}\n")
+                .find("trainer.learning_rate: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of(sgdm, {"trainer.type=trainbr", "trainer.momentm=1"})
+                .find("trainer.momentm: unknown key"),
+            std::string::npos);
+}
+
 TEST(Spec, TrainerErrorsNameKeyValueAndRule) {
   EXPECT_NE(error_of(kNoTrainer + "trainer:\n  type: adam\n")
                 .find("e.yaml:6:9: trainer.type = adam: must be one of: sgdm, lm, trainbr"),

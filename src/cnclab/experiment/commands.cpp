@@ -62,6 +62,7 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
     return 0;
   }
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed, options.profile);
+  for (const auto& note : loaded.notes) log << "note: " << note << "\n";
   const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
   if (!outcome.ok && loaded.spec.may_diverge) {
     out << loaded.spec.name << ": " << outcome.message << " (allowed: may_diverge)\n"
@@ -88,8 +89,9 @@ int validate_command(const fs::path& experiment, const std::vector<std::string>&
     return 0;
   }
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed, options.profile);
-  out << "# " << experiment.string() << ": valid; resolved configuration:\n"
-      << loaded.resolved_yaml;
+  out << "# " << experiment.string() << ": valid; resolved configuration:\n";
+  for (const auto& note : loaded.notes) out << "# note: " << note << "\n";
+  out << loaded.resolved_yaml;
   return 0;
 }
 

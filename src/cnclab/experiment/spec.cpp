@@ -60,7 +60,9 @@ Initializer read_initializer(const ConfigReader& r, const Initializer& fallback)
 // nearest configs/<group>/ in `base` or an ancestor of it ("" when none).
 std::string fragment_hint(const std::filesystem::path& base, const std::string& group) {
   std::error_code ec;
-  for (auto dir = std::filesystem::absolute(base, ec); !ec; dir = dir.parent_path()) {
+  const auto start = std::filesystem::absolute(base, ec);
+  if (ec) return "";
+  for (auto dir = start;; dir = dir.parent_path()) {
     const auto folder = dir / "configs" / group;
     if (std::filesystem::is_directory(folder, ec)) {
       std::vector<std::string> names;
@@ -77,6 +79,35 @@ std::string fragment_hint(const std::filesystem::path& base, const std::string& 
     if (dir == dir.parent_path()) break;
   }
   return "";
+}
+
+// Config groups (Hydra-style): `trainer=NAME`, `dataset=NAME`, `model=NAME`
+// with a plain name replace the whole block by the one in
+// configs/<group>s/NAME.yaml (found as `include:` finds configs/...).
+// Any other override is returned unchanged.
+Override expand_config_group(const Override& o, const std::filesystem::path& base) {
+  static const std::vector<std::string> kGroups = {"trainer", "dataset", "model"};
+  if (o.path.size() != 1 || !o.value.IsScalar() ||
+      std::find(kGroups.begin(), kGroups.end(), o.path[0]) == kGroups.end()) {
+    return o;
+  }
+  const std::string& group = o.path[0];
+  const std::string name = "configs/" + group + "s/" + o.value.Scalar() + ".yaml";
+  const std::filesystem::path file = resolve_config_path(base / "experiment.yaml", name);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    throw ConfigError("override " + o.text + ": no config group file " + name + " (looked in " +
+                      base.string() + " and the configs/ folders above it)" +
+                      fragment_hint(base, group + "s"));
+  }
+  const ConfigDocument fragment = ConfigDocument::load(file);
+  const YAML::Node block = YAML::Load(fragment.to_yaml())[group];
+  if (!block.IsMap()) {
+    throw ConfigError("override " + o.text + ": " + file.string() + " has no `" + group +
+                      ":` block");
+  }
+  // A new Override: assigning to o's copied YAML::Node would rewrite o's node.
+  return Override{o.path, block, o.text};
 }
 
 // What an experiment is about has no default (README: "never a silent
@@ -214,7 +245,17 @@ void check_training_samples(const ConfigReader& root, const ExperimentSpec& spec
 LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override>& overrides,
                                  std::optional<std::uint64_t> seed_override,
                                  const std::filesystem::path& base) {
-  for (const auto& override : overrides) doc.apply(override);
+  // Config groups first, then the other overrides, whatever their order on
+  // the command line (as Hydra's defaults list): `trainer=trainbr
+  // trainer.epochs=5` and `trainer.epochs=5 trainer=trainbr` both train 5.
+  std::vector<Override> groups, rest;
+  for (const auto& override : overrides) {
+    Override expanded = expand_config_group(override, base);
+    const bool group = expanded.value.IsMap() && !override.value.IsMap();
+    (group ? groups : rest).push_back(std::move(expanded));
+  }
+  for (const auto& override : groups) doc.apply(override);
+  for (const auto& override : rest) doc.apply(override);
   if (seed_override) doc.apply(parse_override("seed=" + std::to_string(*seed_override)));
 
   const ConfigReader root = doc.root();
@@ -240,7 +281,8 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
   spec.normalisation.target_range =
       read_range(norm, "target_range", spec.normalisation.target_range);
   spec.model = read_model(root.section("model"));
-  spec.trainer = read_trainer(root.section("trainer"));
+  std::vector<std::string> notes;
+  spec.trainer = read_trainer(root.section("trainer"), &notes);
   if (is_levenberg_marquardt(spec.trainer) && spec.model.dropout_keep_probability < 1.0) {
     root.section("model").section("dropout").fail(
         "keep_probability", "must be 1 with trainer " + trainer_name(spec.trainer) +
@@ -257,7 +299,7 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
   spec.may_diverge = root.get<bool>("may_diverge", false);
   check_training_samples(root, spec);
   doc.check_all_consumed();
-  return {spec, to_yaml(spec)};
+  return {spec, to_yaml(spec), notes};
 }
 
 void emit_initializer(YAML::Emitter& out, const Initializer& init) {

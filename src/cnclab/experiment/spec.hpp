@@ -106,6 +106,9 @@ struct LoadedExperiment {
   // `validate` prints and every result file stores. Reloading it gives the
   // same spec.
   std::string resolved_yaml;
+  // One line each for the user: what the reader changed on its own (keys of
+  // another trainer dropped after a trainer.type switch).
+  std::vector<std::string> notes;
 };
 
 // Loads, merges includes, applies the `profile` (profiles: block, see

@@ -28,6 +28,36 @@ Options read_lm(const ConfigReader& r, Options t = {}) {
   return t;
 }
 
+std::vector<std::string> trainer_keys(const std::string& type) {
+  return type == "sgdm" ? sgdm_fields().keys() : lm_fields().keys();
+}
+
+// Keys that the chosen trainer lacks but another trainer has, set in another
+// place (file or override) than `type`: consumed and named in one note (what a
+// switch of trainer.type leaves behind). Written next to the type they do not
+// belong to, they stay unknown keys.
+void drop_keys_of_other_trainers(const ConfigReader& r, const std::string& type,
+                                 std::vector<std::string>* notes) {
+  const auto own = trainer_keys(type);
+  std::string dropped;
+  for (const auto& key : r.keys()) {
+    if (key == "type" || std::find(own.begin(), own.end(), key) != own.end()) continue;
+    if (r.location(key).file == r.location("type").file) continue;
+    for (const char* other : kTrainerNames) {
+      const auto theirs = trainer_keys(other);
+      if (std::find(theirs.begin(), theirs.end(), key) != theirs.end()) {
+        r.raw(key);  // consumed: not an unknown key
+        dropped += (dropped.empty() ? "" : ", ") + key;
+        break;
+      }
+    }
+  }
+  if (!dropped.empty() && notes) {
+    notes->push_back(r.dotted("type") + " is " + type + ": dropped " + dropped +
+                     " (keys of another trainer)");
+  }
+}
+
 }  // namespace
 
 TrainbrOptions read_trainbr_options(const ConfigReader& r, const TrainbrOptions& start) {
@@ -51,10 +81,11 @@ bool is_levenberg_marquardt(const TrainerSpec& trainer) {
   return !std::holds_alternative<SgdmOptions>(trainer);
 }
 
-TrainerSpec read_trainer(const ConfigReader& r) {
+TrainerSpec read_trainer(const ConfigReader& r, std::vector<std::string>* notes) {
   const auto type =
       choice(r, "type", "sgdm",
              std::vector<std::string>(std::begin(kTrainerNames), std::end(kTrainerNames)));
+  drop_keys_of_other_trainers(r, type, notes);
   if (type == "lm") return read_lm<LmOptions>(r);
   if (type == "trainbr") return read_lm<TrainbrOptions>(r);
   return read_sgdm(r);

@@ -3,12 +3,15 @@
 // and its options. Keys per type (defaults in the options structs):
 //   sgdm:       learning_rate, momentum, batch_size, epochs, shuffle, early_stop_patience
 //   lm/trainbr: epochs, goal, mu, mu_dec, mu_inc, mu_max, min_gradient
-// A key of another type is an unknown key.
+// A key that only another type has (left from a fragment written for that
+// type, e.g. after `trainer.type=trainbr` on an sgdm experiment) is dropped,
+// with a note saying which; any other key of no type is an unknown key.
 #include <yaml-cpp/yaml.h>
 
 #include <cstddef>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/train/lm.hpp"
@@ -25,8 +28,10 @@ std::size_t trainer_epochs(const TrainerSpec& trainer);
 // lm and trainbr need a deterministic objective (no dropout).
 bool is_levenberg_marquardt(const TrainerSpec& trainer);
 
-// Reads and validates the `trainer` section (type defaults to sgdm).
-TrainerSpec read_trainer(const ConfigReader& r);
+// Reads and validates the `trainer` section (`type` is required by the
+// experiment reader; here it defaults to sgdm). Dropped keys of other types
+// add one line to `notes` when given.
+TrainerSpec read_trainer(const ConfigReader& r, std::vector<std::string>* notes = nullptr);
 // trainbr's keys (epochs, goal, mu, mu_dec, mu_inc, mu_max, min_gradient)
 // without `type`, each defaulting to `start`'s value; validated.
 TrainbrOptions read_trainbr_options(const ConfigReader& r, const TrainbrOptions& start);
