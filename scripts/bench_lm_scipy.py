@@ -7,11 +7,10 @@ Prints "seconds T sse S nfev N njev J". The network and parameter layout are
 cnclab's (nn/mlp.hpp): 73-28-20-1, ReLU hidden, linear output; per layer W
 (n_out x n_in, column-major) then b; residual = output - target.
 """
-import sys
+import argparse
 import time
 
 import numpy as np
-from scipy.optimize import least_squares
 
 SIZES = [73, 28, 20, 1]
 
@@ -37,7 +36,14 @@ def forward(w, x):
 
 
 def main():
-    d, max_nfev = sys.argv[1], int(sys.argv[2])
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("dir", help="folder written by `cnclab_bench_lm prepare`")
+    parser.add_argument("max_nfev", type=int, help="function evaluations allowed")
+    args = parser.parse_args()
+    d, max_nfev = args.dir, args.max_nfev
+    from scipy.optimize import least_squares  # after parsing: --help works without scipy
+
     x = np.fromfile(d + "/x.bin").reshape(-1, SIZES[0])
     y = np.fromfile(d + "/y.bin")
     w0 = np.fromfile(d + "/w0.bin")

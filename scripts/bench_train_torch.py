@@ -6,16 +6,20 @@ SGD(lr=1e-5, momentum=0.8), MSE, 13,860 samples, per-epoch shuffle, manual
 batching (no DataLoader overhead). Prints "batch <b> samples_per_s <x>"
 (median of repeats) like the C++ benchmark.
 """
+import argparse
 import statistics
-import sys
 import time
 
-import torch
+parser = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+parser.add_argument("repeats", nargs="?", type=int, default=5, help="timed repeats (default 5)")
+repeats = parser.parse_args().repeats  # before importing torch: --help works without it
+
+import torch  # noqa: E402
 
 torch.set_num_threads(1)
 torch.manual_seed(0)
 N = 13860
-repeats = int(sys.argv[1]) if len(sys.argv) > 1 else 5
 x = torch.randn(N, 73)
 y = torch.randn(N, 1)
 

@@ -9,6 +9,7 @@ its validation series (first run: two-stage, seed 1) and the dataset it names,
 and writes PNGs to RESULTS_DIR/figures/contour_error/ (each written to a
 temporary name, then renamed).
 """
+import argparse
 import glob
 import os
 import sys
@@ -44,7 +45,10 @@ def save(fig, out_dir, name):
 
 
 def main():
-    results = sys.argv[1] if len(sys.argv) > 1 else "results"
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("results", nargs="?", default="results", help="results folder")
+    results = parser.parse_args().results
     out_dir = os.path.join(results, "figures", "contour_error")
     os.makedirs(out_dir, exist_ok=True)
     result = newest_result(results)

@@ -16,6 +16,7 @@ reused). Writes PNGs to RESULTS_DIR/figures/step_error/:
 
 Exits 3 with a note when results are missing (scripts/figures/run skips).
 """
+import argparse
 import glob
 import os
 import sys
@@ -137,10 +138,10 @@ def loss_curve(run, path, variant):
 
 
 def main():
-    if len(sys.argv) != 2:
-        print(__doc__, file=sys.stderr)
-        return 2
-    results = sys.argv[1]
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("results", help="results folder")
+    results = parser.parse_args().results
     if not os.path.exists(MANIFEST):
         print(f"step_error figures: {MANIFEST} not found", file=sys.stderr)
         return 3
