@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/rng.hpp"
 #include "cnclab/experiment/commands.hpp"
 #include "cnclab/experiment/compare.hpp"
 #include "cnclab/experiment/dataset_commands.hpp"
@@ -37,7 +38,9 @@ int main(int argc, char** argv) {
   cnclab::CommandOptions common;
   std::string experiment;
   std::vector<std::string> overrides;
-  std::optional<std::uint64_t> seed;
+  // Seeds are read as text and checked in the try block below: CLI11 would
+  // turn "-1" into 2^64 - 1, and its own errors do not take our error form.
+  std::optional<std::string> seed_text, sweep_seed_text;
 
   auto* run = app.add_subcommand("run", "Run one experiment and write its HDF5 result");
   run->add_option("experiment", experiment, "Experiment YAML file")
@@ -45,7 +48,8 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   run->add_option("overrides", overrides,
                   "Config overrides key=value, values typed as YAML (1e-4, true, [28, 20])");
-  run->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
+  run->add_option("--seed", seed_text, "Master seed (overrides the YAML's seed)")
+      ->type_name("UINT");
   run->add_option("--out", common.results_dir, "Results folder")->capture_default_str();
   run->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")->capture_default_str();
   run->add_flag("--quiet,-q", common.quiet, "No progress output");
@@ -61,7 +65,8 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   validate->add_option("overrides", overrides, "Config overrides key=value");
-  validate->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
+  validate->add_option("--seed", seed_text, "Master seed (overrides the YAML's seed)")
+      ->type_name("UINT");
   validate->add_option("--profile", common.profile, kProfileHelp);
   validate->footer(
       "Example:\n  cnclab validate experiments/friedman/friedman1_mlp.yaml trainer.momentum=0.9");
@@ -117,9 +122,12 @@ int main(int argc, char** argv) {
   sweep->add_option("--method", sweep_options.method, "grid or random");
   sweep->add_option("--objective", sweep_options.objective,
                     "METRIC[:min|max] to rank trials by (default: first metric)");
-  sweep->add_option("--sweep-seed", sweep_options.sweep_seed,
-                    "Seed of the random search (default: the experiment seed)");
-  sweep->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
+  sweep
+      ->add_option("--sweep-seed", sweep_seed_text,
+                   "Seed of the random search (default: the experiment seed)")
+      ->type_name("UINT");
+  sweep->add_option("--seed", seed_text, "Master seed (overrides the YAML's seed)")
+      ->type_name("UINT");
   sweep->add_option("--out", sweep_options.common.results_dir, "Results folder")
       ->capture_default_str();
   sweep->add_option("--data-dir", sweep_options.common.datasets_dir, "Dataset cache folder")
@@ -239,6 +247,13 @@ int main(int argc, char** argv) {
   profile_dir(tables, "--results", tables_options.profile, tables_options.results_dir);
 
   try {
+    const auto seed_option = [](const std::optional<std::string>& text,
+                                const char* option) -> std::optional<std::uint64_t> {
+      if (!text) return std::nullopt;
+      return cnclab::parse_seed(*text, option);
+    };
+    const std::optional<std::uint64_t> seed = seed_option(seed_text, "--seed");
+    sweep_options.sweep_seed = seed_option(sweep_seed_text, "--sweep-seed");
     if (*run) return cnclab::run_command(experiment, overrides, seed, common, std::cout, std::cerr);
     if (*validate) return cnclab::validate_command(experiment, overrides, seed, common, std::cout);
     if (*show) return cnclab::show_command(paths, std::cout);
