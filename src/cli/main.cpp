@@ -1,6 +1,7 @@
 // cnclab command line: CLI11 wiring only; the work is in the library.
 // Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -34,6 +35,17 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Show help for every subcommand");
   app.footer("Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.");
+
+  // Counts (--jobs, --repeats, --trials): digits only. CLI11 alone reads "-1"
+  // for an unsigned option as 2^64 - 1 (a sweep then plans forever).
+  const CLI::Validator count(
+      [](std::string& text) {
+        const bool digits = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+          return c >= '0' && c <= '9';
+        });
+        return digits ? std::string() : "expected a non-negative integer, got " + text;
+      },
+      "");
 
   cnclab::CommandOptions common;
   std::string experiment;
@@ -88,10 +100,12 @@ int main(int argc, char** argv) {
                       "Run every experiment even if its result is current");
   reproduce->add_flag("--regenerate", common.regenerate, "Regenerate datasets even when cached");
   reproduce->add_option("--profile", common.profile, kProfileHelp);
-  reproduce->add_option("--jobs,-j", common.jobs,
-                        "Experiments trained at once, each in its own process, once their "
-                        "upstream results are ready (default: the number of cores this process "
-                        "may use; 1 shows each run's progress)");
+  reproduce
+      ->add_option("--jobs,-j", common.jobs,
+                   "Experiments trained at once, each in its own process, once their "
+                   "upstream results are ready (default: the number of cores this process "
+                   "may use; 1 shows each run's progress)")
+      ->check(count);
   bool quick = false;
   reproduce->add_flag("--quick", quick,
                       "Same as --profile quick: fewer epochs and samples, same code paths "
@@ -111,14 +125,18 @@ int main(int argc, char** argv) {
   sweep->add_option("parameters", sweep_words,
                     "key=value overrides and swept keys: key=v1,v2,...  key=choice(a,b)  "
                     "key=int_range(lo,hi[,step])  key=uniform(lo,hi)  key=log_uniform(lo,hi)");
-  sweep->add_option("--jobs,-j", sweep_options.jobs,
-                    "Trials at once (default: the number of cores this process may use)");
+  sweep
+      ->add_option("--jobs,-j", sweep_options.jobs,
+                   "Trials at once (default: the number of cores this process may use)")
+      ->check(count);
   sweep->add_option("--shard", sweep_options.shard,
                     "K/N: run only shard K of N (trials K, K+N, ...), e.g. one per Slurm task");
   sweep->add_option("--dir", sweep_options.dir,
                     "Sweep folder (default: <out>/<name>/sweep-<plan hash>)");
-  sweep->add_option("--repeats", sweep_options.repeats, "Runs per point with derived seeds");
-  sweep->add_option("--trials", sweep_options.trials, "Random search: number of points");
+  sweep->add_option("--repeats", sweep_options.repeats, "Runs per point with derived seeds")
+      ->check(count);
+  sweep->add_option("--trials", sweep_options.trials, "Random search: number of points")
+      ->check(count);
   sweep->add_option("--method", sweep_options.method, "grid or random");
   sweep->add_option("--objective", sweep_options.objective,
                     "METRIC[:min|max] to rank trials by (default: first metric)");

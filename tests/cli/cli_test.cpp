@@ -148,6 +148,19 @@ TEST_F(Cli, BadSeedsAreUsageErrorsNamingTheValueAndRunNothing) {
   EXPECT_NE(r.out.find("\nseed: 18446744073709551615\n"), std::string::npos) << r.out;
 }
 
+// Counts too: CLI11 alone read "--repeats -1" as 2^64 - 1 repeats.
+TEST_F(Cli, NegativeOrFractionalCountsAreUsageErrors) {
+  for (const std::string& args :
+       {"sweep " + kExperiment + " trainer.epochs=1,2 --repeats -1",
+        "sweep " + kExperiment + " --trials 1.5",
+        "sweep " + kExperiment + " trainer.epochs=1,2 -j -1", std::string("reproduce --jobs -1")}) {
+    const Result r = cnclab(args);
+    EXPECT_EQ(r.code, 2) << args << r.err;
+    EXPECT_NE(r.err.find(": expected a non-negative integer, got "), std::string::npos) << r.err;
+  }
+  EXPECT_TRUE(outputs().empty());
+}
+
 // An experiment copied out of the repository finds the shared configs
 // through CNCLAB_CONFIG_PATH or the current directory's configs/, and says
 // where it looked when it cannot.
