@@ -1,6 +1,7 @@
 // cnclab command line: CLI11 wiring only; the work is in the library.
 // Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/rng.hpp"
 #include "cnclab/experiment/commands.hpp"
 #include "cnclab/experiment/compare.hpp"
 #include "cnclab/experiment/dataset_commands.hpp"
@@ -34,10 +36,23 @@ int main(int argc, char** argv) {
   app.set_help_all_flag("--help-all", "Show help for every subcommand");
   app.footer("Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.");
 
+  // Counts (--jobs, --repeats, --trials): digits only. CLI11 alone reads "-1"
+  // for an unsigned option as 2^64 - 1 (a sweep then plans forever).
+  const CLI::Validator count(
+      [](std::string& text) {
+        const bool digits = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+          return c >= '0' && c <= '9';
+        });
+        return digits ? std::string() : "expected a non-negative integer, got " + text;
+      },
+      "");
+
   cnclab::CommandOptions common;
   std::string experiment;
   std::vector<std::string> overrides;
-  std::optional<std::uint64_t> seed;
+  // Seeds are read as text and checked in the try block below: CLI11 would
+  // turn "-1" into 2^64 - 1, and its own errors do not take our error form.
+  std::optional<std::string> seed_text, sweep_seed_text;
 
   auto* run = app.add_subcommand("run", "Run one experiment and write its HDF5 result");
   run->add_option("experiment", experiment, "Experiment YAML file")
@@ -45,7 +60,8 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   run->add_option("overrides", overrides,
                   "Config overrides key=value, values typed as YAML (1e-4, true, [28, 20])");
-  run->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
+  run->add_option("--seed", seed_text, "Master seed (overrides the YAML's seed)")
+      ->type_name("UINT");
   run->add_option("--out", common.results_dir, "Results folder")->capture_default_str();
   run->add_option("--data-dir", common.datasets_dir, "Dataset cache folder")->capture_default_str();
   run->add_flag("--quiet,-q", common.quiet, "No progress output");
@@ -61,7 +77,8 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   validate->add_option("overrides", overrides, "Config overrides key=value");
-  validate->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
+  validate->add_option("--seed", seed_text, "Master seed (overrides the YAML's seed)")
+      ->type_name("UINT");
   validate->add_option("--profile", common.profile, kProfileHelp);
   validate->footer(
       "Example:\n  cnclab validate experiments/friedman/friedman1_mlp.yaml trainer.momentum=0.9");
@@ -83,10 +100,12 @@ int main(int argc, char** argv) {
                       "Run every experiment even if its result is current");
   reproduce->add_flag("--regenerate", common.regenerate, "Regenerate datasets even when cached");
   reproduce->add_option("--profile", common.profile, kProfileHelp);
-  reproduce->add_option("--jobs,-j", common.jobs,
-                        "Experiments trained at once, each in its own process, once their "
-                        "upstream results are ready (default: the number of cores this process "
-                        "may use; 1 shows each run's progress)");
+  reproduce
+      ->add_option("--jobs,-j", common.jobs,
+                   "Experiments trained at once, each in its own process, once their "
+                   "upstream results are ready (default: the number of cores this process "
+                   "may use; 1 shows each run's progress)")
+      ->check(count);
   bool quick = false;
   reproduce->add_flag("--quick", quick,
                       "Same as --profile quick: fewer epochs and samples, same code paths "
@@ -106,20 +125,27 @@ int main(int argc, char** argv) {
   sweep->add_option("parameters", sweep_words,
                     "key=value overrides and swept keys: key=v1,v2,...  key=choice(a,b)  "
                     "key=int_range(lo,hi[,step])  key=uniform(lo,hi)  key=log_uniform(lo,hi)");
-  sweep->add_option("--jobs,-j", sweep_options.jobs,
-                    "Trials at once (default: the number of cores this process may use)");
+  sweep
+      ->add_option("--jobs,-j", sweep_options.jobs,
+                   "Trials at once (default: the number of cores this process may use)")
+      ->check(count);
   sweep->add_option("--shard", sweep_options.shard,
                     "K/N: run only shard K of N (trials K, K+N, ...), e.g. one per Slurm task");
   sweep->add_option("--dir", sweep_options.dir,
                     "Sweep folder (default: <out>/<name>/sweep-<plan hash>)");
-  sweep->add_option("--repeats", sweep_options.repeats, "Runs per point with derived seeds");
-  sweep->add_option("--trials", sweep_options.trials, "Random search: number of points");
+  sweep->add_option("--repeats", sweep_options.repeats, "Runs per point with derived seeds")
+      ->check(count);
+  sweep->add_option("--trials", sweep_options.trials, "Random search: number of points")
+      ->check(count);
   sweep->add_option("--method", sweep_options.method, "grid or random");
   sweep->add_option("--objective", sweep_options.objective,
                     "METRIC[:min|max] to rank trials by (default: first metric)");
-  sweep->add_option("--sweep-seed", sweep_options.sweep_seed,
-                    "Seed of the random search (default: the experiment seed)");
-  sweep->add_option("--seed", seed, "Master seed (overrides the YAML's seed)");
+  sweep
+      ->add_option("--sweep-seed", sweep_seed_text,
+                   "Seed of the random search (default: the experiment seed)")
+      ->type_name("UINT");
+  sweep->add_option("--seed", seed_text, "Master seed (overrides the YAML's seed)")
+      ->type_name("UINT");
   sweep->add_option("--out", sweep_options.common.results_dir, "Results folder")
       ->capture_default_str();
   sweep->add_option("--data-dir", sweep_options.common.datasets_dir, "Dataset cache folder")
@@ -239,6 +265,13 @@ int main(int argc, char** argv) {
   profile_dir(tables, "--results", tables_options.profile, tables_options.results_dir);
 
   try {
+    const auto seed_option = [](const std::optional<std::string>& text,
+                                const char* option) -> std::optional<std::uint64_t> {
+      if (!text) return std::nullopt;
+      return cnclab::parse_seed(*text, option);
+    };
+    const std::optional<std::uint64_t> seed = seed_option(seed_text, "--seed");
+    sweep_options.sweep_seed = seed_option(sweep_seed_text, "--sweep-seed");
     if (*run) return cnclab::run_command(experiment, overrides, seed, common, std::cout, std::cerr);
     if (*validate) return cnclab::validate_command(experiment, overrides, seed, common, std::cout);
     if (*show) return cnclab::show_command(paths, std::cout);

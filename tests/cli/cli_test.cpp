@@ -2,8 +2,13 @@
 // nothing written on bad input, complete results read back by h5dump/h5diff
 // (independent tools from hdf5-tools).
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -134,6 +139,109 @@ TEST_F(Cli, MalformedYamlNamesPosition) {
   const auto file = write("bad.yaml", "name: x\nseed: [1, 2\n");
   expect_one_line_error(cnclab("validate " + file.string()), 2, file.string() + ":");
   EXPECT_NE(cnclab("validate " + file.string()).err.find("malformed YAML"), std::string::npos);
+}
+
+// --seed (run, validate, sweep) and --sweep-seed take what `seed:` in YAML
+// takes: 0 to 2^64 - 1. CLI11 alone read "-1" as 2^64 - 1.
+TEST_F(Cli, BadSeedsAreUsageErrorsNamingTheValueAndRunNothing) {
+  const std::string exp = " " + kExperiment + " trainer.epochs=1 dataset.options.samples=100 ";
+  for (const std::string command : {"run", "validate", "sweep"}) {
+    for (const std::string seed : {"-1", "1.5", "1e3", "seven", "18446744073709551616"}) {
+      const Result r = cnclab(command + exp + "--seed " + seed);
+      expect_one_line_error(r, 2, "cnclab: error: --seed " + seed + ": ");
+      EXPECT_NE(r.err.find(seed == "18446744073709551616" ? "integer too large"
+                                                          : "expected a non-negative integer"),
+                std::string::npos)
+          << r.err;
+    }
+  }
+  expect_one_line_error(cnclab("sweep" + exp + "trainer.epochs=1,2 --sweep-seed -1"), 2,
+                        "cnclab: error: --sweep-seed -1: expected a non-negative integer");
+  EXPECT_TRUE(outputs().empty());
+  // The largest seed is a seed like any other.
+  const Result r = cnclab("validate" + exp + "--seed 18446744073709551615");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\nseed: 18446744073709551615\n"), std::string::npos) << r.out;
+}
+
+// Counts too: CLI11 alone read "--repeats -1" as 2^64 - 1 repeats.
+TEST_F(Cli, NegativeOrFractionalCountsAreUsageErrors) {
+  for (const std::string& args :
+       {"sweep " + kExperiment + " trainer.epochs=1,2 --repeats -1",
+        "sweep " + kExperiment + " --trials 1.5",
+        "sweep " + kExperiment + " trainer.epochs=1,2 -j -1", std::string("reproduce --jobs -1")}) {
+    const Result r = cnclab(args);
+    EXPECT_EQ(r.code, 2) << args << r.err;
+    EXPECT_NE(r.err.find(": expected a non-negative integer, got "), std::string::npos) << r.err;
+  }
+  EXPECT_TRUE(outputs().empty());
+}
+
+// An experiment copied out of the repository finds the shared configs
+// through CNCLAB_CONFIG_PATH or the current directory's configs/, and says
+// where it looked when it cannot.
+TEST_F(Cli, CopiedExperimentFindsConfigsThroughTheConfigPathOrSaysWhereItLooked) {
+  fs::create_directories(dir_ / "studies");
+  fs::copy_file(kExperiment, dir_ / "studies/my.yaml");
+  const std::string trainer = "configs/trainers/sgdm_minibatch.yaml";
+  const Result missing = cnclab("validate studies/my.yaml");
+  expect_one_line_error(missing, 2,
+                        "studies/my.yaml:8:10: include " + trainer +
+                            ": not found; looked in: "
+                            "studies/configs/trainers/sgdm_minibatch.yaml (relative to the naming "
+                            "file)");
+  EXPECT_NE(missing.err.find((dir_ / trainer).string() + " (configs/ of the current directory)"),
+            std::string::npos)
+      << missing.err;
+  EXPECT_NE(missing.err.find("CNCLAB_CONFIG_PATH"), std::string::npos) << missing.err;
+
+  const std::string configs = CNCLAB_SOURCE_DIR "/configs";
+  const Result via_path = sh("CNCLAB_CONFIG_PATH=/nonexistent:" + configs + " " + kCnclab +
+                             " validate studies/my.yaml");
+  EXPECT_EQ(via_path.code, 0) << via_path.err;
+  EXPECT_NE(via_path.out.find("momentum: 0.9"), std::string::npos) << via_path.out;
+
+  fs::create_directory_symlink(configs, dir_ / "configs");
+  const Result via_cwd = cnclab("validate studies/my.yaml");
+  EXPECT_EQ(via_cwd.code, 0) << via_cwd.err;
+}
+
+// The host label partial names carry (atomic_file.hpp), worked out here
+// from gethostname; "" if it would need sanitising.
+std::string plain_host_label() {
+  char buffer[256] = {};
+  if (::gethostname(buffer, sizeof buffer - 1) != 0) return "";
+  std::string label(buffer);
+  label = label.substr(0, label.find('.'));
+  const bool plain = std::all_of(label.begin(), label.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-';
+  });
+  return plain ? label : "";
+}
+
+TEST_F(Cli, RunRemovesPartialFilesOfGoneWritersAndKeepsLiveOnes) {
+  const std::string host = plain_host_label();
+  if (host.empty()) GTEST_SKIP() << "host name needs sanitising";
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  if (::kill(child, 0) == 0 || errno != ESRCH) GTEST_SKIP() << "pid reused at once";
+  const std::string tag = "-0123456789abcdef";
+  const fs::path stale =
+      dir_ / ("results/friedman1_mlp/.old.h5.partial-" + host + "-" + std::to_string(child) + tag);
+  const fs::path live =
+      dir_ / ("datasets/.d.h5.partial-" + host + "-" + std::to_string(::getpid()) + tag);
+  for (const auto& p : {stale, live}) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << "partial";
+  }
+  const Result r = cnclab(quick());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(fs::exists(live));
+  EXPECT_EQ(r.err, "removed 1 partial file of interrupted writes (writer pid " +
+                       std::to_string(child) +
+                       " no longer running): " + stale.lexically_relative(dir_).string() + "\n");
 }
 
 TEST_F(Cli, CorruptResultGivenToShowFailsCleanly) {
@@ -269,7 +377,8 @@ TEST_F(Cli, DatasetGenerateRejectsBadConfigsAndWritesNothing) {
                         "points_per_line = 1");
   write("missing.yaml",
         "dataset:\n  generator: step_error\n  options:\n    surface: nowhere.yaml\n");
-  expect_one_line_error(cnclab("dataset generate missing.yaml"), 2, "nowhere.yaml: no such file");
+  expect_one_line_error(cnclab("dataset generate missing.yaml"), 2,
+                        "surface = nowhere.yaml: not found; looked in: nowhere.yaml");
   write("nodata.yaml", "name: x\n");
   expect_one_line_error(cnclab("dataset generate nodata.yaml"), 2, "dataset: is required");
   EXPECT_TRUE(outputs().empty());

@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "cnclab/core/error.hpp"
 #include "common/temp_dir.hpp"
@@ -136,6 +140,101 @@ TEST(Config, IncludeResolvesAgainstProjectConfigsFolder) {
   const auto exp = dir.write("experiments/deep/e.yaml", "include: [configs/trainers/sgdm.yaml]\n");
   auto doc = ConfigDocument::load(exp);
   EXPECT_DOUBLE_EQ(doc.root().section("trainer").get<double>("momentum", 0), 0.25);
+}
+
+// A search with explicit entries: the test's own, not the process's
+// environment or current directory.
+ConfigSearch search_in(std::vector<fs::path> config_path, fs::path current_dir = {}) {
+  ConfigSearch search;
+  search.config_path = std::move(config_path);
+  search.current_dir = std::move(current_dir);
+  return search;
+}
+
+double included_momentum(const fs::path& file, const ConfigSearch& search) {
+  return ConfigDocument::load(file, "", search)
+      .root()
+      .section("trainer")
+      .get<double>("momentum", -1);
+}
+
+TEST(ConfigInclude, SearchOrderIsFileFolderAncestorsConfigPathThenCurrentDirectory) {
+  TempDir dir;
+  // One candidate per place, each with its own value; removing the one found
+  // must reveal the next in the documented order.
+  const std::vector<fs::path> places = {
+      dir.write("proj/studies/configs/trainers/t.yaml", "trainer: {momentum: 0.1}\n"),
+      dir.write("proj/configs/trainers/t.yaml", "trainer: {momentum: 0.2}\n"),
+      dir.write("shared1/trainers/t.yaml", "trainer: {momentum: 0.3}\n"),
+      dir.write("shared2/trainers/t.yaml", "trainer: {momentum: 0.4}\n"),
+      dir.write("work/configs/trainers/t.yaml", "trainer: {momentum: 0.5}\n"),
+  };
+  const auto exp = dir.write("proj/studies/e.yaml", "include: configs/trainers/t.yaml\n");
+  const ConfigSearch search = search_in({dir / "shared1", dir / "shared2"}, dir / "work");
+  for (std::size_t i = 0; i < places.size(); ++i) {
+    EXPECT_DOUBLE_EQ(included_momentum(exp, search), 0.1 * static_cast<double>(i + 1)) << i;
+    fs::remove(places[i]);
+  }
+  const std::string msg = config_error([&] { ConfigDocument::load(exp, "", search); });
+  EXPECT_EQ(
+      msg.find(exp.string() + ":1:10: include configs/trainers/t.yaml: not found; looked in: "), 0u)
+      << msg;
+  // Every place, in order.
+  std::size_t at = 0;
+  for (const auto& place : places) {
+    const std::size_t next = msg.find(place.string(), at);
+    EXPECT_NE(next, std::string::npos) << place << " in " << msg;
+    if (next != std::string::npos) at = next;
+  }
+}
+
+TEST(ConfigInclude, AFileOutsideAnyProjectFindsSharedConfigsThroughTheConfigPath) {
+  TempDir dir;
+  dir.write("cnclab/configs/trainers/t.yaml", "include: configs/base.yaml\ntrainer: {epochs: 3}\n");
+  dir.write("cnclab/configs/base.yaml", "trainer: {momentum: 0.7}\n");
+  const auto exp = dir.write("home/studies/my.yaml", "include: configs/trainers/t.yaml\n");
+  const ConfigSearch search = search_in({dir / "cnclab/configs"});
+  const ConfigDocument doc = ConfigDocument::load(exp, "", search);
+  // The included file's own configs/ include resolves the same way.
+  EXPECT_DOUBLE_EQ(doc.root().section("trainer").get<double>("momentum", -1), 0.7);
+  EXPECT_EQ(doc.root().section("trainer").get<std::uint64_t>("epochs", 0), 3u);
+
+  // Without the path: the error says where it looked and how to add a place.
+  const std::string msg = config_error([&] { ConfigDocument::load(exp, "", search_in({})); });
+  EXPECT_NE(msg.find((dir / "home/studies/configs/trainers/t.yaml").string() +
+                     " (relative to the naming file)"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("CNCLAB_CONFIG_PATH"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("not set"), std::string::npos) << msg;
+}
+
+TEST(ConfigInclude, OnlyConfigsNamesAreSearchedBeyondTheFileFolder) {
+  TempDir dir;
+  dir.write("shared/trainers/t.yaml", "trainer: {momentum: 0.3}\n");
+  dir.write("work/configs/trainers/t.yaml", "trainer: {momentum: 0.5}\n");
+  const auto exp = dir.write("a/e.yaml", "include: [trainers/t.yaml]\n");
+  const std::string msg = config_error(
+      [&] { ConfigDocument::load(exp, "", search_in({dir / "shared"}, dir / "work")); });
+  EXPECT_NE(msg.find("include trainers/t.yaml: not found; looked in: " +
+                     (dir / "a/trainers/t.yaml").string() + " (relative to the naming file)"),
+            std::string::npos)
+      << msg;
+  EXPECT_EQ(msg.find((dir / "shared").string()), std::string::npos) << msg;
+  EXPECT_EQ(msg.find((dir / "work").string()), std::string::npos) << msg;
+}
+
+TEST(ConfigInclude, SearchFromEnvironmentSplitsTheConfigPathAndTakesTheCurrentDirectory) {
+  const char* old = std::getenv("CNCLAB_CONFIG_PATH");
+  const std::optional<std::string> saved = old ? std::optional<std::string>(old) : std::nullopt;
+  ::setenv("CNCLAB_CONFIG_PATH", "/a/configs::relative/configs:", 1);
+  const ConfigSearch search = ConfigSearch::from_environment();
+  EXPECT_EQ(search.config_path,
+            (std::vector<fs::path>{"/a/configs", "relative/configs"}));  // empty entries skipped
+  EXPECT_EQ(search.current_dir, fs::current_path());
+  ::unsetenv("CNCLAB_CONFIG_PATH");
+  EXPECT_TRUE(ConfigSearch::from_environment().config_path.empty());
+  if (saved) ::setenv("CNCLAB_CONFIG_PATH", saved->c_str(), 1);
 }
 
 TEST(Config, IncludeCycleDetected) {

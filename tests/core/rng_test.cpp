@@ -4,6 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
+
+#include "cnclab/core/error.hpp"
 
 namespace cnclab {
 namespace {
@@ -75,6 +79,42 @@ TEST(Rng, ShuffleIsAPermutation) {
   std::sort(sorted.begin(), sorted.end());
   for (int i = 0; i < 100; ++i) ASSERT_EQ(sorted[i], i);
   EXPECT_NE(v, sorted);
+}
+
+// The message of the ConfigError parse_seed throws, or "accepted".
+std::string seed_error(const std::string& text) {
+  try {
+    parse_seed(text, "--seed");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(ParseSeed, AcceptsEveryUnsigned64BitDecimal) {
+  EXPECT_EQ(parse_seed("0", "--seed"), 0u);
+  EXPECT_EQ(parse_seed("42", "--seed"), 42u);
+  EXPECT_EQ(parse_seed("+7", "--seed"), 7u);
+  EXPECT_EQ(parse_seed("007", "--seed"), 7u);
+  EXPECT_EQ(parse_seed("18446744073709551615", "--seed"),
+            std::numeric_limits<std::uint64_t>::max());
+}
+
+TEST(ParseSeed, RejectsNegativeNonIntegerAndOversizedValuesNamingOptionAndValue) {
+  // strtoull("-1") is 2^64 - 1: the value the command line used to run with.
+  EXPECT_EQ(seed_error("-1"),
+            "--seed -1: expected a non-negative integer (0 to 18446744073709551615)");
+  for (const char* text : {"-0", "1.5", "1e3", "0x10", "seven", " 1", "1 ", "+", "--1"}) {
+    EXPECT_EQ(
+        seed_error(text).find(std::string("--seed ") + text + ": expected a non-negative integer"),
+        0u)
+        << text;
+  }
+  EXPECT_EQ(seed_error(""),
+            "--seed '': expected a non-negative integer (0 to 18446744073709551615)");
+  EXPECT_EQ(seed_error("18446744073709551616"),
+            "--seed 18446744073709551616: integer too large (0 to 18446744073709551615)");
+  EXPECT_NE(seed_error("99999999999999999999999").find("integer too large"), std::string::npos);
 }
 
 }  // namespace

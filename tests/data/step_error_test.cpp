@@ -196,7 +196,8 @@ TEST(StepErrorGenerator, BadOptionsAreLocatedConfigErrors) {
   std::string k = small_config(kSurface1);
   k.replace(k.find("curve_points: 3"), 15, "curve_points: 0");
   EXPECT_NE(config_error(k).find("curve_points = 0"), std::string::npos);
-  EXPECT_NE(config_error(small_config("/nonexistent/surface.yaml")).find("no such file"),
+  EXPECT_NE(config_error(small_config("/nonexistent/surface.yaml"))
+                .find("not found; looked in: /nonexistent/surface.yaml"),
             std::string::npos);
   EXPECT_NE(config_error(small_config(kSurface1, "    speed: 3\n")).find("dataset.options.speed"),
             std::string::npos);

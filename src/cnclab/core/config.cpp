@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -149,7 +150,8 @@ struct Loaded {
   std::map<std::string, SourceLocation> locations;
 };
 
-Loaded load_recursive(const fs::path& file, std::vector<fs::path>& stack) {
+Loaded load_recursive(const fs::path& file, const ConfigSearch& search,
+                      std::vector<fs::path>& stack) {
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(file, ec);
   if (std::find(stack.begin(), stack.end(), canonical) != stack.end()) {
@@ -166,9 +168,10 @@ Loaded load_recursive(const fs::path& file, std::vector<fs::path>& stack) {
   index_tree(own, "", origin, own_locations, count);
 
   std::vector<std::string> includes;
+  std::string where;  // of the include key, for a name found nowhere
   if (own["include"]) {
     const YAML::Node inc = own["include"];
-    const std::string where = own_locations["include"].str();
+    where = own_locations["include"].str();
     if (inc.IsScalar()) {
       includes.push_back(inc.Scalar());
     } else if (inc.IsSequence()) {
@@ -187,12 +190,15 @@ Loaded load_recursive(const fs::path& file, std::vector<fs::path>& stack) {
   Loaded result{YAML::Node(YAML::NodeType::Map), {}};
   stack.push_back(canonical);
   for (const auto& name : includes) {
-    const fs::path path = resolve_config_path(file, name);
+    const ConfigLookup lookup = lookup_config_path(file, name, search);
+    if (!lookup.found) {
+      throw ConfigError(where + ": include " + name + ": " + lookup.not_found_message());
+    }
     // Never assign to a YAML::Node that already refers to a node: yaml-cpp's
     // operator= rewrites the referenced node instead of rebinding.
     Loaded inc = [&] {
       try {
-        return load_recursive(path, stack);
+        return load_recursive(*lookup.found, search, stack);
       } catch (const ConfigError& e) {
         throw ConfigError(std::string(e.what()) + " (included from " + origin + ")");
       }
@@ -235,17 +241,79 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 
 }  // namespace
 
-fs::path resolve_config_path(const fs::path& including_file, const std::string& name) {
-  const fs::path relative = including_file.parent_path() / name;
+ConfigSearch ConfigSearch::from_environment() {
+  ConfigSearch search;
+  if (const char* value = std::getenv("CNCLAB_CONFIG_PATH")) {
+    std::istringstream entries{std::string(value)};
+    for (std::string entry; std::getline(entries, entry, ':');) {
+      if (!entry.empty()) search.config_path.emplace_back(entry);
+    }
+  }
   std::error_code ec;
-  if (fs::exists(relative, ec)) return relative;
-  // "configs/..." against the nearest ancestor that has a configs/ folder.
-  for (fs::path dir = fs::absolute(including_file, ec).parent_path(); !dir.empty();
-       dir = dir.parent_path()) {
-    if (fs::is_directory(dir / "configs", ec) && fs::exists(dir / name, ec)) return dir / name;
+  search.current_dir = fs::current_path(ec);  // "" (none) if it was removed
+  return search;
+}
+
+ConfigLookup lookup_config_path(const fs::path& naming_file, const std::string& name,
+                                const ConfigSearch& search) {
+  ConfigLookup out;
+  std::error_code ec;
+  std::vector<fs::path> seen;  // absolute, normalised: each candidate once
+  const auto consider = [&](const fs::path& candidate, const std::string& why) {
+    fs::path key = fs::weakly_canonical(candidate, ec);
+    if (ec) key = fs::absolute(candidate, ec).lexically_normal();
+    if (std::find(seen.begin(), seen.end(), key) != seen.end()) return false;
+    seen.push_back(key);
+    out.tried.emplace_back(candidate, why);
+    if (fs::exists(candidate, ec)) out.found = candidate;
+    return out.found.has_value();
+  };
+  if (consider(naming_file.parent_path() / name, "relative to the naming file")) return out;
+
+  // Only "configs/REST" names a file in a configs folder.
+  const fs::path relative(name), configs("configs");
+  if (relative.is_absolute() || relative.empty() || *relative.begin() != configs) return out;
+  const fs::path rest = relative.lexically_relative(configs);
+  if (rest.empty() || rest == ".") return out;
+
+  bool any_ancestor = false;
+  const fs::path start = fs::absolute(naming_file, ec).parent_path();
+  for (fs::path dir = start; !dir.empty(); dir = dir.parent_path()) {
+    if (fs::is_directory(dir / configs, ec)) {
+      any_ancestor = true;
+      if (consider(dir / configs / rest, "configs/ of an enclosing folder")) return out;
+    }
     if (dir == dir.parent_path()) break;
   }
-  return relative;  // reported as missing by read_text
+  if (!any_ancestor) out.notes.push_back("no folder from " + start.string() + " up has configs/");
+
+  for (const auto& entry : search.config_path) {
+    if (consider(entry / rest, "CNCLAB_CONFIG_PATH")) return out;
+  }
+  if (search.config_path.empty()) {
+    out.notes.push_back(
+        "CNCLAB_CONFIG_PATH (':'-separated folders laid out like configs/) is not set");
+  }
+  if (!search.current_dir.empty() &&
+      consider(search.current_dir / configs / rest, "configs/ of the current directory")) {
+    return out;
+  }
+  return out;
+}
+
+std::string ConfigLookup::not_found_message() const {
+  std::string text = "not found; looked in:";
+  for (std::size_t i = 0; i < tried.size(); ++i) {
+    text += (i == 0 ? " " : ", ") + tried[i].first.string() + " (" + tried[i].second + ")";
+  }
+  for (const auto& note : notes) text += "; " + note;
+  return text;
+}
+
+fs::path resolve_config_path(const fs::path& naming_file, const std::string& name,
+                             const ConfigSearch& search) {
+  ConfigLookup lookup = lookup_config_path(naming_file, name, search);
+  return lookup.found ? *lookup.found : lookup.tried.front().first;
 }
 
 std::string node_text(const YAML::Node& node) {
@@ -258,9 +326,10 @@ std::string node_text(const YAML::Node& node) {
 
 // ---------------------------------------------------------------- document
 
-ConfigDocument ConfigDocument::load(const fs::path& file, const std::string& profile) {
+ConfigDocument ConfigDocument::load(const fs::path& file, const std::string& profile,
+                                    const ConfigSearch& search) {
   std::vector<fs::path> stack;
-  Loaded loaded = load_recursive(file, stack);
+  Loaded loaded = load_recursive(file, search, stack);
   ConfigDocument doc;
   doc.tree_ = loaded.tree;
   doc.origin_ = file.string();

@@ -15,6 +15,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cnclab/core/override.hpp"
@@ -24,11 +25,27 @@ namespace cnclab {
 
 class ConfigReader;
 
+// Where a config file named in another one (`include:`, a dataset's
+// `surface:` or `machine:`) is searched besides the naming file's folder; see
+// lookup_config_path. The loaders' default is from_environment(), evaluated
+// at each call (nothing is cached); tests pass one explicitly.
+struct ConfigSearch {
+  // CNCLAB_CONFIG_PATH: configs folders, each laid out like the repository's
+  // configs/ (trainers/, machines/, surfaces/, ...), searched in order.
+  std::vector<std::filesystem::path> config_path;
+  // The current directory: its configs/ is searched last; "" searches none.
+  std::filesystem::path current_dir;
+
+  // CNCLAB_CONFIG_PATH split at ':' (empty entries skipped) and the current
+  // directory of the process.
+  static ConfigSearch from_environment();
+};
+
 class ConfigDocument {
  public:
-  // Loads `file` and resolves `include:` (a path or list of paths, relative to
-  // the including file; "configs/..." also resolves against the nearest
-  // ancestor directory holding configs/). Included documents are merged in
+  // Loads `file` and resolves `include:` (a path or list of paths, found by
+  // lookup_config_path; a name that is found nowhere is a ConfigError listing
+  // every place searched). Included documents are merged in
   // order, then the including file's own keys: later keys override earlier
   // ones (maps merge key by key; scalars and lists are replaced).
   //
@@ -42,7 +59,8 @@ class ConfigDocument {
   // any command-line override). A profile the file does not define leaves it
   // unchanged; "" selects none. ConfigError when `profiles` is not a map of
   // maps or an entry is not a valid `key: value` override.
-  static ConfigDocument load(const std::filesystem::path& file, const std::string& profile = {});
+  static ConfigDocument load(const std::filesystem::path& file, const std::string& profile = {},
+                             const ConfigSearch& search = ConfigSearch::from_environment());
   // A document from YAML text (tests, fuzzing); `origin` names it in messages.
   static ConfigDocument parse(const std::string& yaml_text, const std::string& origin,
                               const std::string& profile = {});
@@ -123,12 +141,32 @@ class ConfigReader {
   std::string path_;
 };
 
-// A path named in a config file, resolved the way `include:` is: relative to
-// the naming file, else "configs/..." against the nearest ancestor directory
-// of that file holding configs/. A missing file is returned as the relative
-// path (the reader reports it).
-std::filesystem::path resolve_config_path(const std::filesystem::path& including_file,
-                                          const std::string& name);
+// Where a path named in a config file is, searched in this order:
+//  1. relative to the naming file's folder (an absolute name: only itself);
+//  2. a name "configs/REST" names a file in a configs folder, searched then in
+//     a. ANCESTOR/configs/REST for every folder from the naming file's upward
+//        that has a configs/ folder (the project or repository root),
+//     b. ENTRY/REST for every entry of search.config_path (CNCLAB_CONFIG_PATH),
+//     c. CWD/configs/REST for search.current_dir.
+// Other relative names are searched only next to the naming file.
+struct ConfigLookup {
+  std::optional<std::filesystem::path> found;  // the first existing candidate
+  // Every candidate, in search order, each with why it was tried ("relative
+  // to the naming file", "CNCLAB_CONFIG_PATH", ...).
+  std::vector<std::pair<std::filesystem::path, std::string>> tried;
+  // What else the message should say ("CNCLAB_CONFIG_PATH is not set", ...).
+  std::vector<std::string> notes;
+  // "not found; looked in: P1 (why), P2 (why), ...; NOTES" for an error.
+  std::string not_found_message() const;
+};
+ConfigLookup lookup_config_path(const std::filesystem::path& naming_file, const std::string& name,
+                                const ConfigSearch& search);
+
+// The file lookup_config_path finds, or, when none exists, the first
+// candidate (its reader reports it missing).
+std::filesystem::path resolve_config_path(
+    const std::filesystem::path& naming_file, const std::string& name,
+    const ConfigSearch& search = ConfigSearch::from_environment());
 
 // Flow-style one-line text of a node, for messages.
 std::string node_text(const YAML::Node& node);

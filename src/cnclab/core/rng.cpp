@@ -1,6 +1,11 @@
 #include "cnclab/core/rng.hpp"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <limits>
+
+#include "cnclab/core/error.hpp"
 
 namespace cnclab {
 namespace {
@@ -73,6 +78,25 @@ std::uint64_t Rng::below(std::uint64_t n) {
     }
   }
   return static_cast<std::uint64_t>(m >> 64);
+}
+
+std::uint64_t parse_seed(const std::string& text, const std::string& option) {
+  const auto fail = [&](const std::string& rule) {
+    throw ConfigError(option + " " + (text.empty() ? std::string("''") : text) + ": " + rule);
+  };
+  const std::string range = "0 to " + std::to_string(std::numeric_limits<std::uint64_t>::max());
+  const char* begin = text.data();
+  const char* end = text.data() + text.size();
+  if (begin != end && *begin == '+') ++begin;
+  // Digits only: "-1", " 1" and "1.5" all get the same rule.
+  if (begin == end || !std::all_of(begin, end, [](char c) { return c >= '0' && c <= '9'; })) {
+    fail("expected a non-negative integer (" + range + ")");
+  }
+  std::uint64_t value = 0;
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec == std::errc::result_out_of_range) fail("integer too large (" + range + ")");
+  if (ec != std::errc() || ptr != end) fail("expected a non-negative integer (" + range + ")");
+  return value;
 }
 
 }  // namespace cnclab

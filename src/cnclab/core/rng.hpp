@@ -9,6 +9,7 @@
 // numbers with any standard library.
 #include <array>
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -16,6 +17,12 @@ namespace cnclab {
 
 // Seed of the stream `name` under `master`: SplitMix64(master ^ FNV-1a(name)).
 std::uint64_t derive_seed(std::uint64_t master, std::string_view name);
+
+// A master seed given as text (the command line's --seed): decimal digits
+// only, optionally with a leading '+', in [0, 2^64 - 1]. Anything else, e.g.
+// "-1" (which strtoull would wrap to 2^64 - 1), "1.5", "1e3" or "", throws
+// ConfigError "<option> <text>: <rule>", the way `seed:` in YAML is rejected.
+std::uint64_t parse_seed(const std::string& text, const std::string& option);
 
 class Rng {
  public:

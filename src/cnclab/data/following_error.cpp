@@ -247,8 +247,13 @@ MachineOptions read_machine_option(const ConfigReader& r) {
   if (node.IsMap()) return read_machine(r.section("machine"));
   if (!node.IsScalar()) r.fail("machine", "expected a file name or a map");
   const SourceLocation where = r.location("machine");
-  const std::filesystem::path file = where.line > 0 ? resolve_config_path(where.file, node.Scalar())
-                                                    : std::filesystem::path(node.Scalar());
+  std::filesystem::path file(node.Scalar());
+  if (where.line > 0) {
+    const ConfigLookup lookup =
+        lookup_config_path(where.file, node.Scalar(), ConfigSearch::from_environment());
+    if (!lookup.found) r.fail("machine", lookup.not_found_message());
+    file = *lookup.found;
+  }
   try {
     return load_machine(file);
   } catch (const ConfigError& e) {

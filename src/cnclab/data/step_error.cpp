@@ -101,8 +101,13 @@ NurbsSurface read_surface(const ConfigReader& r) {
   // A command-line override has no file position: its path is relative to
   // the working directory.
   const SourceLocation where = r.location("surface");
-  const std::filesystem::path file = where.line > 0 ? resolve_config_path(where.file, node.Scalar())
-                                                    : std::filesystem::path(node.Scalar());
+  std::filesystem::path file(node.Scalar());
+  if (where.line > 0) {
+    const ConfigLookup lookup =
+        lookup_config_path(where.file, node.Scalar(), ConfigSearch::from_environment());
+    if (!lookup.found) r.fail("surface", lookup.not_found_message());
+    file = *lookup.found;
+  }
   ConfigDocument doc;
   try {
     doc = ConfigDocument::load(file);

@@ -53,6 +53,7 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
                 std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
                 std::ostream& log) {
   if (const auto job = job_of(experiment, overrides, seed, options, &log)) {
+    clean_stale_partials({options.results_dir, options.datasets_dir}, log);
     const JobReport report = job->first.run(experiment, job->second);
     if (!options.quiet && !report.report.empty()) out << report.report << "\n";
     out << report.name << ": " << report.action << " (" << report.why << ")";
@@ -63,6 +64,7 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
   }
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed, options.profile);
   for (const auto& note : loaded.notes) log << "note: " << note << "\n";
+  clean_stale_partials({options.results_dir, options.datasets_dir}, log);
   const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
   if (!outcome.ok && loaded.spec.may_diverge) {
     out << loaded.spec.name << ": " << outcome.message << " (allowed: may_diverge)\n"

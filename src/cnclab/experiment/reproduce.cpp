@@ -20,6 +20,7 @@
 #include "cnclab/experiment/tables/tables.hpp"
 #include "cnclab/experiment/trial_pool.hpp"
 #include "cnclab/experiment/upstream.hpp"
+#include "cnclab/io/atomic_file.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -300,6 +301,7 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
   }
   const std::vector<GraphNode> graph = load_graph(files, options.profile);
   GraphRun graph_run(graph, options, log);
+  clean_stale_partials({options.results_dir, options.datasets_dir}, log);
   const std::size_t parallel = options.jobs > 0 ? options.jobs : available_cores();
   if (!options.quiet) {
     log << "reproduce: " << graph.size() << " experiment(s) and " << jobs.size()

@@ -11,6 +11,7 @@
 #include "cnclab/experiment/sweep_summary.hpp"
 #include "cnclab/experiment/trial_pool.hpp"
 #include "cnclab/experiment/upstream.hpp"
+#include "cnclab/io/atomic_file.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -176,6 +177,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
       o.dir.empty() ? o.common.results_dir / plan.experiment / ("sweep-" + plan.hash().substr(0, 8))
                     : o.dir;
   store_plan(dir, plan);
+  clean_stale_partials({o.common.results_dir, dir, o.common.datasets_dir}, log);
 
   const SweepExecution ex = execute_sweep(plan, dir, exec, o.common.quiet ? nullptr : &log);
   const std::vector<TrialOutcome>& outcomes = ex.outcomes;

@@ -1,14 +1,20 @@
 #include "cnclab/io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cstring>
 #include <fstream>
+#include <limits>
+#include <ostream>
 #include <string_view>
+#include <utility>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
@@ -52,6 +58,8 @@ AtomicOutput::AtomicOutput(fs::path final_path) : final_(std::move(final_path)) 
     std::string name = ".";
     name += final_.filename().string();
     name += kPartialMarker;
+    name += partial_host_name();
+    name += "-";
     name += std::to_string(::getpid());
     name += "-";
     name += tag;
@@ -83,20 +91,136 @@ void AtomicOutput::commit() {
 }
 
 bool is_partial_path(const fs::path& path) {
-  // ".<name>.partial-<pid>-<16 hex digits>", <name> non-empty.
+  return partial_writer(path).has_value();
+}
+
+std::optional<PartialWriter> partial_writer(const fs::path& path) {
+  // ".<name>.partial-[<host>-]<pid>-<16 hex digits>", <name> non-empty.
   const std::string name = path.filename().string();
   const std::size_t marker = name.rfind(kPartialMarker);
   if (name.size() < 2 || name.front() != '.' || marker == std::string::npos || marker < 2) {
-    return false;
+    return std::nullopt;
   }
-  const std::string_view rest = std::string_view(name).substr(marker + std::strlen(kPartialMarker));
-  const std::size_t dash = rest.find('-');
-  if (dash == 0 || dash == std::string_view::npos) return false;
+  std::string_view rest = std::string_view(name).substr(marker + std::strlen(kPartialMarker));
+  constexpr std::size_t kTag = 16;
+  if (rest.size() < kTag + 2 || rest[rest.size() - kTag - 1] != '-') return std::nullopt;
+  const std::string_view tag = rest.substr(rest.size() - kTag);
+  rest.remove_suffix(kTag + 1);  // "[<host>-]<pid>"
+  const std::size_t dash = rest.rfind('-');
+  const std::string_view pid = dash == std::string_view::npos ? rest : rest.substr(dash + 1);
+  const std::string_view host = dash == std::string_view::npos ? "" : rest.substr(0, dash);
   const auto is_digit = [](char c) { return c >= '0' && c <= '9'; };
   const auto is_hex = [&](char c) { return is_digit(c) || (c >= 'a' && c <= 'f'); };
-  const std::string_view pid = rest.substr(0, dash), tag = rest.substr(dash + 1);
-  return std::all_of(pid.begin(), pid.end(), is_digit) && tag.size() == 16 &&
-         std::all_of(tag.begin(), tag.end(), is_hex);
+  const auto is_host = [&](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_';
+  };
+  PartialWriter writer;
+  if (!std::all_of(tag.begin(), tag.end(), is_hex) || pid.empty() ||
+      !std::all_of(pid.begin(), pid.end(), is_digit) ||
+      (dash != std::string_view::npos &&
+       (host.empty() || !std::all_of(host.begin(), host.end(), is_host)))) {
+    return std::nullopt;
+  }
+  const auto [end, ec] = std::from_chars(pid.data(), pid.data() + pid.size(), writer.pid);
+  if (ec != std::errc() || end != pid.data() + pid.size()) return std::nullopt;
+  writer.host = std::string(host);
+  return writer;
+}
+
+std::string partial_host_name() {
+  char buffer[256] = {};
+  if (::gethostname(buffer, sizeof buffer - 1) != 0) return "localhost";
+  std::string host(buffer);
+  host.erase(std::min(host.find('.'), host.size()));
+  for (char& c : host) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '_';
+  }
+  return host.empty() ? "localhost" : host;
+}
+
+PartialCleanup remove_stale_partials(const std::vector<fs::path>& folders,
+                                     const std::string& host) {
+  // Collected first, removed after: no removal while a folder is iterated.
+  std::vector<std::pair<fs::path, PartialWriter>> partials;
+  for (const auto& folder : folders) {
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) continue;
+    fs::recursive_directory_iterator it(folder, fs::directory_options::skip_permission_denied, ec);
+    for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      std::error_code type_ec;
+      if (!it->is_regular_file(type_ec)) continue;
+      if (auto writer = partial_writer(it->path())) partials.emplace_back(it->path(), *writer);
+    }
+  }
+  // A folder inside another one lists its files twice.
+  const auto key = [](const fs::path& p) {
+    std::error_code ec;
+    return fs::absolute(p, ec).lexically_normal();
+  };
+  std::sort(partials.begin(), partials.end(),
+            [&](const auto& a, const auto& b) { return key(a.first) < key(b.first); });
+  partials.erase(
+      std::unique(partials.begin(), partials.end(),
+                  [&](const auto& a, const auto& b) { return key(a.first) == key(b.first); }),
+      partials.end());
+
+  PartialCleanup out;
+  for (const auto& [path, writer] : partials) {
+    // pid 0 and -1 would address a process group or every process.
+    const bool checkable =
+        writer.host == host && writer.pid > 0 && writer.pid <= std::numeric_limits<pid_t>::max();
+    if (!checkable) {
+      out.unknown.push_back(path);
+      continue;
+    }
+    // Alive, or alive under another user (EPERM): its writer may still write.
+    if (::kill(static_cast<pid_t>(writer.pid), 0) == 0 || errno != ESRCH) continue;
+    std::error_code ec;
+    if (fs::remove(path, ec)) {
+      out.removed.push_back(path);
+      out.removed_pids.push_back(writer.pid);
+    }
+  }
+  std::sort(out.removed_pids.begin(), out.removed_pids.end());
+  out.removed_pids.erase(std::unique(out.removed_pids.begin(), out.removed_pids.end()),
+                         out.removed_pids.end());
+  return out;
+}
+
+std::string PartialCleanup::summary() const {
+  constexpr std::size_t kNamed = 3;  // paths named in the line; the rest counted
+  const auto paths = [](const std::vector<fs::path>& files) {
+    std::string text;
+    for (std::size_t i = 0; i < files.size() && i < kNamed; ++i) {
+      text += (i ? ", " : "") + files[i].string();
+    }
+    if (files.size() > kNamed) text += " and " + std::to_string(files.size() - kNamed) + " more";
+    return text;
+  };
+  const auto count = [](std::size_t n) {
+    return std::to_string(n) + (n == 1 ? " partial file" : " partial files");
+  };
+  std::string line;
+  if (!removed.empty()) {
+    std::string pids;
+    for (const long long pid : removed_pids)
+      pids += (pids.empty() ? "" : ", ") + std::to_string(pid);
+    line = "removed " + count(removed.size()) + " of interrupted writes (writer " +
+           (removed_pids.size() == 1 ? "pid " : "pids ") + pids +
+           " no longer running): " + paths(removed);
+  }
+  if (!unknown.empty()) {
+    line += (line.empty() ? "" : "; ") + std::string("kept ") + count(unknown.size()) +
+            " whose writer cannot be checked here (written on another host, or by an older "
+            "cnclab): " +
+            paths(unknown) + "; remove them once nothing writes there";
+  }
+  return line;
+}
+
+void clean_stale_partials(const std::vector<fs::path>& folders, std::ostream& log) {
+  const std::string line = remove_stale_partials(folders).summary();
+  if (!line.empty()) log << line << "\n";
 }
 
 void write_text_atomically(const std::filesystem::path& path, const std::string& text) {

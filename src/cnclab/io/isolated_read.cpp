@@ -22,12 +22,43 @@
 #endif
 #endif
 
+// Present only in sanitizer runtimes (weak: null otherwise). libFuzzer sets
+// it to record the current input as a crash when a sanitizer reports.
+extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__((weak));
+
 namespace cnclab {
 namespace {
 
 constexpr unsigned kChildSeconds = 60;  // a sane file reads in milliseconds
 constexpr int kExitIoError = 3;
 constexpr int kExitOtherError = 4;
+
+// A forked child inherits the parent's signal handlers. A fuzzer's (libFuzzer
+// records the current input as a crash finding, then exits) or a crash
+// reporter's would run on a libhdf5 crash in the child; a handler for
+// SIGALRM, or SIG_IGN, would defeat the time limit. The child's faults take
+// the default action instead, so the parent sees only a child killed by a
+// signal, which it reports as an IoError. SIGINT and SIGTERM keep the
+// parent's handling: an interrupted read is not a corrupt file.
+void restore_default_fault_handling() {
+  constexpr int kFaults[] = {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGTRAP, SIGSYS, SIGALRM};
+  struct sigaction action {};
+  action.sa_handler = SIG_DFL;
+  sigemptyset(&action.sa_mask);
+  sigset_t faults;
+  sigemptyset(&faults);
+  for (const int sig : kFaults) {
+    ::sigaction(sig, &action, nullptr);
+    sigaddset(&faults, sig);
+  }
+  ::sigprocmask(SIG_UNBLOCK, &faults, nullptr);
+  // The handlers' alternate stack (a sanitizer's or a fuzzer's) is theirs.
+  stack_t no_stack{};
+  no_stack.ss_flags = SS_DISABLE;
+  ::sigaltstack(&no_stack, nullptr);
+  // A sanitizer report in the child then just exits non-zero.
+  if (__sanitizer_set_death_callback != nullptr) __sanitizer_set_death_callback(nullptr);
+}
 
 [[noreturn]] void child(int fd, const std::function<void()>& read) {
   // Library diagnostics and sanitizer reports of the probe are not ours to print.
@@ -73,6 +104,7 @@ void probe_in_child(const std::filesystem::path& file, const std::function<void(
     throw IoError(file.string() + ": cannot fork to read safely: " + std::strerror(errno));
   }
   if (pid == 0) {
+    restore_default_fault_handling();
     ::close(fds[0]);
     child(fds[1], read);
   }
