@@ -5,7 +5,8 @@
 // time and the peak per-axis |v|, |a|, |j| of the 1 ms reference by forward
 // differences of its positions (first, second, third differences: positive
 // weighted averages of the true derivatives), divided by the limits.
-// Usage: cnclab_bench_motion_limits [CONTROL_POINTS [SEED]]   (default 1450 2002)
+// Usage: cnclab_bench_motion_limits [CONTROL_POINTS [SEED [MARGIN]]]   (default 1450 2002, the
+//        refinement's default margin)
 //        cnclab_bench_motion_limits --cusp   (the near-cusp Bézier of the tests)
 #include <algorithm>
 #include <array>
@@ -94,20 +95,22 @@ int main(int argc, char** argv) {
     std::printf("path: following_error generator's random NURBS, %zu control points, seed %ld\n",
                 o.control_points, seed);
   }
+  FeedratePlannerOptions refined = study.planner;
+  if (argc > 3) refined.refinement.margin = static_cast<std::size_t>(std::atol(argv[3]));
   FeedratePlannerOptions off = study.planner;
   off.refinement.max_rounds = 0;
   const Result before = plan(*path, off);
-  const Result after = plan(*path, study.planner);
+  const Result after = plan(*path, refined);
   std::printf("\n%-10s %12s %11s   %-13s   %-13s   %-13s %8s\n", "plan", "traversal", "planning",
               "|v|/V x y", "|a|/A x y", "|j|/J x y", "j > 1.005");
   print("unrefined", before);
   print("refined", after);
   const LimitRefinementSummary& s = after.profile.refinement;
   std::printf(
-      "\nrefinement: %d rounds, %zu intervals bisected, %zu local solves (%d Ipopt iterations), "
-      "%.2f s (checks and local solves); converged: %s\n",
-      s.rounds, s.bisected, s.local_solves, s.local_iterations, s.seconds,
-      s.converged ? "yes" : "no");
+      "\nrefinement (margin %zu): %d rounds, %zu intervals bisected, %zu local solves (%zu "
+      "widened, %d Ipopt iterations), %.2f s (checks and local solves); converged: %s\n",
+      refined.refinement.margin, s.rounds, s.bisected, s.local_solves, s.widened,
+      s.local_iterations, s.seconds, s.converged ? "yes" : "no");
   std::printf("checked peak ratio (9 instants per interval): %.4f before, %.4f after\n",
               s.initial.worst(), s.final.worst());
   std::printf("traversal-time cost: %+.4f %%  (%.4f s -> %.4f s)\n",

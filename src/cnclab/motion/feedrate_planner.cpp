@@ -53,6 +53,7 @@ void LimitRefinementOptions::validate() const {
     throw OptionError("max_rounds", std::to_string(max_rounds), "must be >= 0 (0 = check only)");
   }
   if (samples < 1) throw OptionError("samples", std::to_string(samples), "must be >= 1");
+  if (margin < 1) throw OptionError("margin", std::to_string(margin), "must be >= 1");
 }
 
 void FeedratePlannerOptions::validate() const {

@@ -40,6 +40,7 @@ struct LimitRatios {
 struct LimitRefinementSummary {
   int rounds = 0;                // rounds of bisection and local replanning run
   std::size_t local_solves = 0;  // local NLP windows solved, all rounds
+  std::size_t widened = 0;       // of them: solved again with the wide margin
   int local_iterations = 0;      // their Ipopt iterations, summed
   std::size_t bisected = 0;      // grid intervals split in two, all rounds
   double initial_time = 0.0;     // traversal time before refinement [s]

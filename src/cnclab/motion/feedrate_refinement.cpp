@@ -4,6 +4,7 @@
 #include <chrono>
 #include <sstream>
 
+#include "cnclab/core/error.hpp"
 #include "cnclab/motion/limit_check.hpp"
 
 namespace cnclab::feedrate_detail {
@@ -101,6 +102,27 @@ std::string describe(int round, const ScaledPlan& plan, const LocalWindow& w) {
   return m.str();
 }
 
+// Replans window w of the current plan with its intervals bisected and
+// splices the result (grid, nodes, solution, ratios) into the plan. Returns
+// the solve's Ipopt iterations; throws cnclab::Error if Ipopt fails.
+int replan(const PlanarPath& path, const FeedratePlannerOptions& options, const Scaling& scaling,
+           WindowSolver& solver, const LocalWindow& w, int round, ScaledPlan& plan,
+           std::vector<LimitRatios>& ratios) {
+  ScaledPlan local = bisected(path, options.limits, scaling, plan, w);
+  const std::size_t n = w.last;
+  const WindowSolution s =
+      solver.solve(local.nodes, {plan.x[4 * w.first], plan.x[4 * w.first + 1]}, local.x,
+                   {plan.x[4 * n], plan.x[4 * n + 1]}, describe(round, plan, w));
+  local.x = s.x;
+  const std::vector<LimitRatios> local_ratios = interval_limit_ratios(
+      path, to_profile(local, scaling), options.limits, options.refinement.samples);
+  splice(plan.grid, w.first, n - w.first + 1, local.grid);
+  splice(plan.nodes, w.first, n - w.first + 1, local.nodes);
+  splice(plan.x, 4 * w.first, 4 * (n - w.first) + 2, local.x);
+  splice(ratios, w.first, n - w.first, local_ratios);
+  return std::max(s.iterations, 0);
+}
+
 }  // namespace
 
 LimitRefinementSummary refine_limits(const PlanarPath& path, const FeedratePlannerOptions& options,
@@ -109,7 +131,8 @@ LimitRefinementSummary refine_limits(const PlanarPath& path, const FeedratePlann
   const auto t0 = std::chrono::steady_clock::now();
   const LimitRefinementOptions& o = options.refinement;
   const double bound = 1.0 + o.tolerance;
-  const std::size_t margin = options.window_intervals - options.commit_intervals;
+  // The planner's window overlap holds a full stop (validate()).
+  const std::size_t wide = options.window_intervals - options.commit_intervals;
   FeedrateProfile profile = to_profile(plan, scaling);
   std::vector<LimitRatios> ratios = interval_limit_ratios(path, profile, options.limits, o.samples);
   LimitRefinementSummary summary;
@@ -122,23 +145,25 @@ LimitRefinementSummary refine_limits(const PlanarPath& path, const FeedratePlann
     }
     if (violating.empty() || summary.rounds == o.max_rounds) break;
     summary.bisected += violating.size();
-    const std::vector<LocalWindow> windows = local_windows(violating, margin, ratios.size());
+    const std::vector<LocalWindow> windows = local_windows(violating, o.margin, ratios.size());
     // Last window first: splicing it leaves the indices of the earlier ones.
     for (auto w = windows.rbegin(); w != windows.rend(); ++w) {
-      ScaledPlan local = bisected(path, options.limits, scaling, plan, *w);
-      const std::size_t n = w->last;
-      const WindowSolution s =
-          solver.solve(local.nodes, {plan.x[4 * w->first], plan.x[4 * w->first + 1]}, local.x,
-                       {plan.x[4 * n], plan.x[4 * n + 1]}, describe(summary.rounds + 1, plan, *w));
-      local.x = s.x;
       ++summary.local_solves;
-      summary.local_iterations += std::max(s.iterations, 0);
-      const std::vector<LimitRatios> local_ratios =
-          interval_limit_ratios(path, to_profile(local, scaling), options.limits, o.samples);
-      splice(plan.grid, w->first, n - w->first + 1, local.grid);
-      splice(plan.nodes, w->first, n - w->first + 1, local.nodes);
-      splice(plan.x, 4 * w->first, 4 * (n - w->first) + 2, local.x);
-      splice(ratios, w->first, n - w->first, local_ratios);
+      try {
+        summary.local_iterations +=
+            replan(path, options, scaling, solver, *w, summary.rounds + 1, plan, ratios);
+      } catch (const Error&) {
+        // A margin too short to slow down in: widen to `wide` (room for a
+        // full stop) and solve again; a second failure propagates.
+        if (wide <= o.margin) throw;
+        LocalWindow widened = *w;
+        widened.first = w->first > wide - o.margin ? w->first - (wide - o.margin) : 0;
+        widened.last = std::min(w->last + (wide - o.margin), ratios.size());
+        ++summary.local_solves;
+        ++summary.widened;
+        summary.local_iterations +=
+            replan(path, options, scaling, solver, widened, summary.rounds + 1, plan, ratios);
+      }
     }
   }
   summary.final = peak_limit_ratios(ratios);
