@@ -1,5 +1,5 @@
 // The 1 ms reference differentiated numerically: every axis limit holds
-// within 1 % (issue 9), and the analytic derivatives agree with the
+// within 0.5 % (issues 9, 17), and the analytic derivatives agree with the
 // differences.
 #include "cnclab/motion/interpolator.hpp"
 
@@ -11,35 +11,18 @@
 
 #include "cnclab/motion/analytic_paths.hpp"
 #include "cnclab/motion/feedrate_planner.hpp"
+#include "difference_peaks.hpp"
 #include "planned_paths.hpp"
 
 namespace cnclab {
 namespace {
 
-constexpr double kLimitTolerance = 0.01;  // issue 9: limits respected within 1 %
+// Issue 17: the limits hold within 0.5 % on the 1 ms reference (the planner
+// refines its grid where they would not, feedrate_planner.hpp).
+constexpr double kLimitTolerance = 0.005;
 
-struct Peaks {
-  Vec2 v = Vec2::Zero(), a = Vec2::Zero(), j = Vec2::Zero();
-};
-
-// Central differences of the sampled positions (second-order accurate):
-//   v_k = (p_k+1 - p_k-1) / 2h,  a_k = (p_k+1 - 2 p_k + p_k-1) / h^2,
-//   j_k = (p_k+2 - 2 p_k+1 + 2 p_k-1 - p_k-2) / 2h^3.
-Peaks numerical_peaks(const ReferenceTrajectory& r) {
-  const Eigen::MatrixX2d& p = r.position;
-  const double h = r.period;
-  Peaks peaks;
-  for (Eigen::Index k = 2; k + 2 < r.samples(); ++k) {
-    const Vec2 v = (p.row(k + 1) - p.row(k - 1)).transpose() / (2 * h);
-    const Vec2 a = (p.row(k + 1) - 2 * p.row(k) + p.row(k - 1)).transpose() / (h * h);
-    const Vec2 j = (p.row(k + 2) - 2 * p.row(k + 1) + 2 * p.row(k - 1) - p.row(k - 2)).transpose() /
-                   (2 * h * h * h);
-    peaks.v = peaks.v.cwiseMax(v.cwiseAbs());
-    peaks.a = peaks.a.cwiseMax(a.cwiseAbs());
-    peaks.j = peaks.j.cwiseMax(j.cwiseAbs());
-  }
-  return peaks;
-}
+using testing::difference_peaks;
+using testing::DifferencePeaks;
 
 TEST(Interpolator, NumericalDerivativesRespectEveryLimit) {
   const PlanarLimits limits;
@@ -47,9 +30,9 @@ TEST(Interpolator, NumericalDerivativesRespectEveryLimit) {
     const testing::PlannedPath& planned = testing::planned_path(name);
     const PlanarPath* path = planned.path.get();
     const ReferenceTrajectory r = interpolate(*path, planned.profile, 1e-3);
-    const Peaks peaks = numerical_peaks(r);
+    const DifferencePeaks peaks = difference_peaks(r.position, r.period);
     std::printf("%-12s peak |v| %6.1f %6.1f  |a| %7.1f %7.1f  |j| %8.0f %8.0f  (%ld samples)\n",
-                name, peaks.v.x(), peaks.v.y(), peaks.a.x(), peaks.a.y(), peaks.j.x(), peaks.j.y(),
+                name, peaks.v[0], peaks.v[1], peaks.a[0], peaks.a[1], peaks.j[0], peaks.j[1],
                 static_cast<long>(r.samples()));
     for (int i = 0; i < 2; ++i) {
       EXPECT_LE(peaks.v[i], limits.axes[i].velocity * (1 + kLimitTolerance));
@@ -89,9 +72,9 @@ TEST(Interpolator, DifferentLimitsPerAxis) {
   options.limits.axes[1] = {150.0, 1000.0, 25000.0};
   const ReferenceTrajectory r =
       interpolate(*bezier.path, plan_feedrate(*bezier.path, options), 1e-3);
-  const Peaks peaks = numerical_peaks(r);
-  std::printf("y at half limits: peak |v| %.1f %.1f  |a| %.0f %.0f  |j| %.0f %.0f\n", peaks.v.x(),
-              peaks.v.y(), peaks.a.x(), peaks.a.y(), peaks.j.x(), peaks.j.y());
+  const DifferencePeaks peaks = difference_peaks(r.position, r.period);
+  std::printf("y at half limits: peak |v| %.1f %.1f  |a| %.0f %.0f  |j| %.0f %.0f\n", peaks.v[0],
+              peaks.v[1], peaks.a[0], peaks.a[1], peaks.j[0], peaks.j[1]);
   for (int i = 0; i < 2; ++i) {
     const AxisLimits& L = options.limits.axes[i];
     EXPECT_LE(peaks.v[i], L.velocity * (1 + kLimitTolerance));
@@ -99,7 +82,7 @@ TEST(Interpolator, DifferentLimitsPerAxis) {
     EXPECT_LE(peaks.j[i], L.jerk * (1 + kLimitTolerance));
   }
   // The y limits bind somewhere (within 5 %), so the test is not vacuous.
-  EXPECT_GT(std::max({peaks.v.y() / 150.0, peaks.a.y() / 1000.0, peaks.j.y() / 25000.0}), 0.95);
+  EXPECT_GT(std::max({peaks.v[1] / 150.0, peaks.a[1] / 1000.0, peaks.j[1] / 25000.0}), 0.95);
 }
 
 }  // namespace

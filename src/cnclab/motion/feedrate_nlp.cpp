@@ -36,8 +36,8 @@ double velocity_bound(const NodeCoefficients& c) {
 }  // namespace
 
 FeedrateNlp::FeedrateNlp(std::vector<NodeCoefficients> nodes, WindowState start,
-                         std::vector<double> guess)
-    : nodes_(std::move(nodes)), start_(start), guess_(std::move(guess)) {}
+                         std::vector<double> guess, WindowState end)
+    : nodes_(std::move(nodes)), start_(start), guess_(std::move(guess)), end_(end) {}
 
 bool FeedrateNlp::get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac_g,
                                Ipopt::Index& nnz_h_lag, IndexStyleEnum& index_style) {
@@ -66,11 +66,11 @@ bool FeedrateNlp::get_bounds_info(Ipopt::Index n, Ipopt::Number* x_l, Ipopt::Num
     x_u[j_index(k)] = kInfinity;
   }
   // Boundary states: the start is matched to the previous window (rest for
-  // the first), the end is rest.
+  // the first), the end is rest (or the given state, see the constructor).
   x_l[v_index(0)] = x_u[v_index(0)] = start_.v;
   x_l[a_index(0)] = x_u[a_index(0)] = start_.a;
-  x_l[v_index(N)] = x_u[v_index(N)] = 0.0;
-  x_l[a_index(N)] = x_u[a_index(N)] = 0.0;
+  x_l[v_index(N)] = x_u[v_index(N)] = end_.v;
+  x_l[a_index(N)] = x_u[a_index(N)] = end_.a;
   for (int r = 0; r < 3 * N; ++r) g_l[r] = g_u[r] = 0.0;
   for (int r = 3 * N; r < m; ++r) {
     g_l[r] = -1.0;

@@ -42,9 +42,11 @@ struct WindowState {
 
 class FeedrateNlp final : public Ipopt::TNLP {
  public:
-  // `guess` holds 4N+2 values in the layout above. The window starts at
-  // `start` and ends at rest.
-  FeedrateNlp(std::vector<NodeCoefficients> nodes, WindowState start, std::vector<double> guess);
+  // `guess` holds 4N+2 values in the layout above. The window starts in
+  // state `start` and ends in state `end` (rest for the planner's windows; the
+  // current plan's state there for the limit refinement's local windows).
+  FeedrateNlp(std::vector<NodeCoefficients> nodes, WindowState start, std::vector<double> guess,
+              WindowState end = {});
 
   const std::vector<double>& solution() const { return solution_; }
 
@@ -85,6 +87,7 @@ class FeedrateNlp final : public Ipopt::TNLP {
   std::vector<NodeCoefficients> nodes_;
   WindowState start_;
   std::vector<double> guess_;
+  WindowState end_;
   std::vector<double> solution_;
 };
 

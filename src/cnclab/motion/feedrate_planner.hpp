@@ -20,6 +20,15 @@
 // at the last kept node. The overlap must exceed the braking distance
 // (40 mm at seed 002's limits, see validate()) for the rest
 // condition at a window's end not to slow the kept part.
+//
+// Limit refinement: the limits hold at the grid nodes, but between nodes the
+// exact cubic motion follows the path geometry and can exceed them (on seed
+// 002's random NURBS path at a 1 mm grid: the axis jerk by up to 4.2 %). After
+// the windows, every interval is checked (limit_check.hpp); intervals
+// exceeding a limit by more than the tolerance are bisected, and a local
+// window around them (refinement.margin intervals on each side) is replanned
+// between the current plan's states at its ends. Rounds repeat until every interval holds
+// (the summary in FeedrateProfile::refinement says how it went).
 #include <cstddef>
 
 #include "cnclab/motion/axis_limits.hpp"
@@ -28,12 +37,36 @@
 
 namespace cnclab {
 
+// The check and refinement after planning (see above and docs/motion.md).
+struct LimitRefinementOptions {
+  // Allowed excess: every checked |q'_i| / V_i, |q''_i| / A_i, |q'''_i| / J_i
+  // <= 1 + tolerance. In (0, 0.5].
+  double tolerance = 0.005;
+  // Rounds of bisection and local replanning, >= 0; 0 = check only (the plan
+  // is unchanged, the summary still reports the peak ratios). Each round
+  // cuts an interval's excess to about a quarter (it scales with the
+  // interval's duration squared); the seed 002 study's path needs 4.
+  int max_rounds = 10;
+  // Instants checked per interval: samples + 1, equally spaced in time, both
+  // ends included. >= 1.
+  int samples = 8;
+  // Grid intervals on each side of an exceeding one replanned with it, >= 1.
+  // The default, the planner's window overlap, holds a full stop, so the
+  // local problem is feasible. A smaller margin is tried first and, if Ipopt
+  // fails on it, widened to window_intervals - commit_intervals and solved
+  // again; measured on the study path, 40 needed 5 such retries (failed
+  // solves are slow) and cost more CPU time than 60.
+  std::size_t margin = 60;
+
+  void validate() const;  // OptionError naming the field
+};
+
 struct FeedratePlannerOptions {
   PlanarLimits limits;  // per-axis v, a, j (seed 002: 300, 2000, 50000)
   // Arc length between grid nodes [mm]. Limits are imposed at the nodes;
-  // between nodes the exact cubic motion follows the path geometry, so a
-  // finer grid tightens the limits there (the interpolator test finds them
-  // within 1 % at 1 mm; 0.5 mm halves the excess and doubles the cost).
+  // between nodes the exact cubic motion follows the path geometry and may
+  // exceed them by a few % at 1 mm; `refinement` bisects the grid where it
+  // does, which costs far less than a uniformly finer grid.
   double grid_spacing = 1.0;
   // Near the rest states at both path ends the jerk-limited motion starts as
   // s = J t^3 / 6: the first A^3 / (6 J^2) = 0.53 mm (seed 002's limits) are
@@ -51,16 +84,19 @@ struct FeedratePlannerOptions {
   // 33.4 s against 39.5 s, 36 against 34 Ipopt iterations per window, the
   // same 53.09 s traversal time; scripts/bench_motion 20 WINDOW COMMIT).
   std::size_t commit_intervals = 660;
-  double tolerance = 1e-8;       // Ipopt `tol` (scaled NLP, see feedrate_nlp.hpp)
-  int max_iterations = 500;      // Ipopt `max_iter` per window
-  RegularityOptions regularity;  // cusp check before planning
+  double tolerance = 1e-8;            // Ipopt `tol` (scaled NLP, see feedrate_nlp.hpp)
+  int max_iterations = 500;           // Ipopt `max_iter` per window
+  RegularityOptions regularity;       // cusp check before planning
+  LimitRefinementOptions refinement;  // limits checked and enforced between nodes
 
   void validate() const;
 };
 
 // Throws OptionError for bad options, cnclab::Error for a path with a cusp,
-// and cnclab::Error naming the window, its nodes, its parameter range and
-// Ipopt's status when a window's solve fails.
+// and cnclab::Error naming the window (or the refinement round and local
+// window), its nodes, its parameter range and Ipopt's status when a solve
+// fails. A refinement that has not converged after max_rounds is a result,
+// not an error: profile.refinement.converged is false.
 FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptions& options = {});
 
 }  // namespace cnclab

@@ -4,6 +4,18 @@
 
 namespace cnclab {
 
+double LimitRatios::worst() const {
+  return std::max({velocity[0], velocity[1], acceleration[0], acceleration[1], jerk[0], jerk[1]});
+}
+
+void LimitRatios::include(const LimitRatios& o) {
+  for (int i = 0; i < 2; ++i) {
+    velocity[i] = std::max(velocity[i], o.velocity[i]);
+    acceleration[i] = std::max(acceleration[i], o.acceleration[i]);
+    jerk[i] = std::max(jerk[i], o.jerk[i]);
+  }
+}
+
 ParameterState FeedrateProfile::at(double time) const {
   const double T = total_time();
   const double tc = std::clamp(time, 0.0, T);
@@ -11,7 +23,11 @@ ParameterState FeedrateProfile::at(double time) const {
   auto it = std::upper_bound(t.begin(), t.end(), tc);
   std::size_t k = static_cast<std::size_t>(std::distance(t.begin(), it));
   k = std::clamp<std::size_t>(k, 1, t.size() - 1) - 1;
-  const double tau = tc - t[k], j = uddd[k];
+  return in_interval(k, tc - t[k]);
+}
+
+ParameterState FeedrateProfile::in_interval(std::size_t k, double tau) const {
+  const double j = uddd[k];
   ParameterState s;
   s.u = u[k] + ud[k] * tau + udd[k] * tau * tau / 2 + j * tau * tau * tau / 6;
   s.ud = ud[k] + udd[k] * tau + j * tau * tau / 2;

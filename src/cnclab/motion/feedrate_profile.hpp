@@ -2,6 +2,7 @@
 // A planned feedrate: the path parameter u(t) as a piecewise cubic in time
 // (constant d3u/dt3 on each interval between grid nodes), continuous in u,
 // du/dt and d2u/dt2 to the solver tolerance.
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -23,17 +24,46 @@ struct WindowRecord {
   double seconds = 0.0;                       // wall time of the solve
 };
 
+// Peak |axis derivative| / axis limit, per axis [0] = x, [1] = y.
+struct LimitRatios {
+  std::array<double, 2> velocity{}, acceleration{}, jerk{};
+
+  double worst() const;                    // largest of the six
+  void include(const LimitRatios& other);  // elementwise max
+};
+
+// The limit refinement after planning (feedrate_planner.hpp,
+// LimitRefinementOptions): between grid nodes the exact cubic motion can
+// exceed the limits imposed at the nodes; the planner checks the plan between
+// nodes, bisects the grid intervals that exceed a limit and replans local
+// windows around them until every ratio is within 1 + tolerance.
+struct LimitRefinementSummary {
+  int rounds = 0;                // rounds of bisection and local replanning run
+  std::size_t local_solves = 0;  // local NLP windows solved, all rounds
+  std::size_t widened = 0;       // of them: solved again with the wide margin
+  int local_iterations = 0;      // their Ipopt iterations, summed
+  std::size_t bisected = 0;      // grid intervals split in two, all rounds
+  double initial_time = 0.0;     // traversal time before refinement [s]
+  LimitRatios initial, final;    // peak ratios before / after refinement
+  bool converged = false;        // final.worst() <= 1 + tolerance
+  double seconds = 0.0;          // wall time of checks and local solves
+};
+
 struct FeedrateProfile {
   // Grid nodes 0..N: parameter, time [s], du/dt, d2u/dt2.
   std::vector<double> u, t, ud, udd;
   // Intervals 0..N-1: constant d3u/dt3 [1/s^3]; duration = t[k+1] - t[k].
   std::vector<double> uddd;
   std::vector<WindowRecord> windows;
+  LimitRefinementSummary refinement;
 
   double total_time() const { return t.empty() ? 0.0 : t.back(); }
+  std::size_t intervals() const { return uddd.size(); }
   // State at time `time` (clamped to [0, total_time()]), from the cubic of
   // the interval holding it, evaluated from the interval's start node.
   ParameterState at(double time) const;
+  // State `tau` seconds after node k, on interval k's cubic (k < intervals()).
+  ParameterState in_interval(std::size_t k, double tau) const;
 };
 
 }  // namespace cnclab

@@ -10,6 +10,7 @@
 #include "cnclab/motion/feedrate_planner.hpp"
 #include "cnclab/motion/feedrate_profile.hpp"
 #include "cnclab/motion/interpolator.hpp"
+#include "cnclab/motion/limit_check.hpp"
 #include "cnclab/motion/machine.hpp"
 #include "cnclab/motion/path_grid.hpp"
 #include "cnclab/motion/planar_path.hpp"
