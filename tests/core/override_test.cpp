@@ -33,5 +33,26 @@ TEST(Override, MessageNamesTheOverride) {
   }
 }
 
+// Issue 22 item 6: `model.hidden=[16, 8]` unquoted reaches us as
+// `model.hidden=[16,`; the message says the shell split it.
+TEST(Override, UnclosedBracketSuggestsQuoting) {
+  const auto message = [](const char* text) {
+    try {
+      parse_override(text);
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("model.hidden=[16,")
+                .find("the shell may have split the word at a space: "
+                      "quote it, e.g. 'model.hidden=[16, ...'"),
+            std::string::npos)
+      << message("model.hidden=[16,");
+  EXPECT_NE(message("trainer={type: lm,").find("quote it"), std::string::npos);
+  // Balanced but invalid: no such hint.
+  EXPECT_EQ(message("a=[1, ]]").find("quote it"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace cnclab

@@ -73,6 +73,23 @@ TEST(Spec, DatasetGeneratorModelAndTrainerTypeAreRequired) {
             std::string::npos);
 }
 
+// Issue 22 item 6: every enumerated value gets "did you mean".
+TEST(Spec, MisspeltEnumeratedValuesGetDidYouMean) {
+  EXPECT_NE(error_of(kMinimal, {"metrics=[mse,rsme]"})
+                .find("unknown metric 'rsme' (did you mean 'rmse'?)"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"model.hidden_activation=tahn"}).find("(did you mean 'tanh'?)"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"trainer.type=trainbrr"}).find("(did you mean 'trainbr'?)"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"normalisation.inputs=minmx"}).find("(did you mean 'minmax'?)"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"dataset.generator=friedman"}).find("(did you mean 'friedman1'?)"),
+            std::string::npos);
+  // Far from every name: no guess.
+  EXPECT_EQ(error_of(kMinimal, {"trainer.type=adam"}).find("did you mean"), std::string::npos);
+}
+
 TEST(Spec, OutOfRangeValuesNameKeyValueAndLocation) {
   EXPECT_NE(error_of(kNoTrainer + "trainer:\n  type: sgdm\n  momentum: 1.5\n")
                 .find("e.yaml:7:13: trainer.momentum = 1.5"),

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/suggest.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -224,21 +225,6 @@ bool is_plain_scalar(const YAML::Node& n) {
   return n.IsScalar() && n.Tag() != "!";
 }
 
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
 }  // namespace
 
 ConfigSearch ConfigSearch::from_environment() {
@@ -444,8 +430,7 @@ void ConfigDocument::check_all_consumed() const {
       if (known.count(dotted + "/*")) continue;  // consumed whole (raw)
       if (!known.count(dotted)) {
         // Suggest the closest key the readers asked for at this level.
-        std::string best;
-        std::size_t best_distance = 3;  // suggest only near misses
+        std::vector<std::string> here;
         std::string allowed;
         const std::string parent = prefix.empty() ? "" : prefix + ".";
         for (const auto& k : known) {
@@ -456,11 +441,10 @@ void ConfigDocument::check_all_consumed() const {
             continue;
           }
           allowed += (allowed.empty() ? "" : ", ") + rest;
-          const std::size_t d = edit_distance(rest, it->first.Scalar());
-          if (d < best_distance) best_distance = d, best = rest;
+          here.push_back(rest);
         }
-        std::string msg = location(dotted).str() + ": " + dotted + ": unknown key";
-        if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+        std::string msg = location(dotted).str() + ": " + dotted + ": unknown key" +
+                          did_you_mean(it->first.Scalar(), here);
         if (!allowed.empty()) msg += "; allowed here: " + allowed;
         throw ConfigError(msg);
       }

@@ -31,6 +31,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/core/suggest.hpp"
 
 namespace cnclab {
 
@@ -64,15 +65,23 @@ struct Rule {
 };
 
 // What a field holds, for the schema and the key tables.
-enum class FieldKind { number, integer, boolean, string, number_list, integer_list, string_list,
-                       section };
+enum class FieldKind {
+  number,
+  integer,
+  boolean,
+  string,
+  number_list,
+  integer_list,
+  string_list,
+  section
+};
 
 // A declaration without its struct: what the schema and docs need.
 struct FieldInfo {
   std::string key, doc;
   FieldKind kind = FieldKind::number;
   Rule rule;
-  YAML::Node default_value;  // the default as YAML (sections: the map)
+  YAML::Node default_value;         // the default as YAML (sections: the map)
   std::vector<FieldInfo> children;  // section
 };
 
@@ -80,13 +89,20 @@ namespace field_detail {
 
 template <class T>
 constexpr FieldKind kind_of() {
-  if constexpr (std::is_same_v<T, bool>) return FieldKind::boolean;
-  else if constexpr (std::is_same_v<T, double>) return FieldKind::number;
-  else if constexpr (std::is_integral_v<T>) return FieldKind::integer;
-  else if constexpr (std::is_same_v<T, std::string>) return FieldKind::string;
-  else if constexpr (std::is_same_v<T, std::vector<double>>) return FieldKind::number_list;
-  else if constexpr (std::is_same_v<T, std::vector<std::string>>) return FieldKind::string_list;
-  else return FieldKind::integer_list;  // std::vector<unsigned integral>
+  if constexpr (std::is_same_v<T, bool>)
+    return FieldKind::boolean;
+  else if constexpr (std::is_same_v<T, double>)
+    return FieldKind::number;
+  else if constexpr (std::is_integral_v<T>)
+    return FieldKind::integer;
+  else if constexpr (std::is_same_v<T, std::string>)
+    return FieldKind::string;
+  else if constexpr (std::is_same_v<T, std::vector<double>>)
+    return FieldKind::number_list;
+  else if constexpr (std::is_same_v<T, std::vector<std::string>>)
+    return FieldKind::string_list;
+  else
+    return FieldKind::integer_list;  // std::vector<unsigned integral>
 }
 
 // The value as YAML: reals as their shortest round-trip text.
@@ -119,10 +135,10 @@ void check(const std::string& key, const T& v, const Rule& r) {
       throw OptionError(key, node_text(to_node(v)), r.text(integer));
     }
   } else if constexpr (std::is_same_v<T, std::string>) {
-    if (!r.holds(v)) throw OptionError(key, v, r.text(false));
+    if (!r.holds(v)) throw OptionError(key, v, r.text(false) + did_you_mean(v, r.choices));
   } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
     for (const auto& x : v) {
-      if (!r.holds(x)) throw OptionError(key, x, r.text(false));
+      if (!r.holds(x)) throw OptionError(key, x, r.text(false) + did_you_mean(x, r.choices));
     }
   } else if constexpr (std::is_same_v<T, std::vector<double>>) {
     for (double x : v) {

@@ -1,5 +1,8 @@
 #include "cnclab/core/override.hpp"
 
+#include <algorithm>
+#include <string>
+
 #include "cnclab/core/error.hpp"
 
 namespace cnclab {
@@ -12,6 +15,16 @@ bool is_key_char(char c) {
 
 [[noreturn]] void fail(std::string_view text, const std::string& why) {
   throw ConfigError("override '" + std::string(text) + "': " + why);
+}
+
+// A value with more '[' or '{' than closing ones was most likely cut at a
+// space by the shell (`model.hidden=[16, 8]` unquoted arrives as
+// `model.hidden=[16,`): say so.
+std::string shell_split_hint(std::string_view text, std::string_view value) {
+  const auto count = [&](char c) { return std::count(value.begin(), value.end(), c); };
+  if (count('[') <= count(']') && count('{') <= count('}')) return "";
+  return " (the shell may have split the word at a space: quote it, e.g. '" + std::string(text) +
+         " ...')";
 }
 
 }  // namespace
@@ -52,7 +65,7 @@ Override parse_override(std::string_view text) {
   try {
     result.value = YAML::Load(std::string(value));
   } catch (const YAML::Exception& e) {
-    fail(text, "value is not valid YAML: " + e.msg);
+    fail(text, "value is not valid YAML: " + e.msg + shell_split_hint(text, value));
   }
   if (!result.value.IsDefined() || result.value.IsNull()) {
     // "~" or "null": an explicit null is not a value any option accepts.

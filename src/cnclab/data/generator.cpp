@@ -1,5 +1,6 @@
 #include "cnclab/data/generator.hpp"
 
+#include "cnclab/core/suggest.hpp"
 #include "cnclab/data/following_error.hpp"
 #include "cnclab/data/friedman1.hpp"
 #include "cnclab/data/ik_samples.hpp"
@@ -25,7 +26,11 @@ std::vector<GeneratorEntry> builtin_generators() {
 
 std::shared_ptr<const DatasetGenerator> read_generator(const ConfigReader& dataset_section) {
   std::string known;
-  for (const auto& entry : builtin_generators()) known += (known.empty() ? "" : ", ") + entry.name;
+  std::vector<std::string> names;
+  for (const auto& entry : builtin_generators()) {
+    known += (known.empty() ? "" : ", ") + entry.name;
+    names.push_back(entry.name);
+  }
   // No default generator: a dataset block that forgets it must not silently
   // become some built-in benchmark.
   if (!dataset_section.has("generator")) {
@@ -35,7 +40,7 @@ std::shared_ptr<const DatasetGenerator> read_generator(const ConfigReader& datas
   for (const auto& entry : builtin_generators()) {
     if (entry.name == name) return entry.read(dataset_section.section("options"));
   }
-  dataset_section.fail("generator", "must be one of: " + known);
+  dataset_section.fail("generator", "must be one of: " + known + did_you_mean(name, names));
 }
 
 }  // namespace cnclab

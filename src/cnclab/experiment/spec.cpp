@@ -8,6 +8,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/core/suggest.hpp"
 #include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/spec_text.hpp"
 
@@ -33,7 +34,8 @@ Activation read_activation(const ConfigReader& r, const std::string& key, Activa
   try {
     return parse_activation(text);
   } catch (const Error&) {
-    r.fail(key, one_of({"relu", "tanh", "sigmoid", "linear"}));
+    const std::vector<std::string> names = {"relu", "tanh", "sigmoid", "linear"};
+    r.fail(key, one_of(names) + did_you_mean(text, names));
   }
 }
 
@@ -292,7 +294,8 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
   for (const auto& m : spec.metrics) {
     const auto& known = known_metrics();
     if (std::find(known.begin(), known.end(), m) == known.end()) {
-      root.fail("metrics", "unknown metric '" + m + "'; " + one_of(known));
+      root.fail("metrics",
+                "unknown metric '" + m + "'" + did_you_mean(m, known) + "; " + one_of(known));
     }
   }
   read_graph(root, base, spec);

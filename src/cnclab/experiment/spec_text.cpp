@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "cnclab/core/suggest.hpp"
+
 namespace cnclab {
 
 std::string one_of(const std::vector<std::string>& names) {
@@ -14,7 +16,7 @@ std::string choice(const ConfigReader& r, const std::string& key, const std::str
                    const std::vector<std::string>& allowed) {
   const auto value = r.get<std::string>(key, fallback);
   if (std::find(allowed.begin(), allowed.end(), value) == allowed.end()) {
-    r.fail(key, one_of(allowed));
+    r.fail(key, one_of(allowed) + did_you_mean(value, allowed));
   }
   return value;
 }
