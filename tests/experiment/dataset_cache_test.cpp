@@ -8,6 +8,7 @@
 
 #include <fstream>
 
+#include "cnclab/core/config.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
@@ -28,6 +29,21 @@ std::size_t files_in(const fs::path& dir) {
   std::size_t n = 0;
   for (const auto& e : fs::directory_iterator(dir)) n += e.path().extension() == ".h5";
   return n;
+}
+
+// Issue 22: a generator that ignores its seed (step_error: pure geometry)
+// has one cache file whatever the seed; one that uses it (friedman1) has one
+// per seed.
+TEST(DatasetCache, SeedIsPartOfTheKeyOnlyForGeneratorsThatUseIt) {
+  testing::TempDir dir;
+  std::ofstream(dir / "s.yaml") << "dataset:\n  generator: step_error\n  options:\n    surface: "
+                                << CNCLAB_SOURCE_DIR "/configs/surfaces/surface1.yaml\n"
+                                << "    lines: 4\n    points_per_line: 6\n";
+  const ConfigDocument doc = ConfigDocument::load(dir / "s.yaml");
+  const DatasetSpec step = read_dataset_spec(doc.root().section("dataset"));
+  EXPECT_EQ(dataset_cache_file(step, 1, dir.path()), dataset_cache_file(step, 2, dir.path()));
+  EXPECT_NE(dataset_cache_file(friedman(10), 1, dir.path()),
+            dataset_cache_file(friedman(10), 2, dir.path()));
 }
 
 TEST(DatasetCache, HitMissAndRegenerate) {

@@ -41,6 +41,9 @@ class DatasetGenerator {
   // generators ignore it). Sets Dataset::generator; the caller sets
   // generator_config.
   virtual Dataset generate(Rng& rng) const = 0;
+  // False for a deterministic generator: its seed is then left out of the
+  // dataset cache key, so runs with other seeds share one cached file.
+  virtual bool uses_seed() const { return true; }
 };
 
 // Reads a generator's options from its config section; strict (unknown keys

@@ -72,6 +72,7 @@ class StepErrorGenerator : public DatasetGenerator {
   DatasetShape shape() const override { return {options_.num_samples(), options_.num_inputs(), 1}; }
   std::string options_yaml() const override;
   Dataset generate(Rng&) const override { return generate_step_error_dataset(options_); }
+  bool uses_seed() const override { return false; }  // pure geometry
   const StepErrorDatasetOptions& options() const { return options_; }
 
  private:

@@ -71,9 +71,11 @@ Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed) {
   return spec.generator->generate(rng);
 }
 
+// The cache key's text; a generator that ignores its seed gets none, so every
+// seed shares one cached dataset (issue 22: identical data cached twice).
 std::string dataset_config_text(const DatasetGenerator& generator, std::uint64_t seed) {
   return generator.options_yaml() + "generator_version: " + std::to_string(generator.version()) +
-         "\nseed: " + std::to_string(seed) + "\n";
+         "\n" + (generator.uses_seed() ? "seed: " + std::to_string(seed) + "\n" : "");
 }
 
 fs::path dataset_cache_file(const DatasetSpec& spec, std::uint64_t seed, const fs::path& dir) {
