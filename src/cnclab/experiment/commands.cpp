@@ -5,12 +5,12 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/experiment/trochoid_job.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/provenance.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -10,11 +10,11 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
-#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/sweep_plan.hpp"
 #include "cnclab/experiment/text_table.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -8,8 +8,8 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
-#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/spec_text.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace {

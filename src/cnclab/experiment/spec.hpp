@@ -14,9 +14,9 @@
 #include "cnclab/core/override.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"
-#include "cnclab/experiment/scaling.hpp"
 #include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/nn/mlp.hpp"
+#include "cnclab/nn/scaling.hpp"
 
 namespace cnclab {
 

@@ -6,11 +6,11 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
-#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/sweep_plan.hpp"
 #include "cnclab/experiment/sweep_summary.hpp"
 #include "cnclab/experiment/trial_pool.hpp"
 #include "cnclab/experiment/upstream.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

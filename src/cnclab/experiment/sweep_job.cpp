@@ -7,10 +7,10 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/override.hpp"
-#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/spec.hpp"
 #include "cnclab/experiment/sweep_command.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

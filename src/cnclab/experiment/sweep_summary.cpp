@@ -7,12 +7,12 @@
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
-#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/text_table.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -12,10 +12,10 @@
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/data/ik_samples.hpp"
-#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/tables/ik_runs.hpp"
 #include "cnclab/experiment/text_table.hpp"
 #include "cnclab/kinematics/joint_error.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/scaling.hpp"
+#include "cnclab/nn/scaling.hpp"
 
 #include "cnclab/nn/zscore.hpp"
 

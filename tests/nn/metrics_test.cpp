@@ -1,4 +1,4 @@
-#include "cnclab/experiment/metrics.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 #include <gtest/gtest.h>
 
