@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "cnclab/core/hash.hpp"
-#include "cnclab/experiment/dataset_cache.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/experiment/sweep_plan.hpp"

@@ -7,8 +7,8 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/rng.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/data/dataset_file.hpp"
-#include "cnclab/experiment/dataset_cache.hpp"
 #include "cnclab/experiment/spec.hpp"
 
 namespace cnclab {

@@ -9,7 +9,7 @@
 #include "cnclab/core/hash.hpp"
 #include "cnclab/core/resources.hpp"
 #include "cnclab/core/rng.hpp"
-#include "cnclab/experiment/dataset_cache.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/training.hpp"
 #include "cnclab/experiment/upstream.hpp"

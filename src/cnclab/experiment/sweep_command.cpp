@@ -4,7 +4,7 @@
 #include <set>
 
 #include "cnclab/core/error.hpp"
-#include "cnclab/experiment/dataset_cache.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/sweep_plan.hpp"
 #include "cnclab/experiment/sweep_summary.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cnclab/data/dataset.hpp"
-#include "cnclab/experiment/spec.hpp"
+#include "cnclab/data/dataset_spec.hpp"
 
 namespace cnclab {
 
@@ -18,10 +18,6 @@ struct CachedDataset {
   std::string content_hash;
   bool reused = false;
 };
-
-// The generator seed of an experiment: dataset.seed, or the stream
-// "generator" derived from the master seed.
-std::uint64_t generator_seed(const ExperimentSpec& spec);
 
 // Generates the dataset `spec` describes with generator seed `seed`.
 Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed);

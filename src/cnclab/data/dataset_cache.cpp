@@ -1,4 +1,4 @@
-#include "cnclab/experiment/dataset_cache.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -61,10 +61,6 @@ bool read_cached(CachedDataset& out, const DatasetGenerator& generator,
 }
 
 }  // namespace
-
-std::uint64_t generator_seed(const ExperimentSpec& spec) {
-  return spec.dataset.seed ? *spec.dataset.seed : derive_seed(spec.seed, "generator");
-}
 
 Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed) {
   Rng rng(seed);

@@ -1,6 +1,6 @@
 // The dataset cache: hit, miss on any change of the generator config,
 // --regenerate, and concurrent producers generating a dataset only once.
-#include "cnclab/experiment/dataset_cache.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -8,6 +8,8 @@
 
 #include <fstream>
 
+#include "cnclab/core/config.hpp"
+#include "cnclab/data/dataset_spec.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
@@ -16,12 +18,10 @@ namespace {
 namespace fs = std::filesystem;
 
 DatasetSpec friedman(std::size_t samples) {
-  const LoadedExperiment e = parse_experiment(
-      "name: t\nseed: 1\nmodel: {}\ntrainer: {type: sgdm}\ndataset: {generator: "
-      "friedman1, options: {samples: " +
-          std::to_string(samples) + "}}\n",
+  const ConfigDocument doc = ConfigDocument::parse(
+      "dataset: {generator: friedman1, options: {samples: " + std::to_string(samples) + "}}\n",
       "t.yaml");
-  return e.spec.dataset;
+  return read_dataset_spec(doc.root().section("dataset"));
 }
 
 std::size_t files_in(const fs::path& dir) {
