@@ -11,21 +11,9 @@
 #include <string>
 #include <vector>
 
-namespace cnclab {
+#include "cnclab/experiment/command_options.hpp"
 
-struct CommandOptions {
-  std::filesystem::path results_dir = "results";
-  std::filesystem::path datasets_dir = "datasets";
-  bool quiet = false;
-  bool regenerate = false;  // --regenerate: generate datasets even when cached
-  bool force = false;       // reproduce --force: run even when the result is current
-  // --profile NAME: the experiment files' `profiles: {NAME: ...}` overrides
-  // (core/config.hpp); `reproduce --quick` is --profile quick.
-  std::string profile;
-  // reproduce --jobs N: experiments trained at once, each in its own process
-  // (0 = the cores this process may use).
-  std::size_t jobs = 0;
-};
+namespace cnclab {
 
 int run_command(const std::filesystem::path& experiment, const std::vector<std::string>& overrides,
                 std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "cnclab/experiment/commands.hpp"
+#include "cnclab/experiment/command_options.hpp"
 
 namespace cnclab {
 

@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "cnclab/experiment/commands.hpp"
+#include "cnclab/experiment/command_options.hpp"
 #include "cnclab/experiment/sweep_plan.hpp"
 #include "cnclab/experiment/sweep_spec.hpp"
 #include "cnclab/experiment/sweep_summary.hpp"
