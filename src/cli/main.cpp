@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/builtins.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/commands.hpp"
 #include "cnclab/experiment/compare.hpp"
@@ -26,6 +27,7 @@ constexpr const char* kProfileHelp =
 }  // namespace
 
 int main(int argc, char** argv) {
+  cnclab::register_builtins();
   CLI::App app{
       "cnclab: experiments, datasets and paper tables for neural-network studies of CNC "
       "machining error.\n"

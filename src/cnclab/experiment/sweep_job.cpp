@@ -164,4 +164,38 @@ SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options
   return r;
 }
 
+// `kind: sweep` (sweep_job.hpp): trials without a result run; a finished
+// sweep with the same plan is reused.
+JobKind sweep_job_kind() {
+  JobKind k;
+  k.kind = "sweep";
+  k.summary =
+      "a sweep of an experiment file, selecting the median repeat of its best point by the "
+      "objective";
+  k.run = [](const fs::path& file, const JobContext& c) {
+    const SweepJob job = load_sweep_job(file, c.overrides, c.options.profile);
+    const SweepJobOutcome r = run_sweep_job(job, c.options, c.log);
+    if (r.stopped != 0) {
+      throw Error(job.name + ": interrupted by signal " + std::to_string(r.stopped) +
+                  "; finished trials are kept, run again to resume");
+    }
+    if (!r.state.selected) {
+      throw Error(job.name + ": " + selection_line(r.state) + " (reasons in " +
+                  (r.state.dir / "summary.h5").string() + ")");
+    }
+    JobReport report;
+    report.name = job.name;
+    report.action = r.ran == 0 ? "reused" : "ran";
+    report.why = r.ran == 0 ? "sweep plan unchanged, every trial has a result"
+                            : std::to_string(r.ran) + " trial(s) had no result";
+    report.detail = selection_line(r.state);
+    report.file = r.state.dir.string();
+    return report;
+  };
+  k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
+    return to_yaml(load_sweep_job(file, c.overrides, c.options.profile));
+  };
+  return k;
+}
+
 }  // namespace cnclab

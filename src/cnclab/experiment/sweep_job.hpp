@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "cnclab/experiment/command_options.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/sweep_plan.hpp"
 #include "cnclab/experiment/sweep_spec.hpp"
 #include "cnclab/experiment/sweep_summary.hpp"
@@ -88,5 +88,8 @@ SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options
 // One line for people: "selected <id> (key=value ...): <objective> v; k of N
 // trials complete", or why nothing is selected.
 std::string selection_line(const SweepJobState& state);
+
+// `kind: sweep` for the job-kind registry (job_kinds.hpp).
+JobKind sweep_job_kind();
 
 }  // namespace cnclab

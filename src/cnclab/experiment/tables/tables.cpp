@@ -1,8 +1,7 @@
 #include "cnclab/experiment/tables/tables.hpp"
 
-#include "cnclab/experiment/tables/contour_error_tables.hpp"
-#include "cnclab/experiment/tables/ik_tables.hpp"
-#include "cnclab/experiment/tables/step_error_tables.hpp"
+#include <stdexcept>
+#include <utility>
 
 namespace cnclab {
 
@@ -11,25 +10,26 @@ double normalised_test_mse(const RunRecord& r) {
   return (y.transform(r.test_predictions) - y.transform(r.test_targets)).array().square().mean();
 }
 
-std::vector<TableEntry> builtin_tables() {
-  return {
-      {"ik",
-       "seed 004 Table 5 (IK networks per axis, ours vs paper) and the machine-space error of the "
-       "predicted joints",
-       print_ik_tables},
-      {"contour-error",
-       "seed 002: NARX training methods, architecture sweep, contour-error estimates and the "
-       "contour predictor's accuracy (simulated machine)",
-       print_contour_error_tables},
-      {"step-error",
-       "seed 000 Tables 2-8 (step-error BP network: dropout, surface 1, fine-tuning on surfaces 2 "
-       "and 3, timing), ours vs paper, and the normaliser keep/refit comparison",
-       print_step_error_tables},
-  };
+namespace {
+std::vector<TableEntry>& registry() {
+  static std::vector<TableEntry> tables;
+  return tables;
+}
+}  // namespace
+
+void register_table(TableEntry entry) {
+  for (const auto& t : registry()) {
+    if (t.name == entry.name) throw std::logic_error("table '" + entry.name + "' registered twice");
+  }
+  registry().push_back(std::move(entry));
+}
+
+const std::vector<TableEntry>& registered_tables() {
+  return registry();
 }
 
 int tables_command(const std::string& name, const TablesOptions& options, std::ostream& out) {
-  const auto tables = builtin_tables();
+  const auto& tables = registered_tables();
   std::string known;
   for (const auto& t : tables) {
     if (t.name == name) {
@@ -46,7 +46,7 @@ int tables_command(const std::string& name, const TablesOptions& options, std::o
 }
 
 void print_available_tables(const TablesOptions& options, std::ostream& out) {
-  for (const auto& t : builtin_tables()) {
+  for (const auto& t : registered_tables()) {
     try {
       t.print(options, out);
     } catch (const Error& e) {

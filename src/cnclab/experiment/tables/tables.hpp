@@ -1,7 +1,8 @@
 #pragma once
 // `cnclab tables NAME`: the papers' tables regenerated from result files and
 // printed beside the papers' own numbers (results/reference/). Adding a
-// table: write its printer in its own file and list it in builtin_tables().
+// table: write its printer in its study's folder and register it from the
+// study's register function (src/cli/builtins.cpp).
 #include <filesystem>
 #include <functional>
 #include <ostream>
@@ -42,8 +43,11 @@ struct TableEntry {
 // (T(prediction) - T(target))^2 with T the run's target scaling.
 double normalised_test_mse(const RunRecord& r);
 
-// The built-in tables in a fixed order; a new list each call.
-std::vector<TableEntry> builtin_tables();
+// Registers a table (src/cli/builtins.cpp, before any command runs);
+// std::logic_error for a name registered twice.
+void register_table(TableEntry entry);
+// The registered tables, in registration order.
+const std::vector<TableEntry>& registered_tables();
 
 // Prints table `name`; an empty name lists the tables. Unknown names are
 // ConfigErrors listing the known ones. Returns the exit code (0).
