@@ -8,7 +8,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/override.hpp"
 #include "cnclab/experiment/spec.hpp"
-#include "cnclab/experiment/sweep_command.hpp"
+#include "cnclab/experiment/sweep_execute.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 // What a sweep produced: each trial's outcome read from the sweep folder, the
 // points (parameter combinations) aggregated over repeats and ranked by the
-// objective, the summary HDF5 file and the table printed at the end.
+// objective, and the summary HDF5 file (the table for people: sweep_report.hpp).
 //
 // summary.h5 (h5py: f["trials/metrics/rmse"][:]):
 //   /                  attrs format = "cnclab-sweep-summary", format_version = 1,
@@ -70,15 +70,16 @@ struct SweepSummary {
   std::ptrdiff_t best_trial = -1;
 };
 
+// metrics[name], NaN when absent.
+double metric_or_nan(const std::map<std::string, double>& metrics, const std::string& name);
+
+// How best_trial is chosen (summary.h5 attribute best_trial_rule).
+inline constexpr const char* kBestTrialRule = "median repeat of the rank-1 point by the objective";
+
 SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& outcomes);
 
 // Written atomically (layout above).
 void write_summary(const std::filesystem::path& file, const SweepPlan& plan,
                    const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary);
-
-// The ranked table, failures and the best trial, for people.
-void print_summary(std::ostream& out, const SweepPlan& plan,
-                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary,
-                   const std::filesystem::path& dir);
 
 }  // namespace cnclab
