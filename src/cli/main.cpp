@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "cli/builtins.hpp"
+#include "cli/commands.hpp"
+#include "cli/dataset_commands.hpp"
+#include "cli/sweep_command.hpp"
 #include "cnclab/core/error.hpp"
-#include "cnclab/experiment/commands.hpp"
 #include "cnclab/experiment/compare.hpp"
-#include "cnclab/experiment/dataset_commands.hpp"
-#include "cnclab/experiment/sweep_command.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
 
 namespace {

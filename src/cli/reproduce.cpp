@@ -10,9 +10,9 @@
 #include <optional>
 #include <set>
 
+#include "cli/commands.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/data/dataset_cache.hpp"
-#include "cnclab/experiment/commands.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/result_file.hpp"

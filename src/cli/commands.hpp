@@ -1,5 +1,5 @@
 #pragma once
-// The CLI's commands as library functions (src/cli only wires arguments).
+// The CLI's command bodies (main.cpp wires arguments to them).
 // Each returns the exit code: 0 ok, 1 run failed; bad configuration throws
 // ConfigError (exit 2), other problems cnclab::Error (exit 1).
 #include <cstddef>

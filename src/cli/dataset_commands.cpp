@@ -1,4 +1,4 @@
-#include "cnclab/experiment/dataset_commands.hpp"
+#include "cli/dataset_commands.hpp"
 
 #include <algorithm>
 #include <chrono>

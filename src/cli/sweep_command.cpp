@@ -1,4 +1,4 @@
-#include "cnclab/experiment/sweep_command.hpp"
+#include "cli/sweep_command.hpp"
 
 #include <map>
 #include <set>

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/commands.hpp"
+#include "cli/commands.hpp"
 
 #include <algorithm>
 #include <iomanip>
