@@ -3,8 +3,8 @@
 #include "cnclab/experiment/contour_error_study.hpp"
 #include "cnclab/experiment/five_axis_study.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/experiment/step_error_study.hpp"
 #include "cnclab/experiment/sweep_job.hpp"
+#include "cnclab/studies/step_error/study.hpp"
 
 namespace cnclab {
 

@@ -1,7 +1,7 @@
 // Bin counts, shares and error measures of `cnclab tables step-error`,
 // against hand-computed cases and the paper's own Table 3 (counts ->
 // printed percentages).
-#include "cnclab/experiment/tables/step_error_stats.hpp"
+#include "cnclab/studies/step_error/step_error_stats.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/tables/step_error_stats.hpp"
+#include "cnclab/studies/step_error/step_error_stats.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/step_error_timing.hpp"
+#include "cnclab/studies/step_error/step_error_timing.hpp"
 
 #include <yaml-cpp/yaml.h>
 

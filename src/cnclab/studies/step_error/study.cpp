@@ -1,9 +1,9 @@
-#include "cnclab/experiment/step_error_study.hpp"
+#include "cnclab/studies/step_error/study.hpp"
 
 #include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/experiment/step_error_timing.hpp"
-#include "cnclab/experiment/tables/step_error_tables.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/studies/step_error/step_error_tables.hpp"
+#include "cnclab/studies/step_error/step_error_timing.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

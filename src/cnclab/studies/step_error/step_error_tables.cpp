@@ -1,4 +1,4 @@
-#include "cnclab/experiment/tables/step_error_tables.hpp"
+#include "cnclab/studies/step_error/step_error_tables.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,11 +9,11 @@
 
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/step_error_timing.hpp"
-#include "cnclab/experiment/tables/step_error_manifest.hpp"
-#include "cnclab/experiment/tables/step_error_reference.hpp"
-#include "cnclab/experiment/tables/step_error_stats.hpp"
 #include "cnclab/experiment/text_table.hpp"
+#include "cnclab/studies/step_error/step_error_manifest.hpp"
+#include "cnclab/studies/step_error/step_error_reference.hpp"
+#include "cnclab/studies/step_error/step_error_stats.hpp"
+#include "cnclab/studies/step_error/step_error_timing.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -3,7 +3,7 @@
 // exact method with the dataset's targets and the network rebuilt from the
 // surface with the result's predictions), writes a result that reads back,
 // and rejects bad files and missing results.
-#include "cnclab/experiment/step_error_timing.hpp"
+#include "cnclab/studies/step_error/step_error_timing.hpp"
 
 #include <gtest/gtest.h>
 
