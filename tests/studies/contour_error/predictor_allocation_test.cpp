@@ -11,8 +11,8 @@
 #include <numbers>
 #include <vector>
 
-#include "cnclab/experiment/contour_predictor.hpp"
 #include "cnclab/motion/analytic_paths.hpp"
+#include "cnclab/studies/contour_error/contour_predictor.hpp"
 #include "common/stable_narx.hpp"
 
 extern "C" {

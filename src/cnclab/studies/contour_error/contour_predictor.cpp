@@ -1,4 +1,4 @@
-#include "cnclab/experiment/contour_predictor.hpp"
+#include "cnclab/studies/contour_error/contour_predictor.hpp"
 
 #include "cnclab/motion/contour_error.hpp"
 

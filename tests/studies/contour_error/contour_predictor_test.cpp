@@ -2,7 +2,7 @@
 // predictors', its contour value is Eqs. 3-6 (taylor_contour_error) at the
 // predicted tool position, which on a circle is within the Taylor
 // estimate's bound of the exact ||P - c| - r|.
-#include "cnclab/experiment/contour_predictor.hpp"
+#include "cnclab/studies/contour_error/contour_predictor.hpp"
 
 #include <gtest/gtest.h>
 

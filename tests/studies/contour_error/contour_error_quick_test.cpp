@@ -8,8 +8,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "cnclab/experiment/narx_job.hpp"
-#include "cnclab/experiment/tables/contour_error_tables.hpp"
+#include "cnclab/studies/contour_error/contour_error_tables.hpp"
+#include "cnclab/studies/contour_error/narx_job.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {

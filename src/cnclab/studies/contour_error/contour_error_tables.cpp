@@ -1,4 +1,4 @@
-#include "cnclab/experiment/tables/contour_error_tables.hpp"
+#include "cnclab/studies/contour_error/contour_error_tables.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
-#include "cnclab/experiment/narx_job.hpp"
 #include "cnclab/experiment/text_table.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/studies/contour_error/narx_job.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/narx_job.hpp"
+#include "cnclab/studies/contour_error/narx_job.hpp"
 
 #include <yaml-cpp/yaml.h>
 

@@ -1,9 +1,9 @@
-#include "cnclab/experiment/contour_error_study.hpp"
+#include "cnclab/studies/contour_error/study.hpp"
 
 #include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/experiment/narx_job.hpp"
-#include "cnclab/experiment/tables/contour_error_tables.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/studies/contour_error/contour_error_tables.hpp"
+#include "cnclab/studies/contour_error/narx_job.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
