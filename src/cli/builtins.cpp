@@ -1,9 +1,9 @@
 #include "cli/builtins.hpp"
 
-#include "cnclab/experiment/five_axis_study.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/sweep_job.hpp"
 #include "cnclab/studies/contour_error/study.hpp"
+#include "cnclab/studies/five_axis/study.hpp"
 #include "cnclab/studies/step_error/study.hpp"
 
 namespace cnclab {

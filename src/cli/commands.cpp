@@ -7,10 +7,10 @@
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/trochoid_job.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/studies/five_axis/trochoid_job.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/trochoid_job.hpp"
+#include "cnclab/studies/five_axis/trochoid_job.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -12,9 +12,9 @@
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/spec.hpp"
 #include "cnclab/experiment/text_table.hpp"
-#include "cnclab/experiment/trochoid_table3.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/kinematics/engagement.hpp"
+#include "cnclab/studies/five_axis/trochoid_table3.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/trochoid_table3.hpp"
+#include "cnclab/studies/five_axis/trochoid_table3.hpp"
 
 #include <algorithm>
 #include <cmath>

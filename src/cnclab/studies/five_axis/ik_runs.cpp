@@ -1,4 +1,4 @@
-#include "cnclab/experiment/tables/ik_runs.hpp"
+#include "cnclab/studies/five_axis/ik_runs.hpp"
 
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/tables/ik_tables.hpp"
+#include "cnclab/studies/five_axis/ik_tables.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,10 +12,10 @@
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/data/ik_samples.hpp"
-#include "cnclab/experiment/tables/ik_runs.hpp"
 #include "cnclab/experiment/text_table.hpp"
 #include "cnclab/kinematics/joint_error.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/studies/five_axis/ik_runs.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -1,12 +1,12 @@
-#include "cnclab/experiment/five_axis_study.hpp"
+#include "cnclab/studies/five_axis/study.hpp"
 
 #include <cstdio>
 #include <numbers>
 
 #include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/experiment/tables/ik_tables.hpp"
 #include "cnclab/experiment/tables/tables.hpp"
-#include "cnclab/experiment/trochoid_job.hpp"
+#include "cnclab/studies/five_axis/ik_tables.hpp"
+#include "cnclab/studies/five_axis/trochoid_job.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
