@@ -12,8 +12,8 @@
 #include "cli/dataset_commands.hpp"
 #include "cli/sweep_command.hpp"
 #include "cnclab/core/error.hpp"
-#include "cnclab/experiment/compare.hpp"
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/compare.hpp"
+#include "cnclab/report/tables.hpp"
 
 namespace {
 

@@ -7,11 +7,11 @@
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/sweep_plan.hpp"
-#include "cnclab/experiment/sweep_report.hpp"
 #include "cnclab/experiment/sweep_summary.hpp"
 #include "cnclab/experiment/trial_pool.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/report/sweep_report.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

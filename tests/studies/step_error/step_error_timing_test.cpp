@@ -11,7 +11,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/tables.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
-#include "cnclab/experiment/text_table.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/report/text_table.hpp"
 #include "cnclab/studies/contour_error/narx_job.hpp"
 
 namespace cnclab {

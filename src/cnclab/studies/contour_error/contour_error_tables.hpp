@@ -7,7 +7,7 @@
 // numeric table, its numbers are in the text).
 #include <ostream>
 
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/tables.hpp"
 
 namespace cnclab {
 

@@ -17,11 +17,11 @@
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/data/following_error.hpp"
-#include "cnclab/experiment/text_table.hpp"
 #include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/h5.hpp"
 #include "cnclab/motion/contour_error.hpp"
+#include "cnclab/report/text_table.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

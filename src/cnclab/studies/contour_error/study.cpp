@@ -1,7 +1,7 @@
 #include "cnclab/studies/contour_error/study.hpp"
 
 #include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/tables.hpp"
 #include "cnclab/studies/contour_error/contour_error_tables.hpp"
 #include "cnclab/studies/contour_error/narx_job.hpp"
 

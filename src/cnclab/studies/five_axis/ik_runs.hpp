@@ -14,7 +14,7 @@
 
 #include "cnclab/experiment/run_record.hpp"
 #include "cnclab/experiment/spec.hpp"
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/tables.hpp"
 
 namespace cnclab {
 

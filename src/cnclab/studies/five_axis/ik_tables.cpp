@@ -12,9 +12,9 @@
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/data/ik_samples.hpp"
-#include "cnclab/experiment/text_table.hpp"
 #include "cnclab/kinematics/joint_error.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/report/text_table.hpp"
 #include "cnclab/studies/five_axis/ik_runs.hpp"
 
 namespace cnclab {

@@ -5,7 +5,7 @@
 // machine-space error of the predicted joint sets through forward kinematics.
 #include <ostream>
 
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/tables.hpp"
 
 namespace cnclab {
 

@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/tables.hpp"
 #include "cnclab/studies/five_axis/ik_tables.hpp"
 #include "cnclab/studies/five_axis/trochoid_job.hpp"
 

@@ -11,9 +11,9 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/spec.hpp"
-#include "cnclab/experiment/text_table.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/kinematics/engagement.hpp"
+#include "cnclab/report/text_table.hpp"
 #include "cnclab/studies/five_axis/trochoid_table3.hpp"
 
 namespace cnclab {

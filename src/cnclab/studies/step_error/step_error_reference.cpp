@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "cnclab/core/config.hpp"
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/tables.hpp"
 
 namespace cnclab {
 namespace {

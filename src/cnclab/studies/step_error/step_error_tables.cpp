@@ -9,7 +9,7 @@
 
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/text_table.hpp"
+#include "cnclab/report/text_table.hpp"
 #include "cnclab/studies/step_error/step_error_manifest.hpp"
 #include "cnclab/studies/step_error/step_error_reference.hpp"
 #include "cnclab/studies/step_error/step_error_stats.hpp"

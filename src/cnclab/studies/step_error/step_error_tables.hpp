@@ -6,7 +6,7 @@
 // plus the normaliser keep/refit comparison the paper leaves open.
 #include <ostream>
 
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/tables.hpp"
 
 namespace cnclab {
 

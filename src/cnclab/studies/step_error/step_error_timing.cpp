@@ -15,10 +15,10 @@
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/experiment/spec.hpp"
-#include "cnclab/experiment/tables/tables.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/mlp.hpp"
+#include "cnclab/report/tables.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/compare.hpp"
+#include "cnclab/report/compare.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -12,9 +12,9 @@
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/sweep_plan.hpp"
-#include "cnclab/experiment/text_table.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/report/text_table.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/text_table.hpp"
+#include "cnclab/report/text_table.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // TextTable renderers: CSV read back by an independent RFC 4180 parser,
 // Markdown cell escaping, LaTeX escaping and tabular structure.
-#include "cnclab/experiment/text_table.hpp"
+#include "cnclab/report/text_table.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The sweep table for people: mean ± std per point in rank order, failed
 // trials, and the best trial with the rule that chose it.
-#include "cnclab/experiment/sweep_report.hpp"
+#include "cnclab/report/sweep_report.hpp"
 
 #include <gtest/gtest.h>
 

@@ -11,7 +11,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/run_record.hpp"
-#include "cnclab/experiment/text_table.hpp"
+#include "cnclab/report/text_table.hpp"
 
 namespace cnclab {
 

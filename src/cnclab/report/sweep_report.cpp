@@ -1,10 +1,10 @@
-#include "cnclab/experiment/sweep_report.hpp"
+#include "cnclab/report/sweep_report.hpp"
 
 #include <cmath>
 #include <string>
 
-#include "cnclab/experiment/text_table.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/report/text_table.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

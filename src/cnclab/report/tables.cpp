@@ -1,4 +1,4 @@
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/tables.hpp"
 
 #include <stdexcept>
 #include <utility>
