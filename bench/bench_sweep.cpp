@@ -26,8 +26,8 @@
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/sweep_plan.hpp"
-#include "cnclab/experiment/sweep_summary.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
 
 namespace fs = std::filesystem;
 using namespace cnclab;

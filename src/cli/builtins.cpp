@@ -1,10 +1,10 @@
 #include "cli/builtins.hpp"
 
 #include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/experiment/sweep_job.hpp"
 #include "cnclab/studies/contour_error/study.hpp"
 #include "cnclab/studies/five_axis/study.hpp"
 #include "cnclab/studies/step_error/study.hpp"
+#include "cnclab/sweep/sweep_job.hpp"
 
 namespace cnclab {
 

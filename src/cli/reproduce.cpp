@@ -17,9 +17,9 @@
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/trial_pool.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/report/tables.hpp"
+#include "cnclab/sweep/trial_pool.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -6,12 +6,12 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
-#include "cnclab/experiment/sweep_plan.hpp"
-#include "cnclab/experiment/sweep_summary.hpp"
-#include "cnclab/experiment/trial_pool.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/report/sweep_report.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
+#include "cnclab/sweep/trial_pool.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "cnclab/experiment/command_options.hpp"
-#include "cnclab/experiment/sweep_execute.hpp"
-#include "cnclab/experiment/sweep_plan.hpp"
-#include "cnclab/experiment/sweep_summary.hpp"
+#include "cnclab/sweep/sweep_execute.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
 
 namespace cnclab {
 

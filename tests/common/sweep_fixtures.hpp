@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "cnclab/experiment/sweep_plan.hpp"
-#include "cnclab/experiment/sweep_summary.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
 
 namespace cnclab::sweep_fixtures {
 

@@ -11,10 +11,10 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/result_file.hpp"
-#include "cnclab/experiment/sweep_plan.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/report/text_table.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -5,8 +5,8 @@
 #include <ostream>
 #include <vector>
 
-#include "cnclab/experiment/sweep_plan.hpp"
-#include "cnclab/experiment/sweep_summary.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
 
 namespace cnclab {
 

@@ -2,7 +2,7 @@
 
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/sweep_job.hpp"
+#include "cnclab/sweep/sweep_job.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

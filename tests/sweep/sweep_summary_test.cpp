@@ -1,6 +1,6 @@
 // Aggregation over repeats (mean and sample std by hand), ranking by the
 // objective, and the summary file read back through h5 reads.
-#include "cnclab/experiment/sweep_summary.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/sweep_spec.hpp"
+#include "cnclab/sweep/sweep_spec.hpp"
 
 #include <charconv>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Sweep grammar, grid and random expansion, repeats, shards.
-#include "cnclab/experiment/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
 
 #include <gtest/gtest.h>
 

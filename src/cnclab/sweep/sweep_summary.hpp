@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "cnclab/experiment/run_record.hpp"
-#include "cnclab/experiment/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
 
 namespace cnclab {
 

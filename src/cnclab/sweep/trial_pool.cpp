@@ -1,4 +1,4 @@
-#include "cnclab/experiment/trial_pool.hpp"
+#include "cnclab/sweep/trial_pool.hpp"
 
 #include <sched.h>
 #include <signal.h>

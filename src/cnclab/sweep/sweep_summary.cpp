@@ -1,4 +1,4 @@
-#include "cnclab/experiment/sweep_summary.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
 
 #include <algorithm>
 #include <charconv>

@@ -3,7 +3,7 @@
 // result files and from summary.h5 read directly; a second run reuses the
 // finished sweep (nothing re-run, files untouched); bad job files are
 // ConfigErrors that write nothing.
-#include "cnclab/experiment/sweep_job.hpp"
+#include "cnclab/sweep/sweep_job.hpp"
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>

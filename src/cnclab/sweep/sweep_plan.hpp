@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "cnclab/experiment/spec.hpp"
-#include "cnclab/experiment/sweep_spec.hpp"
+#include "cnclab/sweep/sweep_spec.hpp"
 
 namespace cnclab {
 

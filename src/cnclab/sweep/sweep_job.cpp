@@ -1,4 +1,4 @@
-#include "cnclab/experiment/sweep_job.hpp"
+#include "cnclab/sweep/sweep_job.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -8,9 +8,9 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/override.hpp"
 #include "cnclab/experiment/spec.hpp"
-#include "cnclab/experiment/sweep_execute.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/sweep/sweep_execute.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -29,9 +29,9 @@
 #include <vector>
 
 #include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/experiment/sweep_plan.hpp"
-#include "cnclab/experiment/sweep_spec.hpp"
-#include "cnclab/experiment/sweep_summary.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_spec.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
 
 namespace cnclab {
 

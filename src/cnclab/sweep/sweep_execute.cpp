@@ -1,4 +1,4 @@
-#include "cnclab/experiment/sweep_execute.hpp"
+#include "cnclab/sweep/sweep_execute.hpp"
 
 #include <algorithm>
 #include <map>
@@ -7,9 +7,9 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
-#include "cnclab/experiment/trial_pool.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/sweep/trial_pool.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "cnclab/experiment/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
 
 #include <yaml-cpp/yaml.h>
 
