@@ -32,12 +32,12 @@
 #include <vector>
 
 #include "cnclab/core/rng.hpp"
-#include "cnclab/experiment/contour_predictor.hpp"
 #include "cnclab/motion/analytic_paths.hpp"
 #include "cnclab/motion/contour_error.hpp"
 #include "cnclab/motion/feedrate_planner.hpp"
 #include "cnclab/motion/interpolator.hpp"
 #include "cnclab/motion/machine.hpp"
+#include "cnclab/studies/contour_error/contour_predictor.hpp"
 #include "cnclab/train/lm.hpp"
 #include "cnclab/train/narx_training.hpp"
 #include "cnclab/train/normal_equations.hpp"

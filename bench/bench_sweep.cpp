@@ -23,11 +23,11 @@
 #include <vector>
 
 #include "cnclab/core/hash.hpp"
-#include "cnclab/experiment/dataset_cache.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
-#include "cnclab/experiment/sweep_plan.hpp"
-#include "cnclab/experiment/sweep_summary.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
 
 namespace fs = std::filesystem;
 using namespace cnclab;

@@ -8,13 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "cli/builtins.hpp"
+#include "cli/commands.hpp"
+#include "cli/dataset_commands.hpp"
+#include "cli/sweep_command.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/rng.hpp"
-#include "cnclab/experiment/commands.hpp"
-#include "cnclab/experiment/compare.hpp"
-#include "cnclab/experiment/dataset_commands.hpp"
-#include "cnclab/experiment/sweep_command.hpp"
-#include "cnclab/experiment/tables/tables.hpp"
+#include "cnclab/report/compare.hpp"
+#include "cnclab/report/tables.hpp"
 
 namespace {
 
@@ -28,6 +29,7 @@ constexpr const char* kProfileHelp =
 }  // namespace
 
 int main(int argc, char** argv) {
+  cnclab::register_builtins();
   CLI::App app{
       "cnclab: experiments, datasets and paper tables for neural-network studies of CNC "
       "machining error.\n"

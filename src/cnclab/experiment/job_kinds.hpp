@@ -4,7 +4,8 @@
 // `cnclab run` and `cnclab validate` dispatch on it, and `cnclab reproduce`
 // runs every job after the training graph (so the training results a job
 // reads exist by then), in file order. Adding a kind: write its loader and
-// runner in its own file and list it in builtin_job_kinds().
+// runner in its study's folder and register it from the study's register
+// function (called by src/cli/builtins.cpp); lower modules never name a kind.
 //
 // A job decides itself whether its existing output is current (compare a
 // hash of its resolved config stored with the output, like
@@ -17,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "cnclab/experiment/commands.hpp"
+#include "cnclab/experiment/command_options.hpp"
 
 namespace cnclab {
 
@@ -51,8 +52,11 @@ struct JobKind {
       resolved_yaml;
 };
 
-// The built-in job kinds in a fixed order; a new list each call.
-std::vector<JobKind> builtin_job_kinds();
+// Registers a kind (src/cli/builtins.cpp, before any command runs).
+// std::logic_error for "train" or a kind registered twice.
+void register_job_kind(JobKind kind);
+// The registered kinds, in registration order.
+const std::vector<JobKind>& registered_job_kinds();
 
 // The `kind:` of an experiment file: "train" (absent key) or a job kind.
 // ConfigError for unreadable YAML or an unknown kind, listing the known ones.

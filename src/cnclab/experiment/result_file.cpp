@@ -6,12 +6,12 @@
 #include <iomanip>
 
 #include "cnclab/core/error.hpp"
-#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
 #include "cnclab/io/isolated_read.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

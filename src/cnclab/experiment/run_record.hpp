@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "cnclab/data/split.hpp"
-#include "cnclab/experiment/scaling.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/mlp.hpp"
+#include "cnclab/nn/scaling.hpp"
 #include "cnclab/train/summary.hpp"
 
 namespace cnclab {

@@ -9,12 +9,12 @@
 #include "cnclab/core/hash.hpp"
 #include "cnclab/core/resources.hpp"
 #include "cnclab/core/rng.hpp"
-#include "cnclab/experiment/dataset_cache.hpp"
-#include "cnclab/experiment/metrics.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/training.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/provenance.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -8,9 +8,10 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/core/rng.hpp"
 #include "cnclab/core/suggest.hpp"
-#include "cnclab/experiment/metrics.hpp"
 #include "cnclab/experiment/spec_text.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace {
@@ -129,18 +130,6 @@ void require_subject(const ConfigReader& root, const std::filesystem::path& base
         "type", "is required (sgdm, lm or trainbr)" + fragment_hint(base, "trainers"));
   }
 }
-
-}  // namespace
-
-DatasetSpec read_dataset_spec(const ConfigReader& r) {
-  DatasetSpec spec;
-  spec.generator = read_generator(r);
-  spec.seed = r.optional<std::uint64_t>("seed");
-  spec.targets = r.get<std::vector<std::string>>("targets", spec.targets);
-  return spec;
-}
-
-namespace {
 
 SplitOptions read_split(const ConfigReader& r, std::size_t samples) {
   SplitOptions s;
@@ -384,6 +373,10 @@ std::vector<std::filesystem::path> upstream_files(const ExperimentSpec& spec) {
     if (std::find(unique.begin(), unique.end(), p) == unique.end()) unique.push_back(p);
   }
   return unique;
+}
+
+std::uint64_t generator_seed(const ExperimentSpec& spec) {
+  return spec.dataset.seed ? *spec.dataset.seed : derive_seed(spec.seed, "generator");
 }
 
 std::string to_yaml(const ExperimentSpec& spec) {

@@ -12,28 +12,14 @@
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/override.hpp"
+#include "cnclab/data/dataset_spec.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"
-#include "cnclab/experiment/scaling.hpp"
 #include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/nn/mlp.hpp"
+#include "cnclab/nn/scaling.hpp"
 
 namespace cnclab {
-
-// dataset: {generator, seed?, options: {...generator options...}}
-struct DatasetSpec {
-  // The named generator with its options read and validated
-  // (data/generator.hpp); never null in a loaded experiment.
-  std::shared_ptr<const DatasetGenerator> generator;
-  // Generator seed; absent = derived from the experiment seed ("generator").
-  std::optional<std::uint64_t> seed;
-  // targets: [X] - the generator's targets the model learns, in this order;
-  // empty = all. One network per output (seed 004 Table 5) selects one.
-  std::vector<std::string> targets;
-};
-
-// Reads a `dataset` section (strict; `cnclab dataset generate` and experiments).
-DatasetSpec read_dataset_spec(const ConfigReader& dataset_section);
 
 // normalisation: {inputs: zscore|minmax|none, targets: ..., input_range:
 // [low, high], target_range: [low, high]}, fitted on the training split
@@ -134,6 +120,10 @@ LoadedExperiment parse_experiment(const std::string& yaml_text, const std::strin
                                   const std::vector<std::string>& overrides = {});
 
 std::string to_yaml(const ExperimentSpec& spec);
+
+// The generator seed of an experiment: dataset.seed, or the stream
+// "generator" derived from the master seed.
+std::uint64_t generator_seed(const ExperimentSpec& spec);
 
 // The required `name` key of an experiment file: a file-name-safe identifier
 // (letters, digits, '_', '-', '.'; no leading '.'), else ConfigError.

@@ -1,0 +1,149 @@
+#include "cli/commands.hpp"
+
+#include <algorithm>
+#include <iomanip>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/runner.hpp"
+#include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/provenance.hpp"
+#include "cnclab/nn/metrics.hpp"
+#include "cnclab/studies/five_axis/trochoid_job.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+std::string metrics_line(const std::map<std::string, double>& metrics) {
+  std::string s;
+  for (const auto& [k, v] : metrics) s += (s.empty() ? "" : "  ") + k + " " + format_metric(v);
+  return s;
+}
+
+RunOptions run_options(const CommandOptions& options, std::ostream& log) {
+  RunOptions r;
+  r.results_dir = options.results_dir;
+  r.datasets_dir = options.datasets_dir;
+  r.progress = options.quiet ? ProgressMode::quiet : ProgressMode::automatic;
+  r.log = options.quiet ? nullptr : &log;
+  r.regenerate_dataset = options.regenerate;
+  return r;
+}
+
+namespace {
+
+// The job kind of a `kind: <job>` file with its context (--seed becomes the
+// override seed=N: a job without a seed key rejects it), or nullopt for a
+// training experiment.
+std::optional<std::pair<JobKind, JobContext>> job_of(const fs::path& experiment,
+                                                     const std::vector<std::string>& overrides,
+                                                     std::optional<std::uint64_t> seed,
+                                                     const CommandOptions& options,
+                                                     std::ostream* log) {
+  auto kind = find_job_kind(experiment_kind(experiment));
+  if (!kind) return std::nullopt;
+  JobContext context{options, overrides, options.quiet ? nullptr : log};
+  if (seed) context.overrides.push_back("seed=" + std::to_string(*seed));
+  return std::pair{std::move(*kind), std::move(context)};
+}
+
+}  // namespace
+
+int run_command(const fs::path& experiment, const std::vector<std::string>& overrides,
+                std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
+                std::ostream& log) {
+  if (const auto job = job_of(experiment, overrides, seed, options, &log)) {
+    clean_stale_partials({options.results_dir, options.datasets_dir}, log);
+    const JobReport report = job->first.run(experiment, job->second);
+    if (!options.quiet && !report.report.empty()) out << report.report << "\n";
+    out << report.name << ": " << report.action << " (" << report.why << ")";
+    if (!report.detail.empty()) out << "; " << report.detail;
+    out << "\n";
+    if (!report.file.empty()) out << report.file << "\n";
+    return 0;
+  }
+  const LoadedExperiment loaded = load_experiment(experiment, overrides, seed, options.profile);
+  for (const auto& note : loaded.notes) log << "note: " << note << "\n";
+  clean_stale_partials({options.results_dir, options.datasets_dir}, log);
+  const RunOutcome outcome = run_experiment(loaded, run_options(options, log));
+  if (!outcome.ok && loaded.spec.may_diverge) {
+    out << loaded.spec.name << ": " << outcome.message << " (allowed: may_diverge)\n"
+        << outcome.result_file.string() << "\n";
+    return 0;
+  }
+  if (!outcome.ok) {
+    out << "FAILED " << loaded.spec.name << ": " << outcome.message << "\n"
+        << "result (status failed): " << outcome.result_file.string() << "\n";
+    return 1;
+  }
+  if (!options.quiet) out << loaded.spec.name << ": " << metrics_line(outcome.metrics) << "\n";
+  out << outcome.result_file.string() << "\n";
+  return 0;
+}
+
+int validate_command(const fs::path& experiment, const std::vector<std::string>& overrides,
+                     std::optional<std::uint64_t> seed, const CommandOptions& options,
+                     std::ostream& out) {
+  if (const auto job = job_of(experiment, overrides, seed, options, nullptr)) {
+    // Resolved before anything is printed: an invalid file prints no "valid".
+    const std::string resolved = job->first.resolved_yaml(experiment, job->second);
+    out << "# " << experiment.string() << ": valid; resolved configuration:\n" << resolved;
+    return 0;
+  }
+  const LoadedExperiment loaded = load_experiment(experiment, overrides, seed, options.profile);
+  out << "# " << experiment.string() << ": valid; resolved configuration:\n";
+  for (const auto& note : loaded.notes) out << "# note: " << note << "\n";
+  out << loaded.resolved_yaml;
+  return 0;
+}
+
+int show_command(const std::vector<std::string>& result_files, std::ostream& out) {
+  for (std::size_t i = 0; i < result_files.size(); ++i) {
+    if (i) out << "\n";
+    print_result(read_result(result_files[i]), out);
+  }
+  return 0;
+}
+
+std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
+  std::vector<fs::path> files;
+  const std::vector<std::string> roots =
+      paths.empty() ? std::vector<std::string>{"experiments"} : paths;
+  for (const auto& root : roots) {
+    std::error_code ec;
+    if (fs::is_regular_file(root, ec)) {
+      files.emplace_back(root);
+    } else if (fs::is_directory(root, ec)) {
+      for (const auto& entry : fs::recursive_directory_iterator(root)) {
+        const auto ext = entry.path().extension();
+        if (entry.is_regular_file() && (ext == ".yaml" || ext == ".yml"))
+          files.push_back(entry.path());
+      }
+    } else {
+      throw ConfigError(root + ": no such experiment file or folder");
+    }
+  }
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  return files;
+}
+
+int gcode_command(const std::string& toolpath, const fs::path& config, const fs::path& output,
+                  const std::vector<std::string>& overrides, std::ostream& out) {
+  if (toolpath != "trochoid") {
+    throw ConfigError("gcode: unknown tool path '" + toolpath + "'; known: trochoid");
+  }
+  const TrochoidOutcome outcome = run_trochoid_job(load_trochoid_job(config, overrides));
+  write_text_atomically(output, outcome.program.text);
+  out << outcome.report << "\nG-code written to " << output.string() << "\n";
+  return 0;
+}
+
+int version_command(std::ostream& out) {
+  const Provenance p = make_provenance(0);
+  out << "cnclab " << p.cnclab_version << " (git " << p.git_commit << ")\n";
+  for (const auto& [name, version] : p.libraries) out << "  " << name << " " << version << "\n";
+  return 0;
+}
+
+}  // namespace cnclab

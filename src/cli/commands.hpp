@@ -1,0 +1,48 @@
+#pragma once
+// The CLI's command bodies (main.cpp wires arguments to them).
+// Each returns the exit code: 0 ok, 1 run failed; bad configuration throws
+// ConfigError (exit 2), other problems cnclab::Error (exit 1).
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cnclab/experiment/command_options.hpp"
+
+namespace cnclab {
+
+int run_command(const std::filesystem::path& experiment, const std::vector<std::string>& overrides,
+                std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
+                std::ostream& log);
+int validate_command(const std::filesystem::path& experiment,
+                     const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed,
+                     const CommandOptions& options, std::ostream& out);
+int show_command(const std::vector<std::string>& result_files, std::ostream& out);
+// Runs the experiments under `paths` and the ones they need, upstream first
+// (experiment_graph.hpp); reuses every result whose resolved config and
+// upstream results are unchanged; prints per experiment ran/reused and why.
+int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
+                      std::ostream& out, std::ostream& log);
+int version_command(std::ostream& out);
+// `cnclab gcode trochoid CONFIG.yaml -o FILE.nc`: the tool path of a `kind:
+// gcode` file written atomically to `output`, its report printed.
+int gcode_command(const std::string& toolpath, const std::filesystem::path& config,
+                  const std::filesystem::path& output, const std::vector<std::string>& overrides,
+                  std::ostream& out);
+
+// The runner options a command's options imply (progress and notes to `log`
+// unless quiet).
+struct RunOptions;
+RunOptions run_options(const CommandOptions& options, std::ostream& log);
+// "mse 1.2  rmse 1.1 ...": a result's metrics on one line.
+std::string metrics_line(const std::map<std::string, double>& metrics);
+
+// Experiment YAML files under `paths` (files as given, folders recursively),
+// sorted; a missing path is a ConfigError.
+std::vector<std::filesystem::path> find_experiments(const std::vector<std::string>& paths);
+
+}  // namespace cnclab

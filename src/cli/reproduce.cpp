@@ -1,0 +1,350 @@
+// `cnclab reproduce`: the experiment graph, upstream first, reusing current
+// results (DVC-style stage caching; see experiment_graph.hpp). Experiments
+// whose upstream results are ready train in parallel, each in its own process
+// (trial_pool.hpp, like sweep trials): results are bit-identical to running
+// them one by one, since a run depends only on its resolved config.
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iterator>
+#include <optional>
+#include <set>
+
+#include "cli/commands.hpp"
+#include "cnclab/core/error.hpp"
+#include "cnclab/data/dataset_cache.hpp"
+#include "cnclab/experiment/experiment_graph.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/runner.hpp"
+#include "cnclab/experiment/upstream.hpp"
+#include "cnclab/io/atomic_file.hpp"
+#include "cnclab/report/tables.hpp"
+#include "cnclab/sweep/trial_pool.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+struct Row {
+  std::string name, action, why, detail, file;
+};
+
+// Where an experiment of the graph stands.
+struct NodeState {
+  enum class Stage { waiting, running, done } stage = Stage::waiting;
+  std::optional<RunRecord> record;  // its current result, once done
+  std::string problem;              // done without a usable result: why
+  std::optional<Row> row;           // its line of the summary, once done
+  std::string why;                  // running: why it runs
+  std::chrono::steady_clock::time_point started;
+};
+
+// The graph's scheduler: decides for each experiment whose upstream are done
+// whether its result is current, runs the others through the trial pool and
+// records one summary row per experiment.
+class GraphRun {
+ public:
+  GraphRun(const std::vector<GraphNode>& graph, const CommandOptions& options, std::ostream& log)
+      : graph_(graph),
+        options_(options),
+        run_(run_options(options, log)),
+        log_(run_.log),
+        state_(graph.size()) {}
+
+  // Runs what needs running; returns 0, or the signal that stopped it.
+  int run(std::size_t jobs) {
+    PoolOptions pool;
+    pool.jobs = jobs;
+    pool.run = run_;
+    pool.run.regenerate_dataset = false;  // done once per dataset in start()
+    // One experiment at a time: its progress may go to the log as it runs.
+    pool.trial_output = jobs == 1 && log_;
+    if (!pool.trial_output) pool.on_tick = [this] { heartbeat(); };
+    return run_trial_pool([this] { return next_ready(); }, pool,
+                          [this](std::size_t i, const TrialExit& exit) { finished(i, exit); });
+  }
+
+  // The summary rows in graph order (an experiment stopped by a signal says so).
+  std::vector<Row> rows() const {
+    std::vector<Row> out;
+    for (std::size_t i = 0; i < graph_.size(); ++i) {
+      out.push_back(state_[i].row.value_or(Row{display_name(i), "not run", "interrupted", "", ""}));
+    }
+    return out;
+  }
+
+  int exit_code() const { return exit_code_; }
+
+ private:
+  std::string display_name(std::size_t i) const {
+    const GraphNode& node = graph_[i];
+    if (!node.experiment) return node.file.string();
+    // Experiments not asked for, added because others need them, say so.
+    return node.experiment->spec.name + (node.requested ? "" : " (upstream)");
+  }
+
+  void finish(std::size_t i, Row row, std::string problem = {}) {
+    state_[i].stage = NodeState::Stage::done;
+    state_[i].row = std::move(row);
+    state_[i].problem = std::move(problem);
+  }
+
+  // Experiment i has no result: a configuration error (exit 2) or another
+  // error (exit 1), with the text that says why.
+  void fail(std::size_t i, bool config_error, const std::string& why, const std::string& detail) {
+    finish(i, {display_name(i), config_error ? "CONFIG ERROR" : "ERROR", why, detail, ""},
+           config_error ? "configuration error" : "error");
+    exit_code_ = config_error ? 2 : std::max(exit_code_, 1);
+  }
+
+  // The next experiment to train whose upstream are done; experiments that
+  // are current, blocked or broken are settled on the way.
+  std::optional<TrialJob> next_ready() {
+    for (std::size_t i = 0; i < graph_.size(); ++i) {
+      if (state_[i].stage != NodeState::Stage::waiting) continue;
+      bool upstream_done = true;
+      for (std::size_t j : graph_[i].upstream) {
+        upstream_done = upstream_done && state_[j].stage == NodeState::Stage::done;
+      }
+      if (!upstream_done) continue;
+      if (const std::optional<std::string> why = decide(i)) {
+        if (std::optional<TrialJob> job = start(i, *why)) return job;
+      }
+    }
+    return std::nullopt;
+  }
+
+  // Why experiment i must run, or nullopt when it was settled here (reused,
+  // blocked by its upstream, failed to load).
+  std::optional<std::string> decide(std::size_t i) {
+    const GraphNode& node = graph_[i];
+    if (!node.experiment) {
+      fail(i, node.config_error, node.load_error, "");
+      state_[i].problem = "failed to load";
+      return std::nullopt;
+    }
+    std::vector<CurrentUpstream> upstream;
+    for (std::size_t j : node.upstream) {
+      const std::string up_name =
+          graph_[j].experiment ? graph_[j].experiment->spec.name : graph_[j].file.string();
+      if (!state_[j].record) {
+        finish(i,
+               {display_name(i), "skipped",
+                "upstream " + up_name + " has no result (" + state_[j].problem + ")", "", ""},
+               "skipped");
+        exit_code_ = std::max(exit_code_, 1);
+        return std::nullopt;
+      }
+      upstream.push_back({up_name, result_identity(*state_[j].record)});
+    }
+    const LoadedExperiment& exp = *node.experiment;
+    const fs::path path = result_path(exp, options_.results_dir);
+    std::error_code ec;
+    if (options_.force) return "--force";
+    if (!fs::exists(path, ec)) return "no result for this resolved config yet";
+    try {
+      RunRecord existing = read_result(path);
+      std::string why = staleness(existing.upstream, upstream);
+      // The dataset file name carries the generator version (not part of the
+      // resolved config): a new generator version makes a new dataset.
+      const fs::path dataset = dataset_cache_file(exp.spec.dataset, generator_seed(exp.spec), "");
+      if (why.empty() && fs::path(existing.dataset_file).filename() != dataset.filename()) {
+        why = "dataset generator changed (" + dataset.filename().string() + ")";
+      }
+      if (!why.empty()) return why;
+      state_[i].record = std::move(existing);
+      settle(i, "reused", "config and upstream results unchanged");
+      return std::nullopt;
+    } catch (const IoError& e) {
+      return std::string("result unreadable (") + e.what() + ")";
+    }
+  }
+
+  // Experiment i's trial, or nullopt when what it needs first failed (its
+  // row says why).
+  std::optional<TrialJob> start(std::size_t i, const std::string& why) {
+    const LoadedExperiment& exp = *graph_[i].experiment;
+    const fs::path path = result_path(exp, options_.results_dir);
+    try {
+      // --regenerate: each dataset once, here; the trials then hit the cache.
+      if (options_.regenerate) {
+        const std::uint64_t seed = generator_seed(exp.spec);
+        const fs::path file = dataset_cache_file(exp.spec.dataset, seed, options_.datasets_dir);
+        if (regenerated_.insert(file).second) {
+          obtain_dataset(exp.spec.dataset, seed, options_.datasets_dir, log_, true);
+        }
+      }
+      fs::create_directories(path.parent_path());
+    } catch (const std::exception& e) {
+      fail(i, dynamic_cast<const ConfigError*>(&e) != nullptr, why, e.what());
+      return std::nullopt;
+    }
+    NodeState& s = state_[i];
+    s.stage = NodeState::Stage::running;
+    s.why = why;
+    s.started = std::chrono::steady_clock::now();
+    ++started_;
+    if (log_) *log_ << "[run " << started_ << "] " << display_name(i) << " (" << why << ")\n";
+    last_log_ = s.started;
+    return TrialJob{i, &exp, path, error_note(path)};
+  }
+
+  static fs::path error_note(const fs::path& result) { return result.string() + ".error"; }
+
+  void finished(std::size_t i, const TrialExit& exit) {
+    NodeState& s = state_[i];
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - s.started).count();
+    const fs::path path = result_path(*graph_[i].experiment, options_.results_dir);
+    if (exit.kind == TrialExit::Kind::interrupted) {
+      s.stage = NodeState::Stage::done;  // the pool starts nothing more; rows() says so
+      return;
+    }
+    if (exit.kind == TrialExit::Kind::error) {
+      const std::string text = read_note(error_note(path));
+      fail(i, exit.config_error, s.why, text.empty() ? exit.message : text);
+    } else {
+      try {
+        s.record = read_result(path);
+        settle(i, "ran", s.why);
+      } catch (const Error& e) {
+        fail(i, false, s.why, e.what());
+      }
+    }
+    if (log_) {
+      *log_ << "[done " << ++finished_ << "/" << started_ << "] " << display_name(i) << " "
+            << s.row->action << " in " << std::fixed << std::setprecision(1) << seconds << " s"
+            << std::defaultfloat << "\n";
+      last_log_ = std::chrono::steady_clock::now();
+    }
+  }
+
+  // Long runs say they are still running: every kHeartbeat without another
+  // line, "[running] NAME 2m05s, ..." (the trials themselves are silent).
+  void heartbeat() {
+    constexpr std::chrono::seconds kHeartbeat{30};
+    const auto now = std::chrono::steady_clock::now();
+    if (!log_ || now - last_log_ < kHeartbeat) return;
+    std::string line;
+    for (std::size_t i = 0; i < graph_.size(); ++i) {
+      if (state_[i].stage != NodeState::Stage::running) continue;
+      const auto s = std::chrono::duration_cast<std::chrono::seconds>(now - state_[i].started);
+      line += (line.empty() ? "" : ", ") + display_name(i) + " " + std::to_string(s.count() / 60) +
+              "m" + (s.count() % 60 < 10 ? "0" : "") + std::to_string(s.count() % 60) + "s";
+    }
+    if (!line.empty()) *log_ << "[running] " << line << "\n";
+    last_log_ = now;
+  }
+
+  // Experiment i has its result in state_[i].record (ran or reused): its row.
+  // A diverged training is a failure unless the experiment allows it
+  // (may_diverge, spec.hpp).
+  void settle(std::size_t i, const std::string& action, const std::string& why) {
+    const RunRecord& r = *state_[i].record;
+    const fs::path path = result_path(*graph_[i].experiment, options_.results_dir);
+    if (r.provenance.status == "complete") {
+      finish(i, {display_name(i), action, why, metrics_line(r.metrics), path.string()});
+    } else if (graph_[i].experiment->spec.may_diverge) {
+      finish(i, {display_name(i), action + ", diverged", why,
+                 r.provenance.failure_reason + " (allowed: may_diverge)", path.string()});
+    } else {
+      finish(i, {display_name(i), action + ", FAILED", why, r.provenance.failure_reason,
+                 path.string()});
+      exit_code_ = std::max(exit_code_, 1);
+    }
+  }
+
+  // The text of an error note a trial left (and the note removed), or "".
+  static std::string read_note(const fs::path& note) {
+    std::ifstream in(note);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    while (!text.empty() && text.back() == '\n') text.pop_back();
+    std::error_code ec;
+    fs::remove(note, ec);
+    return text;
+  }
+
+  const std::vector<GraphNode>& graph_;
+  const CommandOptions& options_;
+  const RunOptions run_;  // the trials' options
+  std::ostream* log_;     // progress; null when quiet
+  std::vector<NodeState> state_;
+  std::set<fs::path> regenerated_;
+  std::size_t started_ = 0, finished_ = 0;
+  std::chrono::steady_clock::time_point last_log_ = std::chrono::steady_clock::now();
+  int exit_code_ = 0;
+};
+
+}  // namespace
+
+int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
+                      std::ostream& out, std::ostream& log) {
+  const auto found = find_experiments(paths);
+  if (found.empty()) throw ConfigError("reproduce: no experiment files found");
+  // `kind: <job>` files (job_kinds.hpp) take no part in the training graph
+  // and run after it; a file whose kind cannot be read stays in the graph, to
+  // be reported there.
+  std::vector<fs::path> files;
+  std::vector<std::pair<fs::path, JobKind>> jobs;
+  for (const auto& file : found) {
+    std::optional<JobKind> kind;
+    try {
+      kind = find_job_kind(experiment_kind(file));
+    } catch (const ConfigError&) {
+    }
+    if (kind) {
+      jobs.emplace_back(file, std::move(*kind));
+    } else {
+      files.push_back(file);
+    }
+  }
+  const std::vector<GraphNode> graph = load_graph(files, options.profile);
+  GraphRun graph_run(graph, options, log);
+  clean_stale_partials({options.results_dir, options.datasets_dir}, log);
+  const std::size_t parallel = options.jobs > 0 ? options.jobs : available_cores();
+  if (!options.quiet) {
+    log << "reproduce: " << graph.size() << " experiment(s) and " << jobs.size()
+        << " job(s); training up to " << parallel << " at once\n";
+  }
+  const int stopped = graph_run.run(parallel);
+  std::vector<Row> rows = graph_run.rows();
+  int exit_code = graph_run.exit_code();
+  if (stopped != 0) {
+    out << "interrupted by signal " << stopped
+        << ": finished results are kept; run the same command again to resume\n";
+    return 128 + stopped;
+  }
+  // Jobs read training results: they run after the graph, in file order.
+  std::string reports;
+  const JobContext context{options, {}, options.quiet ? nullptr : &log};
+  for (const auto& [file, kind] : jobs) {
+    if (!options.quiet) log << "[" << kind.kind << "] " << file.string() << "\n";
+    try {
+      const JobReport r = kind.run(file, context);
+      rows.push_back({r.name, r.action, r.why, r.detail, r.file});
+      if (!r.report.empty()) reports += "\n" + r.report;
+    } catch (const ConfigError& e) {
+      rows.push_back({file.string(), "CONFIG ERROR", kind.kind + " job", e.what(), ""});
+      exit_code = 2;
+    } catch (const Error& e) {
+      rows.push_back({file.string(), "ERROR", kind.kind + " job", e.what(), ""});
+      exit_code = std::max(exit_code, 1);
+    }
+  }
+  out << "\n== cnclab reproduce: " << rows.size() << " experiment(s) ==\n";
+  for (const auto& row : rows) {
+    out << std::left << std::setw(28) << row.name << " " << std::setw(12) << row.action << " "
+        << row.why << "\n";
+    if (!row.detail.empty()) out << std::string(30, ' ') << row.detail << "\n";
+    if (!row.file.empty()) out << std::string(30, ' ') << row.file << "\n";
+  }
+  out << reports;
+  TablesOptions tables;
+  tables.results_dir = options.results_dir;
+  tables.profile = options.profile;
+  print_available_tables(tables, out);
+  return exit_code;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,104 @@
+#include "cli/sweep_command.hpp"
+
+#include <map>
+#include <set>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/data/dataset_cache.hpp"
+#include "cnclab/experiment/experiment_graph.hpp"
+#include "cnclab/experiment/upstream.hpp"
+#include "cnclab/nn/metrics.hpp"
+#include "cnclab/report/sweep_report.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
+#include "cnclab/sweep/trial_pool.hpp"
+#include "cnclab/io/atomic_file.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+SweepSpec resolve_spec(const fs::path& experiment, const SweepArguments& args,
+                       const SweepCommandOptions& o) {
+  SweepSpec spec = read_sweep_block(experiment, args.overrides, o.common.profile);
+  // A plain command-line value fixes a key the block sweeps.
+  for (const auto& text : args.overrides) {
+    const std::string key = parse_override(text).dotted_key();
+    std::erase_if(spec.parameters, [&](const SweepParameter& p) { return p.key == key; });
+  }
+  for (const auto& p : args.parameters) spec.set(p);
+  if (o.repeats) spec.repeats = *o.repeats;
+  if (o.trials) spec.trials = *o.trials;
+  if (o.sweep_seed) spec.seed = *o.sweep_seed;
+  if (o.objective) spec.objective = parse_objective(*o.objective);
+  if (o.method) {
+    if (*o.method != "grid" && *o.method != "random") {
+      throw ConfigError("--method " + *o.method + ": must be one of: grid, random");
+    }
+    spec.method = *o.method == "grid" ? SweepMethod::grid : SweepMethod::random;
+  }
+  return spec;
+}
+
+int summary_exit_code(const SweepSummary& s) {
+  return s.failed + s.errors + s.missing == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
+                  std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
+                  std::ostream& out, std::ostream& log) {
+  const SweepArguments args = split_sweep_arguments(words);
+  const SweepSpec spec = resolve_spec(experiment, args, o);
+  SweepExecuteOptions exec;
+  exec.common = o.common;
+  exec.jobs = o.jobs;
+  if (!o.shard.empty()) std::tie(exec.shard, exec.shards) = parse_shard(o.shard);
+  const std::size_t shard = exec.shard, shards = exec.shards;
+  SweepPlan plan = plan_sweep(experiment, args.overrides, seed, spec, o.common.profile);
+  const fs::path dir =
+      o.dir.empty() ? o.common.results_dir / plan.experiment / ("sweep-" + plan.hash().substr(0, 8))
+                    : o.dir;
+  store_plan(dir, plan);
+  clean_stale_partials({o.common.results_dir, dir, o.common.datasets_dir}, log);
+
+  const SweepExecution ex = execute_sweep(plan, dir, exec, o.common.quiet ? nullptr : &log);
+  const std::vector<TrialOutcome>& outcomes = ex.outcomes;
+  const std::vector<std::size_t>& mine = ex.mine;
+  if (ex.stopped != 0) {
+    out << "interrupted by signal " << ex.stopped << ": " << ex.finished << " of " << ex.ran
+        << " trials finished; run the same command again to resume (finished trials are kept)\n";
+    return 128 + ex.stopped;
+  }
+
+  if (shards > 1) {
+    std::size_t ok = 0, bad = 0;
+    for (std::size_t i : mine) (outcomes[i].status == TrialOutcome::Status::complete ? ok : bad)++;
+    out << "shard " << shard << "/" << shards << " of " << dir.string() << ": " << ok
+        << " complete, " << bad << " failed; when every shard is done: cnclab sweep merge "
+        << dir.string() << "\n";
+    return bad == 0 ? 0 : 1;
+  }
+  const SweepSummary summary = summarize(plan, outcomes);
+  write_summary(dir / "summary.h5", plan, outcomes, summary);
+  print_summary(out, plan, outcomes, summary, dir);
+  out << "summary: " << (dir / "summary.h5").string() << "\n";
+  return summary_exit_code(summary);
+}
+
+int sweep_merge_command(const fs::path& dir, std::ostream& out) {
+  const SweepPlan plan = load_plan(dir);
+  const std::vector<TrialOutcome> outcomes = read_trial_outcomes(dir, plan);
+  const SweepSummary summary = summarize(plan, outcomes);
+  write_summary(dir / "summary.h5", plan, outcomes, summary);
+  print_summary(out, plan, outcomes, summary, dir);
+  if (summary.missing) {
+    out << summary.missing << " trial(s) have no result yet: run the missing shards (or the "
+        << "sweep without --shard) into " << dir.string() << ", then merge again\n";
+  }
+  out << "summary: " << (dir / "summary.h5").string() << "\n";
+  return summary_exit_code(summary);
+}
+
+}  // namespace cnclab

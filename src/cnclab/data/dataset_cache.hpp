@@ -1,0 +1,49 @@
+#pragma once
+// Generated datasets cached as HDF5 files under a cache folder, keyed by the
+// generator, its resolved options and its seed: a later run asking for the
+// same dataset reads it instead of generating it again.
+#include <cstdint>
+#include <filesystem>
+#include <ostream>
+#include <string>
+
+#include "cnclab/data/dataset.hpp"
+#include "cnclab/data/dataset_spec.hpp"
+
+namespace cnclab {
+
+struct CachedDataset {
+  Dataset dataset;
+  std::filesystem::path path;
+  std::string content_hash;
+  bool reused = false;
+};
+
+// Generates the dataset `spec` describes with generator seed `seed`.
+Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed);
+
+// The generator_config text stored in a dataset and hashed into its cache
+// key: the generator's resolved options, its version and the seed.
+std::string dataset_config_text(const DatasetGenerator& generator, std::uint64_t seed);
+
+// Where obtain_dataset keeps the dataset: <dir>/<generator>-<16 hex>.h5.
+std::filesystem::path dataset_cache_file(const DatasetSpec& spec, std::uint64_t seed,
+                                         const std::filesystem::path& dir);
+
+// <dir>/<generator>-<16 hex digits>.h5, the hash covering generator name,
+// version, options and seed. A cached file that fails to read (corrupt, partial,
+// tampered) or was made by another generator config is regenerated, and so is
+// every file when `regenerate` is set.
+//
+// Concurrent callers (parallel sweep trials, shards on one machine, several
+// `cnclab run`s) produce a dataset once: whoever misses the cache takes an
+// exclusive flock(2) on <dir>/.<generator>-<hash>.lock, checks the cache
+// again, and only then generates; the others wait and read the file it wrote.
+// The file itself is written atomically (temporary + rename), so a reader
+// never sees a torn dataset even without the lock. The lock files are left in
+// place (removing them would race with a waiting process).
+CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed,
+                             const std::filesystem::path& dir, std::ostream* log,
+                             bool regenerate = false);
+
+}  // namespace cnclab

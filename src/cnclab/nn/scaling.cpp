@@ -1,0 +1,73 @@
+#include "cnclab/nn/scaling.hpp"
+
+#include "cnclab/nn/zscore.hpp"
+
+namespace cnclab {
+
+std::string to_string(Scaling s) {
+  switch (s) {
+    case Scaling::zscore:
+      return "zscore";
+    case Scaling::minmax:
+      return "minmax";
+    case Scaling::none:
+      return "none";
+  }
+  return "?";
+}
+
+bool parse_scaling(const std::string& text, Scaling& s) {
+  for (auto candidate : {Scaling::zscore, Scaling::minmax, Scaling::none}) {
+    if (to_string(candidate) == text) {
+      s = candidate;
+      return true;
+    }
+  }
+  return false;
+}
+
+ScalingRecord ScalingRecord::fit(Scaling method, const Eigen::MatrixXd& train,
+                                 const std::array<double, 2>& range) {
+  ScalingRecord r;
+  r.method = method;
+  if (method == Scaling::zscore) {
+    ZScoreNormaliser z;
+    z.fit(train);
+    r.mean = z.mean();
+    r.std = z.std();
+  } else if (method == Scaling::minmax) {
+    MinMaxNormaliser m(range[0], range[1]);
+    m.fit(train);
+    r.min = m.x_min();
+    r.max = m.x_max();
+    r.y_min = range[0];
+    r.y_max = range[1];
+  }
+  return r;
+}
+
+Eigen::MatrixXd ScalingRecord::transform(const Eigen::MatrixXd& data) const {
+  switch (method) {
+    case Scaling::zscore:
+      return ZScoreNormaliser(mean, std).transform(data);
+    case Scaling::minmax:
+      return MinMaxNormaliser(min, max, y_min, y_max).transform(data);
+    case Scaling::none:
+      break;
+  }
+  return data;
+}
+
+Eigen::MatrixXd ScalingRecord::inverse_transform(const Eigen::MatrixXd& scaled) const {
+  switch (method) {
+    case Scaling::zscore:
+      return ZScoreNormaliser(mean, std).inverse_transform(scaled);
+    case Scaling::minmax:
+      return MinMaxNormaliser(min, max, y_min, y_max).inverse_transform(scaled);
+    case Scaling::none:
+      break;
+  }
+  return scaled;
+}
+
+}  // namespace cnclab

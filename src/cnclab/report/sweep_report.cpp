@@ -1,0 +1,70 @@
+#include "cnclab/report/sweep_report.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "cnclab/nn/metrics.hpp"
+#include "cnclab/report/text_table.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+std::string mean_std_text(const PointStats& p, const std::string& metric) {
+  const double mean = metric_or_nan(p.mean, metric);
+  if (std::isnan(mean)) return "—";
+  const double sd = metric_or_nan(p.std, metric);
+  return format_metric(mean) + (std::isnan(sd) ? "" : " ± " + format_metric(sd));
+}
+
+}  // namespace
+
+void print_summary(std::ostream& out, const SweepPlan& plan,
+                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& s,
+                   const fs::path& dir) {
+  const std::string& objective = plan.objective.metric;
+  TextTable table;
+  table.header = {"rank"};
+  for (const auto& k : plan.keys) table.header.push_back(k);
+  table.header.push_back(objective + (plan.objective.maximize ? " (max)" : " (min)"));
+  table.header.push_back("ok/runs");
+  for (const auto& m : plan.metrics) {
+    if (m != objective) table.header.push_back(m);
+  }
+  for (std::size_t r = 0; r < s.points.size(); ++r) {
+    const PointStats& p = s.points[r];
+    std::vector<std::string> row = {std::to_string(r + 1)};
+    row.insert(row.end(), p.values.begin(), p.values.end());
+    row.push_back(mean_std_text(p, objective));
+    row.push_back(std::to_string(p.complete) + "/" + std::to_string(p.trials.size()));
+    for (const auto& m : plan.metrics) {
+      if (m != objective) row.push_back(mean_std_text(p, m));
+    }
+    table.rows.push_back(std::move(row));
+  }
+  out << "== sweep " << plan.experiment << ": " << plan.trials.size() << " trials ("
+      << s.points.size() << " points x " << plan.repeats << " repeats, " << plan.method << "); "
+      << s.complete << " complete, " << s.failed + s.errors << " failed";
+  if (s.missing) out << ", " << s.missing << " not run";
+  out << " ==\n";
+  table.print_aligned(out);
+  for (std::size_t i = 0; i < plan.trials.size(); ++i) {
+    const auto st = outcomes[i].status;
+    if (st == TrialOutcome::Status::failed || st == TrialOutcome::Status::error) {
+      std::string values;
+      for (std::size_t k = 0; k < plan.keys.size(); ++k) {
+        values += (k ? " " : "") + plan.keys[k] + "=" + plan.trials[i].values[k];
+      }
+      out << "FAILED trial " << plan.trials[i].id << " (" << values << ", repeat "
+          << plan.trials[i].repeat << "): " << outcomes[i].reason << "\n";
+    }
+  }
+  if (s.best_trial >= 0) {
+    const auto i = static_cast<std::size_t>(s.best_trial);
+    out << "best trial: " << (dir / outcomes[i].result_file).string() << "  " << objective << " "
+        << format_metric(metric_or_nan(outcomes[i].metrics, objective)) << " (" << kBestTrialRule
+        << ", " << s.points.front().complete << " complete)\n";
+  }
+}
+
+}  // namespace cnclab

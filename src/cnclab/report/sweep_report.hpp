@@ -1,0 +1,18 @@
+#pragma once
+// A sweep for people: the ranked table (mean ± std per point), the failed
+// trials and the best trial (`cnclab sweep`, `cnclab sweep merge`).
+#include <filesystem>
+#include <ostream>
+#include <vector>
+
+#include "cnclab/sweep/sweep_plan.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
+
+namespace cnclab {
+
+// The ranked table, failures and the best trial, for people.
+void print_summary(std::ostream& out, const SweepPlan& plan,
+                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary,
+                   const std::filesystem::path& dir);
+
+}  // namespace cnclab

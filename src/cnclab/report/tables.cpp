@@ -1,0 +1,60 @@
+#include "cnclab/report/tables.hpp"
+
+#include <stdexcept>
+#include <utility>
+
+namespace cnclab {
+
+double normalised_test_mse(const RunRecord& r) {
+  const ScalingRecord& y = r.target_scaling;
+  return (y.transform(r.test_predictions) - y.transform(r.test_targets)).array().square().mean();
+}
+
+namespace {
+std::vector<TableEntry>& registry() {
+  static std::vector<TableEntry> tables;
+  return tables;
+}
+}  // namespace
+
+void register_table(TableEntry entry) {
+  for (const auto& t : registry()) {
+    if (t.name == entry.name) throw std::logic_error("table '" + entry.name + "' registered twice");
+  }
+  registry().push_back(std::move(entry));
+}
+
+const std::vector<TableEntry>& registered_tables() {
+  return registry();
+}
+
+int tables_command(const std::string& name, const TablesOptions& options, std::ostream& out) {
+  const auto& tables = registered_tables();
+  std::string known;
+  for (const auto& t : tables) {
+    if (t.name == name) {
+      t.print(options, out);
+      return 0;
+    }
+    known += (known.empty() ? "" : ", ") + t.name;
+  }
+  if (name.empty()) {
+    for (const auto& t : tables) out << t.name << "  " << t.summary << "\n";
+    return 0;
+  }
+  throw ConfigError("tables: unknown table '" + name + "'; known: " + known);
+}
+
+void print_available_tables(const TablesOptions& options, std::ostream& out) {
+  for (const auto& t : registered_tables()) {
+    try {
+      t.print(options, out);
+    } catch (const Error& e) {
+      // Missing or failed inputs: the runs' summary above stands; say why
+      // the table is absent (`cnclab tables NAME` reports it as an error).
+      out << "\n(table " << t.name << " not printed: " << e.what() << ")\n";
+    }
+  }
+}
+
+}  // namespace cnclab

@@ -1,0 +1,61 @@
+#pragma once
+// `cnclab tables NAME`: the papers' tables regenerated from result files and
+// printed beside the papers' own numbers (results/reference/). Adding a
+// table: write its printer in its study's folder and register it from the
+// study's register function (src/cli/builtins.cpp).
+#include <filesystem>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/experiment/run_record.hpp"
+#include "cnclab/report/text_table.hpp"
+
+namespace cnclab {
+
+struct TablesOptions {
+  std::filesystem::path results_dir = "results";              // where `run`/`reproduce` wrote
+  std::filesystem::path experiments_dir = "experiments";      // the experiment YAML files
+  std::filesystem::path reference_dir = "results/reference";  // transcribed paper numbers
+  std::filesystem::path configs_dir = "configs";              // study manifests (configs/studies)
+  TableFormat format = TableFormat::text;                     // `--format`
+  // The profiles: entry the results were made with (`reproduce --quick`:
+  // "quick"); experiments load with it to find their result files.
+  std::string profile;
+};
+
+// A table's input results do not exist yet (run the experiments first).
+class MissingResults : public IoError {
+ public:
+  using IoError::IoError;
+};
+
+struct TableEntry {
+  std::string name;     // `cnclab tables <name>`
+  std::string summary;  // one line
+  // Prints the table(s); throws MissingResults when results are absent.
+  std::function<void(const TablesOptions&, std::ostream&)> print;
+};
+
+// Test MSE in the normalised units the network was trained in: the mean of
+// (T(prediction) - T(target))^2 with T the run's target scaling.
+double normalised_test_mse(const RunRecord& r);
+
+// Registers a table (src/cli/builtins.cpp, before any command runs);
+// std::logic_error for a name registered twice.
+void register_table(TableEntry entry);
+// The registered tables, in registration order.
+const std::vector<TableEntry>& registered_tables();
+
+// Prints table `name`; an empty name lists the tables. Unknown names are
+// ConfigErrors listing the known ones. Returns the exit code (0).
+int tables_command(const std::string& name, const TablesOptions& options, std::ostream& out);
+
+// Prints every table whose results exist; a table whose inputs are missing
+// or unusable gets a one-line note instead (what `cnclab reproduce` ends
+// with).
+void print_available_tables(const TablesOptions& options, std::ostream& out);
+
+}  // namespace cnclab

@@ -1,0 +1,53 @@
+#include "cnclab/studies/five_axis/study.hpp"
+
+#include <cstdio>
+#include <numbers>
+
+#include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/report/tables.hpp"
+#include "cnclab/studies/five_axis/ik_tables.hpp"
+#include "cnclab/studies/five_axis/trochoid_job.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+// `kind: gcode` (trochoid_job.hpp). Takes seconds and writes text files:
+// always re-run.
+JobKind gcode_kind() {
+  JobKind k;
+  k.kind = "gcode";
+  k.summary = "trochoidal groove tool path and ISO 6983 program (seed 004)";
+  k.run = [](const fs::path& file, const JobContext& c) {
+    const TrochoidJob job = load_trochoid_job(file, c.overrides, c.options.profile);
+    const TrochoidFiles written = write_trochoid_outputs(job, c.options.results_dir);
+    char detail[160];
+    std::snprintf(detail, sizeof detail,
+                  "%zu points; max radial engagement %.1f deg in the loops (slotting 180)",
+                  written.outcome.groove.points.size(),
+                  written.outcome.max_engagement_rad * 180.0 / std::numbers::pi);
+    return JobReport{job.name,
+                     "ran",
+                     "gcode job (seconds; always re-run)",
+                     detail,
+                     written.program.string(),
+                     "== " + job.name + " ==\n" + written.outcome.report};
+  };
+  k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
+    return to_yaml(load_trochoid_job(file, c.overrides, c.options.profile));
+  };
+  return k;
+}
+
+}  // namespace
+
+void register_five_axis_study() {
+  register_job_kind(gcode_kind());
+  register_table(
+      {"ik",
+       "seed 004 Table 5 (IK networks per axis, ours vs paper) and the machine-space error of the "
+       "predicted joints",
+       print_ik_tables});
+}
+
+}  // namespace cnclab

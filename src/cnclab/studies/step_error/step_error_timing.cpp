@@ -1,0 +1,356 @@
+#include "cnclab/studies/step_error/step_error_timing.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
+#include "cnclab/data/step_error.hpp"
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/runner.hpp"
+#include "cnclab/experiment/spec.hpp"
+#include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/provenance.hpp"
+#include "cnclab/nn/mlp.hpp"
+#include "cnclab/report/tables.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kUmPerMm = 1000.0;
+// The exact method must reproduce the dataset's targets (it made them; only
+// summation order could differ) and the network the result's predictions.
+constexpr double kReproduceTolUm = 1e-6;
+const std::vector<std::string> kSurfaces = {"surface2", "surface3"};
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// What a surface's timing needs, prepared untimed.
+struct SurfaceCase {
+  std::string surface;
+  LoadedExperiment experiment;
+  const StepErrorDatasetOptions* dataset = nullptr;  // inside experiment.spec
+  fs::path result_file;
+  std::vector<std::size_t> test;       // dataset sample indices
+  std::vector<double> targets_um;      // the result's test targets
+  std::vector<double> predictions_um;  // the result's test predictions
+};
+
+SurfaceCase prepare(const std::string& surface, const fs::path& file, const std::string& profile,
+                    const fs::path& results_dir) {
+  SurfaceCase c;
+  c.surface = surface;
+  c.experiment = load_experiment(file, std::vector<std::string>{}, std::nullopt, profile);
+  const auto* generator =
+      dynamic_cast<const StepErrorGenerator*>(c.experiment.spec.dataset.generator.get());
+  if (!generator) {
+    throw ConfigError(file.string() + ": Table 8 timing needs a step_error dataset");
+  }
+  c.dataset = &generator->options();
+  c.result_file = result_path(c.experiment, results_dir);
+  if (!fs::exists(c.result_file)) {
+    throw MissingResults("no result for " + file.string() + " (expected " + c.result_file.string() +
+                         "); run `cnclab reproduce` first");
+  }
+  const RunRecord r = read_result(c.result_file);
+  if (r.provenance.status != "complete") {
+    throw Error(c.result_file.string() + ": training failed (" + r.provenance.failure_reason + ")");
+  }
+  if (r.target_units != std::vector<std::string>{"µm"}) {
+    throw Error(c.result_file.string() + ": expected one step-error target in µm");
+  }
+  c.test = r.split.test;
+  const std::size_t n = c.dataset->num_samples();
+  for (std::size_t s : c.test) {
+    if (s >= n) throw Error(c.result_file.string() + ": test index beyond the dataset");
+  }
+  c.targets_um.assign(r.test_targets.data(), r.test_targets.data() + r.test_targets.size());
+  c.predictions_um.assign(r.test_predictions.data(),
+                          r.test_predictions.data() + r.test_predictions.size());
+  return c;
+}
+
+// The planned tool-path lines holding test segments (line index -> line).
+std::map<std::size_t, ToolPathLine> plan_test_lines(const SurfaceCase& c) {
+  const std::size_t segments = c.dataset->tool_path.points_per_line - 1;
+  std::set<std::size_t> needed;
+  for (std::size_t s : c.test) needed.insert(s / segments);
+  std::map<std::size_t, ToolPathLine> lines;
+  for (std::size_t l : needed) {
+    lines.emplace(l, plan_line(c.dataset->surface, c.dataset->tool_path, l));
+  }
+  return lines;
+}
+
+template <class Method>
+std::vector<double> step_errors_um(const SurfaceCase& c,
+                                   const std::map<std::size_t, ToolPathLine>& lines,
+                                   Method&& method) {
+  const std::size_t segments = c.dataset->tool_path.points_per_line - 1;
+  std::vector<double> e(c.test.size());
+  for (std::size_t i = 0; i < c.test.size(); ++i) {
+    const ToolPathLine& line = lines.at(c.test[i] / segments);
+    e[i] = method(line.segment(c.test[i] % segments)).error * kUmPerMm;
+  }
+  return e;
+}
+
+double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double m = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
+  return m;
+}
+
+SurfaceTiming time_surface(const SurfaceCase& c, const StepErrorTimingOptions& o) {
+  SurfaceTiming t;
+  t.surface = c.surface;
+  t.experiment = c.experiment.spec.name;
+  t.result_file = c.result_file.string();
+  t.test_samples = c.test.size();
+  std::vector<double> planning, iterative, exact, load, inputs, forward;
+  std::vector<double> e_iterative, e_exact, e_network;
+  const std::size_t k = c.dataset->curve_points;
+  const std::size_t segments = c.dataset->tool_path.points_per_line - 1;
+  for (std::size_t r = 0; r < o.repeats; ++r) {
+    auto start = Clock::now();
+    const auto lines = plan_test_lines(c);
+    planning.push_back(seconds_since(start));
+    t.lines = lines.size();
+
+    start = Clock::now();
+    e_iterative = step_errors_um(
+        c, lines, [&](const StepErrorSegment& s) { return iterative_step_error(s, o.iterative); });
+    iterative.push_back(seconds_since(start));
+
+    start = Clock::now();
+    e_exact = step_errors_um(
+        c, lines, [&](const StepErrorSegment& s) { return exact_step_error(s, c.dataset->exact); });
+    exact.push_back(seconds_since(start));
+
+    start = Clock::now();
+    const RunRecord record = read_result(c.result_file);
+    const Mlp mlp(record.model);
+    load.push_back(seconds_since(start));
+
+    start = Clock::now();
+    Eigen::MatrixXd x(static_cast<Eigen::Index>(c.dataset->num_inputs()),
+                      static_cast<Eigen::Index>(c.test.size()));
+    for (std::size_t i = 0; i < c.test.size(); ++i) {
+      step_error_inputs(lines.at(c.test[i] / segments), c.test[i] % segments, k,
+                        x.col(static_cast<Eigen::Index>(i)));
+    }
+    inputs.push_back(seconds_since(start));
+
+    start = Clock::now();
+    const Eigen::MatrixXd y = record.target_scaling.inverse_transform(
+        mlp.predict(record.parameters, record.input_scaling.transform(x)));
+    forward.push_back(seconds_since(start));
+    e_network.assign(y.data(), y.data() + y.size());
+  }
+  const double exact_vs_targets = max_difference(e_exact, c.targets_um);
+  if (!(exact_vs_targets <= kReproduceTolUm)) {
+    throw Error(c.result_file.string() +
+                ": the exact step errors of the test segments differ from "
+                "the result's targets by " +
+                shortest_double(exact_vs_targets) + " µm: test indices and tool path do not match");
+  }
+  const double network_vs_result = max_difference(e_network, c.predictions_um);
+  if (!(network_vs_result <= kReproduceTolUm)) {
+    throw Error(c.result_file.string() +
+                ": the network's predictions from the surface differ from "
+                "the result's test predictions by " +
+                shortest_double(network_vs_result) + " µm");
+  }
+  t.planning_s = median(planning);
+  t.iterative_s = median(iterative);
+  t.exact_s = median(exact);
+  t.network_load_s = median(load);
+  t.network_inputs_s = median(inputs);
+  t.network_forward_s = median(forward);
+  t.iterative_max_error_um = max_difference(e_iterative, e_exact);
+  t.network_max_error_um = max_difference(e_network, e_exact);
+  return t;
+}
+
+}  // namespace
+
+void StepErrorTimingOptions::validate() const {
+  if (repeats < 1 || repeats > 1000) {
+    throw OptionError("repeats", std::to_string(repeats), "must be in [1, 1000]");
+  }
+  iterative.validate();
+}
+
+StepErrorTimingJob load_step_error_timing_job(const fs::path& file,
+                                              const std::vector<std::string>& overrides,
+                                              const std::string& profile) {
+  ConfigDocument doc = ConfigDocument::load(file, profile);
+  for (const auto& text : overrides) doc.apply(parse_override(text));
+  const ConfigReader root = doc.root();
+  if (root.require<std::string>("kind") != "step_error_timing") {
+    root.fail("kind", "must be step_error_timing");
+  }
+  StepErrorTimingJob job;
+  job.source_file = file;
+  job.profile = profile;
+  job.name = read_experiment_name(root);
+  job.description = root.get<std::string>("description", "");
+  const ConfigReader e = root.section("experiments");
+  for (const auto& surface : kSurfaces) {
+    job.experiments[surface] =
+        resolve_config_path(e.location(surface).file, e.require<std::string>(surface));
+  }
+  StepErrorTimingOptions& o = job.options;
+  o.repeats = root.get<std::size_t>("repeats", o.repeats);
+  const ConfigReader it = root.section("iterative");
+  o.iterative.points_per_pass =
+      static_cast<int>(it.get<std::int64_t>("points_per_pass", o.iterative.points_per_pass));
+  o.iterative.relative_tolerance =
+      it.get<double>("relative_tolerance", o.iterative.relative_tolerance);
+  o.iterative.max_passes =
+      static_cast<int>(it.get<std::int64_t>("max_passes", o.iterative.max_passes));
+  it.validate([&] { o.iterative.validate(); });
+  root.validate([&] { o.validate(); });
+  doc.check_all_consumed();
+  return job;
+}
+
+StepErrorTimingResult run_step_error_timing(const StepErrorTimingJob& job,
+                                            const fs::path& results_dir) {
+  job.options.validate();
+  StepErrorTimingResult result;
+  result.name = job.name;
+  result.host = host_name();
+  result.utc = utc_now_iso8601();
+  const Provenance p = make_provenance(0);
+  result.cnclab_version = p.cnclab_version;
+  result.git_commit = p.git_commit;
+  result.repeats = job.options.repeats;
+  // Everything read first, so a missing upstream result fails before timing.
+  std::vector<SurfaceCase> cases;
+  for (const auto& [surface, file] : job.experiments) {
+    cases.push_back(prepare(surface, file, job.profile, results_dir));
+  }
+  for (const auto& c : cases) result.surfaces.push_back(time_surface(c, job.options));
+  return result;
+}
+
+fs::path step_error_timing_path(const std::string& name, const fs::path& results_dir) {
+  return results_dir / name / (name + ".yaml");
+}
+
+namespace {
+
+// Timing fields in file order: key, member.
+const std::vector<std::pair<const char*, double SurfaceTiming::*>> kSeconds = {
+    {"planning_s", &SurfaceTiming::planning_s},
+    {"iterative_s", &SurfaceTiming::iterative_s},
+    {"exact_s", &SurfaceTiming::exact_s},
+    {"network_load_s", &SurfaceTiming::network_load_s},
+    {"network_inputs_s", &SurfaceTiming::network_inputs_s},
+    {"network_forward_s", &SurfaceTiming::network_forward_s},
+    {"iterative_max_error_um", &SurfaceTiming::iterative_max_error_um},
+    {"network_max_error_um", &SurfaceTiming::network_max_error_um},
+};
+
+}  // namespace
+
+fs::path write_step_error_timing(const StepErrorTimingResult& r, const fs::path& results_dir) {
+  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
+  YAML::Emitter out;
+  out << BeginMap;
+  out << Key << "name" << Value << r.name;
+  out << Key << "host" << Value << r.host << Key << "utc" << Value << r.utc;
+  out << Key << "cnclab_version" << Value << r.cnclab_version;
+  out << Key << "git_commit" << Value << r.git_commit;
+  out << Key << "repeats" << Value << r.repeats;
+  out << Key << "surfaces" << Value << BeginMap;
+  for (const auto& s : r.surfaces) {
+    out << Key << s.surface << Value << BeginMap;
+    out << Key << "experiment" << Value << s.experiment;
+    out << Key << "result_file" << Value << s.result_file;
+    out << Key << "test_samples" << Value << s.test_samples;
+    out << Key << "lines" << Value << s.lines;
+    for (const auto& [key, field] : kSeconds)
+      out << Key << key << Value << shortest_double(s.*field);
+    out << EndMap;
+  }
+  out << EndMap << EndMap;
+  const fs::path file = step_error_timing_path(r.name, results_dir);
+  write_text_atomically(file, std::string(out.c_str()) + "\n");
+  return file;
+}
+
+std::string to_yaml(const StepErrorTimingJob& job) {
+  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
+  YAML::Emitter out;
+  out << BeginMap << Key << "kind" << Value << "step_error_timing";
+  out << Key << "name" << Value << job.name << Key << "description" << Value << job.description;
+  out << Key << "experiments" << Value << BeginMap;
+  for (const auto& [surface, file] : job.experiments)
+    out << Key << surface << Value << file.string();
+  out << EndMap << Key << "repeats" << Value << job.options.repeats;
+  const auto& it = job.options.iterative;
+  out << Key << "iterative" << Value << BeginMap;
+  out << Key << "points_per_pass" << Value << it.points_per_pass;
+  out << Key << "relative_tolerance" << Value << shortest_double(it.relative_tolerance);
+  out << Key << "max_passes" << Value << it.max_passes << EndMap << EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+std::string step_error_timing_summary(const StepErrorTimingResult& r) {
+  std::string line;
+  for (const auto& s : r.surfaces) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s%s: geometric %.3g s, exact %.3g s, network %.3g s",
+                  line.empty() ? "" : "; ", s.surface.c_str(), s.iterative_s, s.exact_s,
+                  s.network_total_s());
+    line += buf;
+  }
+  return line;
+}
+
+StepErrorTimingResult read_step_error_timing(const fs::path& file) {
+  const ConfigDocument doc = ConfigDocument::load(file);
+  const ConfigReader root = doc.root();
+  StepErrorTimingResult r;
+  r.name = root.require<std::string>("name");
+  r.host = root.require<std::string>("host");
+  r.utc = root.require<std::string>("utc");
+  r.cnclab_version = root.require<std::string>("cnclab_version");
+  r.git_commit = root.require<std::string>("git_commit");
+  r.repeats = root.require<std::size_t>("repeats");
+  const ConfigReader surfaces = root.section("surfaces");
+  for (const auto& name : surfaces.keys()) {
+    const ConfigReader s = surfaces.section(name);
+    SurfaceTiming t;
+    t.surface = name;
+    t.experiment = s.require<std::string>("experiment");
+    t.result_file = s.require<std::string>("result_file");
+    t.test_samples = s.require<std::size_t>("test_samples");
+    t.lines = s.require<std::size_t>("lines");
+    for (const auto& [key, field] : kSeconds) t.*field = s.require<double>(key);
+    r.surfaces.push_back(t);
+  }
+  doc.check_all_consumed();
+  return r;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,46 @@
+#include "cnclab/studies/step_error/study.hpp"
+
+#include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/report/tables.hpp"
+#include "cnclab/studies/step_error/step_error_tables.hpp"
+#include "cnclab/studies/step_error/step_error_timing.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+// `kind: step_error_timing` (step_error_timing.hpp): seed 000 Table 8. A
+// measurement: re-run every time (results of a timing are not reusable).
+JobKind step_error_timing_kind() {
+  JobKind k;
+  k.kind = "step_error_timing";
+  k.summary = "seed 000 Table 8: geometric vs exact vs network step-error time";
+  k.run = [](const fs::path& file, const JobContext& c) {
+    const StepErrorTimingJob job = load_step_error_timing_job(file, c.overrides, c.options.profile);
+    const StepErrorTimingResult result = run_step_error_timing(job, c.options.results_dir);
+    const fs::path written = write_step_error_timing(result, c.options.results_dir);
+    return JobReport{job.name,
+                     "ran",
+                     "timing job (a measurement; always re-run)",
+                     step_error_timing_summary(result),
+                     written.string(),
+                     ""};
+  };
+  k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
+    return to_yaml(load_step_error_timing_job(file, c.overrides, c.options.profile));
+  };
+  return k;
+}
+
+}  // namespace
+
+void register_step_error_study() {
+  register_job_kind(step_error_timing_kind());
+  register_table(
+      {"step-error",
+       "seed 000 Tables 2-8 (step-error BP network: dropout, surface 1, fine-tuning on surfaces 2 "
+       "and 3, timing), ours vs paper, and the normaliser keep/refit comparison",
+       print_step_error_tables});
+}
+
+}  // namespace cnclab

@@ -1,0 +1,137 @@
+#include "cnclab/sweep/sweep_execute.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/data/dataset_cache.hpp"
+#include "cnclab/experiment/experiment_graph.hpp"
+#include "cnclab/experiment/upstream.hpp"
+#include "cnclab/nn/metrics.hpp"
+#include "cnclab/sweep/trial_pool.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+std::string trial_text(const SweepPlan& plan, const PlannedTrial& t) {
+  return point_text(plan.keys, t.values) +
+         (plan.repeats > 1 ? " repeat " + std::to_string(t.repeat) : "");
+}
+
+// --regenerate: regenerates every dataset the trials need once, here, before
+// the trials start (they then hit the cache). Without it the trials obtain
+// their datasets themselves, in parallel, each missing one produced once
+// under the cache's lock. A dataset that cannot be made is left to the
+// trials, which record the error.
+void regenerate_datasets(const SweepPlan& plan, const std::vector<std::size_t>& todo,
+                         const CommandOptions& o, std::ostream* log) {
+  std::set<std::string> seen;
+  for (std::size_t i : todo) {
+    const ExperimentSpec& spec = plan.trials[i].experiment->spec;
+    const std::uint64_t seed = generator_seed(spec);
+    const std::string key = spec.dataset.generator->name() +
+                            spec.dataset.generator->options_yaml() + std::to_string(seed);
+    if (!seen.insert(key).second) continue;
+    try {
+      obtain_dataset(spec.dataset, seed, o.datasets_dir, log, true);
+    } catch (const Error&) {
+    }
+  }
+}
+
+// Trials with init_from/needs whose upstream results changed since they ran
+// are run again (the experiment graph's rule, experiment_graph.hpp); their
+// outcome is reset to missing. Returns how many.
+std::size_t invalidate_stale(const SweepPlan& plan, const std::vector<std::size_t>& mine,
+                             const fs::path& results_dir, std::vector<TrialOutcome>& outcomes) {
+  std::map<fs::path, std::optional<CurrentUpstream>> current;  // per upstream file
+  std::size_t stale = 0;
+  for (std::size_t i : mine) {
+    if (!outcomes[i].done()) continue;
+    std::vector<CurrentUpstream> upstream;
+    for (const auto& file : upstream_files(plan.trials[i].experiment->spec)) {
+      auto it = current.find(file);
+      if (it == current.end()) {
+        std::optional<CurrentUpstream> now;
+        try {
+          const UpstreamResult up =
+              load_upstream(file, results_dir, plan.trials[i].experiment->spec.profile);
+          now = CurrentUpstream{up.experiment.spec.name, result_identity(up.record)};
+        } catch (const IoError&) {
+          // Missing upstream: keep the trial's result (a re-run could only fail).
+        }
+        it = current.emplace(file, now).first;
+      }
+      if (it->second) upstream.push_back(*it->second);
+    }
+    if (!upstream.empty() && !staleness(outcomes[i].upstream, upstream).empty()) {
+      outcomes[i] = TrialOutcome{};
+      ++stale;
+    }
+  }
+  return stale;
+}
+
+}  // namespace
+
+SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
+                             const SweepExecuteOptions& o, std::ostream* note) {
+  SweepExecution ex;
+  ex.outcomes = read_trial_outcomes(dir, plan);
+  ex.mine = shard_trials(plan.trials.size(), o.shard, o.shards);
+  const std::size_t stale = invalidate_stale(plan, ex.mine, o.common.results_dir, ex.outcomes);
+  std::vector<std::size_t> todo;
+  for (std::size_t i : ex.mine) {
+    if (o.rerun || !ex.outcomes[i].done()) todo.push_back(i);
+  }
+  const std::size_t jobs = o.jobs > 0 ? o.jobs : available_cores();
+  if (note) {
+    *note << "sweep " << dir.string() << ": " << plan.trials.size() << " trials";
+    if (o.shards > 1)
+      *note << ", shard " << o.shard << "/" << o.shards << " has " << ex.mine.size();
+    if (plan.merged_duplicates)
+      *note << " (" << plan.merged_duplicates << " duplicate samples merged)";
+    if (stale) *note << "; " << stale << " to run again (upstream results changed)";
+    *note << "; " << ex.mine.size() - todo.size() << " already done, running " << todo.size()
+          << " with " << std::min(jobs, std::max<std::size_t>(todo.size(), 1)) << " job(s)\n";
+  }
+  if (o.common.regenerate) regenerate_datasets(plan, todo, o.common, note);
+
+  std::vector<TrialJob> pool_jobs;
+  for (std::size_t i : todo) {
+    pool_jobs.push_back({pool_jobs.size(), &*plan.trials[i].experiment,
+                         trial_result_path(dir, plan.trials[i].id),
+                         trial_error_path(dir, plan.trials[i].id)});
+  }
+  PoolOptions pool;
+  pool.jobs = jobs;
+  pool.run.results_dir = o.common.results_dir;
+  pool.run.datasets_dir = o.common.datasets_dir;
+  ex.ran = todo.size();
+  ex.stopped = run_trial_pool(pool_jobs, pool, [&](std::size_t job, const TrialExit& exit) {
+    const std::size_t i = todo[job];
+    if (exit.kind == TrialExit::Kind::interrupted) return;
+    ex.outcomes[i] = read_trial_outcome(dir, plan.trials[i]);
+    if (ex.outcomes[i].done()) {
+      std::error_code ec;
+      fs::remove(trial_error_path(dir, plan.trials[i].id), ec);  // a stale note of an earlier try
+    }
+    ++ex.finished;
+    if (!note) return;
+    const TrialOutcome& r = ex.outcomes[i];
+    *note << "[" << ex.finished << "/" << todo.size() << "] " << plan.trials[i].id << " "
+          << trial_text(plan, plan.trials[i]) << ": ";
+    if (r.status == TrialOutcome::Status::complete) {
+      const auto it = r.metrics.find(plan.objective.metric);
+      *note << plan.objective.metric << " "
+            << (it == r.metrics.end() ? std::string("?") : format_metric(it->second)) << "\n";
+    } else {
+      *note << to_string(r.status) << ": " << (r.reason.empty() ? exit.message : r.reason) << "\n";
+    }
+  });
+  return ex;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,201 @@
+#include "cnclab/sweep/sweep_job.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <chrono>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/override.hpp"
+#include "cnclab/experiment/spec.hpp"
+#include "cnclab/io/atomic_file.hpp"
+#include "cnclab/nn/metrics.hpp"
+#include "cnclab/sweep/sweep_execute.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+// results/<name>/selection.yaml: what the job selected, for people and
+// scripts (cnclab reads the sweep folder itself).
+std::string selection_yaml(const SweepJob& job, const SweepJobState& s) {
+  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
+  YAML::Emitter out;
+  out << BeginMap;
+  out << Key << "job" << Value << job.name;
+  out << Key << "experiment" << Value << job.experiment.string();
+  out << Key << "sweep_dir" << Value << s.dir.string();
+  out << Key << "plan_hash" << Value << s.plan.hash();
+  out << Key << "objective" << Value << YAML::Flow << BeginMap << Key << "metric" << Value
+      << s.plan.objective.metric << Key << "mode" << Value
+      << (s.plan.objective.maximize ? "max" : "min") << EndMap;
+  out << Key << "trials" << Value << s.plan.trials.size();
+  out << Key << "complete" << Value << s.summary.complete;
+  out << Key << "failed" << Value << s.summary.failed + s.summary.errors;
+  if (s.selected) {
+    const PlannedTrial& t = s.plan.trials[*s.selected];
+    out << Key << "selected" << Value << BeginMap;
+    out << Key << "trial" << Value << t.id;
+    out << Key << "result_file" << Value << s.selected_result().string();
+    out << Key << "parameters" << Value << BeginMap;
+    for (std::size_t k = 0; k < s.plan.keys.size(); ++k) {
+      out << Key << s.plan.keys[k] << Value << YAML::Load(t.values[k]);
+    }
+    out << EndMap << Key << "metrics" << Value << BeginMap;
+    for (const auto& [name, v] : s.outcomes[*s.selected].metrics) out << Key << name << Value << v;
+    out << EndMap << EndMap;
+  }
+  out << EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace
+
+SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& overrides,
+                        const std::string& profile) {
+  ConfigDocument doc = ConfigDocument::load(file, profile);
+  for (const auto& text : overrides) doc.apply(parse_override(text));
+  const ConfigReader root = doc.root();
+  if (root.get<std::string>("kind", "sweep") != "sweep") root.fail("kind", "must be sweep");
+  SweepJob job;
+  job.source_file = file;
+  job.profile = profile;
+  job.name = read_experiment_name(root);
+  job.description = root.get<std::string>("description", "");
+  job.experiment = upstream_file(root, "experiment", root.require<std::string>("experiment"),
+                                 file.parent_path());
+  job.overrides = root.get<std::vector<std::string>>("overrides", {});
+  for (const auto& text : job.overrides) {
+    try {
+      parse_override(text);
+    } catch (const ConfigError& e) {
+      root.fail("overrides", e.what());
+    }
+  }
+  job.jobs = root.get<std::size_t>("jobs", 0);
+  job.sweep = read_sweep_section(root.section("sweep"));
+  try {
+    job.sweep.validate();
+  } catch (const ConfigError& e) {
+    root.fail("sweep", e.what());
+  }
+  doc.check_all_consumed();
+  return job;
+}
+
+std::string to_yaml(const SweepJob& job) {
+  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
+  const SweepSpec& w = job.sweep;
+  YAML::Emitter out;
+  out << BeginMap << Key << "kind" << Value << "sweep" << Key << "name" << Value << job.name;
+  out << Key << "description" << Value << job.description;
+  out << Key << "experiment" << Value << job.experiment.string();
+  out << Key << "overrides" << Value << YAML::Flow << job.overrides;
+  out << Key << "jobs" << Value << job.jobs;
+  out << Key << "sweep" << Value << BeginMap;
+  out << Key << "method" << Value << (w.resolved_method() == SweepMethod::grid ? "grid" : "random");
+  if (w.trials > 0) out << Key << "trials" << Value << w.trials;
+  if (w.seed) out << Key << "seed" << Value << *w.seed;
+  out << Key << "repeats" << Value << w.repeats;
+  if (w.objective) {
+    out << Key << "objective" << Value << YAML::Flow << BeginMap << Key << "metric" << Value
+        << w.objective->metric << Key << "mode" << Value << (w.objective->maximize ? "max" : "min")
+        << EndMap;
+  }
+  out << Key << "parameters" << Value << BeginMap;
+  for (const auto& p : w.parameters) out << Key << p.key << Value << p.text;
+  out << EndMap << EndMap << EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+std::string selection_line(const SweepJobState& s) {
+  const std::string counts = std::to_string(s.summary.complete) + " of " +
+                             std::to_string(s.plan.trials.size()) + " trials complete";
+  if (!s.selected) return "no trial selected; " + counts;
+  const PlannedTrial& t = s.plan.trials[*s.selected];
+  const auto& metrics = s.outcomes[*s.selected].metrics;
+  const auto it = metrics.find(s.plan.objective.metric);
+  return "selected " + t.id + " (" + point_text(s.plan.keys, t.values) +
+         "): " + s.plan.objective.metric + " " +
+         (it == metrics.end() ? std::string("?") : format_metric(it->second)) + "; " + counts;
+}
+
+fs::path SweepJobState::selected_result() const {
+  if (!selected) throw Error(dir.string() + ": no complete trial to select");
+  return trial_result_path(dir, plan.trials[*selected].id);
+}
+
+SweepJobState sweep_job_state(const SweepJob& job, const fs::path& results_dir) {
+  SweepJobState s;
+  s.plan = plan_sweep(job.experiment, job.overrides, std::nullopt, job.sweep, job.profile);
+  s.dir = results_dir / job.name / ("sweep-" + s.plan.hash().substr(0, 8));
+  s.outcomes = read_trial_outcomes(s.dir, s.plan);
+  s.summary = summarize(s.plan, s.outcomes);
+  if (s.summary.best_trial >= 0) s.selected = static_cast<std::size_t>(s.summary.best_trial);
+  return s;
+}
+
+SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options,
+                              std::ostream* log) {
+  const auto start = std::chrono::steady_clock::now();
+  SweepJobOutcome r;
+  r.state = sweep_job_state(job, options.results_dir);
+  SweepJobState& s = r.state;
+  store_plan(s.dir, s.plan);
+  SweepExecuteOptions exec;
+  exec.common = options;
+  exec.jobs = job.jobs;
+  exec.rerun = options.force;
+  SweepExecution ex = execute_sweep(s.plan, s.dir, exec, log);
+  r.ran = ex.ran;
+  r.stopped = ex.stopped;
+  s.outcomes = std::move(ex.outcomes);
+  s.summary = summarize(s.plan, s.outcomes);
+  s.selected.reset();
+  if (s.summary.best_trial >= 0) s.selected = static_cast<std::size_t>(s.summary.best_trial);
+  const fs::path selection = options.results_dir / job.name / "selection.yaml";
+  std::error_code ec;
+  if (r.stopped == 0 &&
+      (r.ran > 0 || !fs::exists(s.dir / "summary.h5", ec) || !fs::exists(selection, ec))) {
+    write_summary(s.dir / "summary.h5", s.plan, s.outcomes, s.summary);
+    write_text_atomically(selection, selection_yaml(job, s));
+  }
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+// `kind: sweep` (sweep_job.hpp): trials without a result run; a finished
+// sweep with the same plan is reused.
+JobKind sweep_job_kind() {
+  JobKind k;
+  k.kind = "sweep";
+  k.summary =
+      "a sweep of an experiment file, selecting the median repeat of its best point by the "
+      "objective";
+  k.run = [](const fs::path& file, const JobContext& c) {
+    const SweepJob job = load_sweep_job(file, c.overrides, c.options.profile);
+    const SweepJobOutcome r = run_sweep_job(job, c.options, c.log);
+    if (r.stopped != 0) {
+      throw Error(job.name + ": interrupted by signal " + std::to_string(r.stopped) +
+                  "; finished trials are kept, run again to resume");
+    }
+    if (!r.state.selected) {
+      throw Error(job.name + ": " + selection_line(r.state) + " (reasons in " +
+                  (r.state.dir / "summary.h5").string() + ")");
+    }
+    JobReport report;
+    report.name = job.name;
+    report.action = r.ran == 0 ? "reused" : "ran";
+    report.why = r.ran == 0 ? "sweep plan unchanged, every trial has a result"
+                            : std::to_string(r.ran) + " trial(s) had no result";
+    report.detail = selection_line(r.state);
+    report.file = r.state.dir.string();
+    return report;
+  };
+  k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
+    return to_yaml(load_sweep_job(file, c.overrides, c.options.profile));
+  };
+  return k;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,269 @@
+#include "cnclab/sweep/sweep_plan.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <charconv>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/hash.hpp"
+#include "cnclab/io/atomic_file.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kPlanFormat = "cnclab-sweep-plan";
+constexpr int kPlanVersion = 1;
+
+using Point = std::vector<YAML::Node>;
+
+std::vector<Point> grid_points(const SweepSpec& spec) {
+  std::vector<std::vector<YAML::Node>> axes;
+  for (const auto& p : spec.parameters) axes.push_back(p.enumerate());
+  std::vector<Point> points;
+  std::vector<std::size_t> at(axes.size(), 0);
+  while (true) {
+    Point point;
+    for (std::size_t k = 0; k < axes.size(); ++k) point.push_back(axes[k][at[k]]);
+    points.push_back(std::move(point));
+    // Odometer: the last parameter varies fastest.
+    std::size_t k = axes.size();
+    while (k > 0 && ++at[k - 1] == axes[k - 1].size()) at[--k] = 0;
+    if (k == 0) break;
+  }
+  return points;
+}
+
+std::vector<Point> random_points(const SweepSpec& spec, std::uint64_t seed) {
+  std::vector<Point> points;
+  for (std::size_t s = 0; s < spec.trials; ++s) {
+    Point point;
+    for (const auto& p : spec.parameters) {
+      Rng rng(seed, "sweep/" + p.key + "/" + std::to_string(s));
+      point.push_back(p.sample(rng));
+    }
+    points.push_back(std::move(point));
+  }
+  return points;
+}
+
+Override override_of(const std::string& key, const YAML::Node& value) {
+  Override o = parse_override(key + "=0");
+  o.value = YAML::Clone(value);
+  o.text = key + "=" + node_text(value);
+  return o;
+}
+
+}  // namespace
+
+std::string point_text(const std::vector<std::string>& keys, const std::vector<std::string>& v) {
+  std::string s;
+  for (std::size_t k = 0; k < keys.size(); ++k) s += (k ? " " : "") + keys[k] + "=" + v[k];
+  return s;
+}
+
+std::string SweepPlan::to_yaml() const {
+  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
+  YAML::Emitter out;
+  out << BeginMap;
+  out << Key << "format" << Value << kPlanFormat;
+  out << Key << "format_version" << Value << kPlanVersion;
+  out << Key << "experiment" << Value << experiment;
+  out << Key << "method" << Value << method;
+  out << Key << "repeats" << Value << repeats;
+  out << Key << "objective" << Value << YAML::Flow << BeginMap << Key << "metric" << Value
+      << objective.metric << Key << "mode" << Value << (objective.maximize ? "max" : "min")
+      << EndMap;
+  out << Key << "keys" << Value << YAML::Flow << keys;
+  out << Key << "metrics" << Value << YAML::Flow << metrics;
+  out << Key << "merged_duplicates" << Value << merged_duplicates;
+  out << Key << "trials" << Value << YAML::BeginSeq;
+  for (const auto& t : trials) {
+    out << YAML::Flow << BeginMap;
+    out << Key << "id" << Value << t.id;
+    out << Key << "point" << Value << t.point;
+    out << Key << "repeat" << Value << t.repeat;
+    out << Key << "seed" << Value << t.seed;
+    out << Key << "values" << Value << YAML::Flow << YAML::DoubleQuoted << t.values;
+    out << EndMap;
+  }
+  out << YAML::EndSeq << EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+std::string SweepPlan::hash() const {
+  return hash_hex(to_yaml());
+}
+
+SweepPlan plan_sweep(const fs::path& file, const std::vector<std::string>& overrides,
+                     std::optional<std::uint64_t> seed, const SweepSpec& spec,
+                     const std::string& profile) {
+  spec.validate();
+  const LoadedExperiment base = load_experiment(file, overrides, seed, profile);
+  SweepPlan plan;
+  plan.experiment = base.spec.name;
+  plan.method = spec.resolved_method() == SweepMethod::grid ? "grid" : "random";
+  plan.repeats = spec.repeats;
+  plan.metrics = base.spec.metrics;
+  if (spec.objective) {
+    plan.objective = *spec.objective;
+  } else {
+    plan.objective.metric = plan.metrics.front();
+    plan.objective.maximize = plan.objective.metric == "r2";
+  }
+  if (std::find(plan.metrics.begin(), plan.metrics.end(), plan.objective.metric) ==
+      plan.metrics.end()) {
+    std::string known;
+    for (const auto& m : plan.metrics) known += (known.empty() ? "" : ", ") + m;
+    throw ConfigError("sweep: objective metric '" + plan.objective.metric +
+                      "' is not among the experiment's metrics (" + known + ")");
+  }
+  for (const auto& p : spec.parameters) plan.keys.push_back(p.key);
+
+  const std::vector<Point> points = spec.resolved_method() == SweepMethod::grid
+                                        ? grid_points(spec)
+                                        : random_points(spec, spec.seed.value_or(base.spec.seed));
+  std::vector<Override> base_overrides;
+  for (const auto& text : overrides) base_overrides.push_back(parse_override(text));
+
+  std::set<std::string> ids;
+  std::size_t next_point = 0;
+  for (const Point& point : points) {
+    std::vector<Override> trial_overrides = base_overrides;
+    std::vector<std::string> values;
+    for (std::size_t k = 0; k < point.size(); ++k) {
+      trial_overrides.push_back(override_of(plan.keys[k], point[k]));
+      values.push_back(node_text(point[k]));
+    }
+    const auto load = [&](std::optional<std::uint64_t> trial_seed) {
+      try {
+        return load_experiment(file, trial_overrides, trial_seed, profile);
+      } catch (const ConfigError& e) {
+        throw ConfigError("sweep trial " + point_text(plan.keys, values) + ": " + e.what());
+      }
+    };
+    LoadedExperiment first = load(seed);
+    const std::uint64_t point_seed = first.spec.seed;
+    bool kept = false;
+    for (std::size_t r = 0; r < spec.repeats; ++r) {
+      PlannedTrial t;
+      t.point = next_point;
+      t.repeat = r;
+      t.values = values;
+      t.experiment =
+          r == 0 ? std::move(first) : load(derive_seed(point_seed, "repeat/" + std::to_string(r)));
+      t.seed = t.experiment->spec.seed;
+      t.id = hash_hex(t.experiment->resolved_yaml);
+      if (!ids.insert(t.id).second) {
+        ++plan.merged_duplicates;
+        continue;
+      }
+      kept = true;
+      plan.trials.push_back(std::move(t));
+    }
+    if (kept) ++next_point;
+  }
+  return plan;
+}
+
+std::vector<std::size_t> shard_trials(std::size_t trial_count, std::size_t shard,
+                                      std::size_t shards) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = shard - 1; i < trial_count; i += shards) out.push_back(i);
+  return out;
+}
+
+std::pair<std::size_t, std::size_t> parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  std::size_t k = 0, n = 0;
+  const auto parse = [](std::string_view s, std::size_t& v) {
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    return ec == std::errc() && ptr == s.data() + s.size() && !s.empty();
+  };
+  if (slash == std::string::npos || !parse(std::string_view(text).substr(0, slash), k) ||
+      !parse(std::string_view(text).substr(slash + 1), n)) {
+    throw ConfigError("--shard " + text + ": expected K/N, e.g. 2/8 (shard K of N, 1 <= K <= N)");
+  }
+  if (n < 1 || k < 1 || k > n) {
+    throw ConfigError("--shard " + text + ": K must be between 1 and N (got K = " +
+                      std::to_string(k) + ", N = " + std::to_string(n) + ")");
+  }
+  return {k, n};
+}
+
+fs::path trial_result_path(const fs::path& dir, const std::string& id) {
+  return dir / "trials" / (id + ".h5");
+}
+
+fs::path trial_error_path(const fs::path& dir, const std::string& id) {
+  return dir / "trials" / (id + ".error");
+}
+
+void store_plan(const fs::path& dir, const SweepPlan& plan) {
+  const fs::path path = dir / "sweep.yaml";
+  const std::string text = plan.to_yaml();
+  std::error_code ec;
+  if (fs::exists(path, ec)) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    if (ss.str() == text) return;
+    throw ConfigError(dir.string() + " holds another sweep (its sweep.yaml lists other trials); " +
+                      "choose another --dir or remove that folder");
+  }
+  AtomicOutput out(path);
+  {
+    std::ofstream f(out.temp_path(), std::ios::binary);
+    f << text;
+    f.close();
+    if (!f) throw IoError(path.string() + ": cannot write the sweep plan");
+  }
+  out.commit();
+}
+
+SweepPlan load_plan(const fs::path& dir) {
+  const fs::path path = dir / "sweep.yaml";
+  try {
+    ConfigDocument doc = ConfigDocument::load(path);
+    const ConfigReader r = doc.root();
+    if (r.get<std::string>("format", "") != kPlanFormat) {
+      r.fail("format", std::string("not a sweep plan (expected ") + kPlanFormat + ")");
+    }
+    r.check(r.require<std::int64_t>("format_version") == kPlanVersion, "format_version",
+            "unsupported version");
+    SweepPlan plan;
+    plan.experiment = r.require<std::string>("experiment");
+    plan.method = r.require<std::string>("method");
+    plan.repeats = r.require<std::size_t>("repeats");
+    const ConfigReader o = r.section("objective");
+    plan.objective.metric = o.require<std::string>("metric");
+    plan.objective.maximize = o.require<std::string>("mode") == "max";
+    plan.keys = r.require<std::vector<std::string>>("keys");
+    plan.metrics = r.require<std::vector<std::string>>("metrics");
+    plan.merged_duplicates = r.require<std::size_t>("merged_duplicates");
+    const YAML::Node trials = r.raw("trials");
+    if (!trials.IsSequence()) r.fail("trials", "expected a list");
+    for (const auto& node : trials) {
+      PlannedTrial t;
+      t.id = node["id"].as<std::string>();
+      t.point = node["point"].as<std::size_t>();
+      t.repeat = node["repeat"].as<std::size_t>();
+      t.seed = node["seed"].as<std::uint64_t>();
+      t.values = node["values"].as<std::vector<std::string>>();
+      if (t.values.size() != plan.keys.size()) r.fail("trials", "values do not match keys");
+      plan.trials.push_back(std::move(t));
+    }
+    doc.check_all_consumed();
+    return plan;
+  } catch (const ConfigError& e) {
+    throw IoError(std::string("sweep plan unreadable: ") + e.what());
+  } catch (const YAML::Exception& e) {
+    throw IoError(path.string() + ": sweep plan unreadable: " + e.msg);
+  }
+}
+
+}  // namespace cnclab

@@ -1,0 +1,85 @@
+#pragma once
+// What a sweep produced: each trial's outcome read from the sweep folder, the
+// points (parameter combinations) aggregated over repeats and ranked by the
+// objective, and the summary HDF5 file (the table for people: sweep_report.hpp).
+//
+// summary.h5 (h5py: f["trials/metrics/rmse"][:]):
+//   /                  attrs format = "cnclab-sweep-summary", format_version = 1,
+//                      experiment, method, repeats, objective_metric,
+//                      objective_mode (min|max), plan_hash, counts trials,
+//                      complete_trials, failed, errors, missing; best_trial (id, when
+//                      any trial completed) and best_trial_rule (text); complete = 1
+//                      (written last)
+//   /plan              the sweep plan (sweep.yaml text)
+//   /trials/{id, status, reason, result_file, seed}   strings, one per trial (plan order)
+//   /trials/{point, repeat}                           int64
+//   /trials/parameters/<key>   float64 when every value is a number, else strings (YAML)
+//   /trials/metrics/<metric>   float64, NaN where the trial has no metrics
+//   /points/...                one row per point, ranked by the objective (best first):
+//                              point, trials (its trial ids "id1,id2,..." in
+//                              repeat order), parameters/<key>, complete, failed,
+//                              metrics/<metric>/{mean, std} (std over repeats, n - 1; NaN if n < 2)
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cnclab/experiment/run_record.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
+
+namespace cnclab {
+
+struct TrialOutcome {
+  // complete / failed: a result file with that status; error: no result but
+  // a note why (exception, crash); missing: not run yet (or unreadable).
+  enum class Status { complete, failed, error, missing };
+  Status status = Status::missing;
+  std::string reason;                     // failed/error: why; missing: unreadable result
+  std::map<std::string, double> metrics;  // complete only
+  std::string result_file;                // relative to the sweep folder; "" if none
+  std::vector<UpstreamRef> upstream;      // upstream results the trial was made from
+
+  // A complete result exists (status complete or failed): resume skips it.
+  bool done() const { return status == Status::complete || status == Status::failed; }
+};
+std::string to_string(TrialOutcome::Status status);
+
+// Reads the trial's result status (read_result_status) or error note from `dir`.
+TrialOutcome read_trial_outcome(const std::filesystem::path& dir, const PlannedTrial& trial);
+// The same for every trial of the plan (plan order).
+std::vector<TrialOutcome> read_trial_outcomes(const std::filesystem::path& dir,
+                                              const SweepPlan& plan);
+
+struct PointStats {
+  std::size_t point = 0;
+  std::vector<std::string> values;                    // per swept key
+  std::vector<std::size_t> trials;                    // indices into plan.trials
+  std::size_t complete = 0, failed = 0, missing = 0;  // failed includes errors
+  std::map<std::string, double> mean, std;            // over complete repeats
+};
+
+struct SweepSummary {
+  std::vector<PointStats> points;  // best first; points without results last
+  std::size_t complete = 0, failed = 0, errors = 0, missing = 0;
+  // The best point is the first of `points` (best objective mean over its
+  // complete repeats); the best trial is its median repeat by the objective
+  // (of n ranked best first, the one at (n - 1) / 2), never a lucky repeat of a
+  // worse point. Index into plan.trials; -1: no trial complete.
+  std::ptrdiff_t best_trial = -1;
+};
+
+// metrics[name], NaN when absent.
+double metric_or_nan(const std::map<std::string, double>& metrics, const std::string& name);
+
+// How best_trial is chosen (summary.h5 attribute best_trial_rule).
+inline constexpr const char* kBestTrialRule = "median repeat of the rank-1 point by the objective";
+
+SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& outcomes);
+
+// Written atomically (layout above).
+void write_summary(const std::filesystem::path& file, const SweepPlan& plan,
+                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary);
+
+}  // namespace cnclab

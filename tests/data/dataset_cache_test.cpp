@@ -1,0 +1,111 @@
+// The dataset cache: hit, miss on any change of the generator config,
+// --regenerate, and concurrent producers generating a dataset only once.
+#include "cnclab/data/dataset_cache.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fstream>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/data/dataset_spec.hpp"
+#include "common/temp_dir.hpp"
+
+namespace cnclab {
+namespace {
+
+namespace fs = std::filesystem;
+
+DatasetSpec friedman(std::size_t samples) {
+  const ConfigDocument doc = ConfigDocument::parse(
+      "dataset: {generator: friedman1, options: {samples: " + std::to_string(samples) + "}}\n",
+      "t.yaml");
+  return read_dataset_spec(doc.root().section("dataset"));
+}
+
+std::size_t files_in(const fs::path& dir) {
+  std::size_t n = 0;
+  for (const auto& e : fs::directory_iterator(dir)) n += e.path().extension() == ".h5";
+  return n;
+}
+
+// Issue 22: a generator that ignores its seed (step_error: pure geometry)
+// has one cache file whatever the seed; one that uses it (friedman1) has one
+// per seed.
+TEST(DatasetCache, SeedIsPartOfTheKeyOnlyForGeneratorsThatUseIt) {
+  testing::TempDir dir;
+  std::ofstream(dir / "s.yaml") << "dataset:\n  generator: step_error\n  options:\n    surface: "
+                                << CNCLAB_SOURCE_DIR "/configs/surfaces/surface1.yaml\n"
+                                << "    lines: 4\n    points_per_line: 6\n";
+  const ConfigDocument doc = ConfigDocument::load(dir / "s.yaml");
+  const DatasetSpec step = read_dataset_spec(doc.root().section("dataset"));
+  EXPECT_EQ(dataset_cache_file(step, 1, dir.path()), dataset_cache_file(step, 2, dir.path()));
+  EXPECT_NE(dataset_cache_file(friedman(10), 1, dir.path()),
+            dataset_cache_file(friedman(10), 2, dir.path()));
+}
+
+TEST(DatasetCache, HitMissAndRegenerate) {
+  testing::TempDir dir;
+  const CachedDataset first = obtain_dataset(friedman(100), 7, dir.path(), nullptr);
+  EXPECT_FALSE(first.reused);
+  const CachedDataset again = obtain_dataset(friedman(100), 7, dir.path(), nullptr);
+  EXPECT_TRUE(again.reused);
+  EXPECT_EQ(again.path, first.path);
+  EXPECT_EQ(again.content_hash, first.content_hash);
+  EXPECT_EQ(again.dataset.inputs, first.dataset.inputs);
+  // Another seed or another option: another file.
+  EXPECT_FALSE(obtain_dataset(friedman(100), 8, dir.path(), nullptr).reused);
+  EXPECT_FALSE(obtain_dataset(friedman(101), 7, dir.path(), nullptr).reused);
+  EXPECT_EQ(files_in(dir.path()), 3u);
+  // --regenerate writes a new file with identical content.
+  const auto inode_before = fs::last_write_time(first.path);
+  const CachedDataset regenerated = obtain_dataset(friedman(100), 7, dir.path(), nullptr, true);
+  EXPECT_FALSE(regenerated.reused);
+  EXPECT_EQ(regenerated.content_hash, first.content_hash);
+  EXPECT_GE(fs::last_write_time(first.path), inode_before);
+  EXPECT_TRUE(obtain_dataset(friedman(100), 7, dir.path(), nullptr).reused);
+  // A corrupt cached file is regenerated, not used.
+  std::ofstream(first.path, std::ios::trunc) << "garbage";
+  EXPECT_FALSE(obtain_dataset(friedman(100), 7, dir.path(), nullptr).reused);
+}
+
+TEST(DatasetCache, ConcurrentProducersGenerateOnce) {
+  testing::TempDir dir;
+  // Big enough that generation takes a while; several processes start
+  // together (released by a pipe) and all miss the cache at first.
+  constexpr int kProcesses = 4;
+  const DatasetSpec spec = friedman(200000);
+  int go[2];
+  ASSERT_EQ(::pipe(go), 0);
+  std::vector<pid_t> pids;
+  for (int i = 0; i < kProcesses; ++i) {
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      ::close(go[1]);
+      char c;
+      while (::read(go[0], &c, 1) < 0) {
+      }
+      const CachedDataset d = obtain_dataset(spec, 3, dir.path(), nullptr);
+      ::_exit(d.reused ? 10 : 20);
+    }
+    pids.push_back(pid);
+  }
+  ::close(go[0]);
+  ::close(go[1]);  // EOF releases every child at once
+  int generated = 0, reused = 0;
+  for (pid_t pid : pids) {
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    (WEXITSTATUS(status) == 20 ? generated : reused)++;
+  }
+  EXPECT_EQ(generated, 1);
+  EXPECT_EQ(reused, kProcesses - 1);
+  EXPECT_EQ(files_in(dir.path()), 1u);
+  EXPECT_TRUE(obtain_dataset(spec, 3, dir.path(), nullptr).reused);
+}
+
+}  // namespace
+}  // namespace cnclab
