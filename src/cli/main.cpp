@@ -243,8 +243,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitUsage;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --help-all
+    // Every usage error in one form (a missing experiment file included):
+    // "cnclab: error: experiment: File does not exist: x.yaml", exit 2.
+    std::cerr << "cnclab: error: " << e.what() << " (--help explains the command)\n";
+    return kExitUsage;
   }
   if (quick) {
     if (!common.profile.empty() && common.profile != "quick") {

@@ -129,10 +129,12 @@ TEST_F(Cli, OutOfRangeNamesValueAndRule) {
   EXPECT_TRUE(outputs().empty());
 }
 
+// Issue 22 item 6: CLI11's own errors take the one error form too.
 TEST_F(Cli, MissingExperimentFileIsUsageError) {
-  const Result r = cnclab("run does_not_exist.yaml");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("does_not_exist.yaml"), std::string::npos) << r.err;
+  expect_one_line_error(cnclab("run does_not_exist.yaml"), 2,
+                        "cnclab: error: experiment: File does not exist: does_not_exist.yaml");
+  expect_one_line_error(cnclab("run"), 2, "cnclab: error: experiment is required");
+  EXPECT_EQ(cnclab("run --help").code, 0);
 }
 
 TEST_F(Cli, MalformedYamlNamesPosition) {
