@@ -131,7 +131,10 @@ double taylor_contour_error(const PathPoint& reference, const Vec2& actual) {
   const double c_norm = c.norm();
   const Vec2 c_hat = c_norm > 0 ? Vec2(c / c_norm) : f.normal;
   const double k = f.curvature;
-  return -c_hat.dot(e) - 0.5 * k * c_hat.dot(f.normal) * et * et / (1.0 - k * c.dot(f.normal));
+  // Eq. 3's denominator as 1 + kappa (c.n) = 1 - kappa b, b = (P - R).n the
+  // offset of P towards the centre of curvature (contour_error.hpp says why
+  // the printed minus sign is not used with c from e = R - P).
+  return -c_hat.dot(e) - 0.5 * k * c_hat.dot(f.normal) * et * et / (1.0 + k * c.dot(f.normal));
 }
 
 double tangent_line_contour_error(const PathPoint& reference, const Vec2& actual) {

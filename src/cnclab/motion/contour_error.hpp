@@ -60,17 +60,27 @@ Projection project_to_path(const PlanarPath& path, const Vec2& actual, double u_
 //     Our copy prints the denominator as sqrt(|e|^2 - e.t), which mixes a
 //     squared length with a length; the intended quantity is |c|, the norm
 //     of the part of e normal to the path, which needs (e.t)^2.
-//   Eq. 3:  eps_c = -c^.e - (1/2) kappa (c^.n) (t.e)^2 / (1 - kappa (c.n)).
+//   Eq. 3:  eps_c = -c^.e - (1/2) kappa (c^.n) (t.e)^2 / (1 + kappa (c.n)).
 //     The copy prints "1 - kappa (c^.n)" with the unit vector; kappa has
-//     units 1/mm, so the dimensionally consistent reading is the normal
-//     vector c itself. The fraction applies to the curvature term only: over
-//     both terms it would add a kappa |c|^2 term that the exact distance
-//     does not have (on a circle: d - d^2/r instead of d for s = 0).
-// On a circle of radius r with P at normal offset d inside and lag s along
-// the tangent, the exact distance is d - s^2 / (2 (r - d)) + O(s^4); this
-// estimate gives d - s^2 / (2 (r + d)) (outside: d + s^2 / (2 (r + d)) exact,
-// d + s^2 / (2 (r - d)) estimated): exact to second order in |e|, error
-// ~ |e|^3 / r^2.
+//     units 1/mm, so the dimensionally consistent reading uses the normal
+//     vector c itself. Its sign: with P = R + a t + b n (b > 0 towards the
+//     centre of curvature) the distance from P to the osculating circle is
+//     |b| - sign(b) kappa a^2 / (2 (1 - kappa b)) + O(a^4), and with c from
+//     e = R - P, c.n = -b, so the denominator is 1 + kappa (c.n). The printed
+//     minus holds for c taken from the opposite vector P - R; with c from
+//     R - P it would give 1 + kappa b, the osculating circle's expansion about
+//     the wrong centre distance, off by kappa^2 a^2 |b| (1.0e-5 mm on a circle
+//     of r = 10 mm at a = b = 0.1 mm, against 1.3e-8 mm with this sign;
+//     tests/motion/contour_error_test.cpp checks both sides of circles and
+//     ellipses against closed forms). The fraction applies to the curvature
+//     term only: over both terms it would add a kappa |c|^2 term that the
+//     exact distance does not have.
+// On a circle of radius r the exact distance is |sqrt(a^2 + (r - b)^2) - r|
+// = |b| - sign(b) a^2 / (2 (r - b)) + a^4 / (8 |r - b|^3) - ...; this
+// estimate is the series without the a^4 term: exact to third order, error
+// <= a^4 / (8 |r - b|^3). On other curves the curvature's change along the
+// path adds an O(|e|^3) error (fourth order again at the vertices of an
+// ellipse, where d kappa / ds = 0).
 // When c = 0 (P on the tangent line) c^ is taken as n. Returns eps_c
 // (negative: the paper's vector points from the path to P opposite to c^);
 // its magnitude is the contour error estimate.

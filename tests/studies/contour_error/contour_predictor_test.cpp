@@ -68,11 +68,11 @@ TEST(ContourPredictor, TaylorContourOfThePerAxisPredictions) {
     ASSERT_EQ(out.actual, tick.reference.position - out.following_error);
     ASSERT_EQ(out.contour_error, taylor_contour_error(tick.reference, out.actual));
     // Independent: the exact distance to the circle, within the Taylor
-    // estimate's error bound |e|^3 / (r^2 - |e|^2) + |e|^4 / r^3
+    // estimate's error bound a^4 / (8 (r - b)^3) <= |e|^4 / (8 (r - |e|)^3)
     // (contour_error_test.cpp) plus rounding.
     const double r = circle.radius(), e = out.following_error.norm();
     const double exact = std::abs((out.actual - circle.centre()).norm() - r);
-    const double bound = e * e * e / (r * r - e * e) + std::pow(e, 4) / (r * r * r) + 1e-12;
+    const double bound = std::pow(e, 4) / (8 * std::pow(r - e, 3)) + 1e-12;
     ASSERT_LE(std::abs(std::abs(out.contour_error) - exact), bound) << "k " << k;
     max_error = std::max(max_error, e);
     max_contour = std::max(max_contour, exact);
