@@ -480,7 +480,17 @@ TEST_F(Cli, GcodeTrochoidWritesACompleteProgramAtomically) {
   EXPECT_NE(nc.find("M30\n%\n"), std::string::npos);
   EXPECT_NE(r.out.find("trochoid radius R = (W - D)/2 = 4 mm"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("trochoidal loops:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("entry: helical ramp at 3 deg"), std::string::npos) << r.out;
   EXPECT_EQ(outputs().size(), 1u);  // g.nc only: no temporaries left
+  const Result outside =
+      cnclab("gcode trochoid " + kGroove + " trochoid.groove_length=40 entry.mode=outside" +
+             " report.compare_with=" CNCLAB_SOURCE_DIR "/results/reference/trochoid_table3.csv" +
+             " -o g.nc");
+  ASSERT_EQ(outside.code, 0) << outside.err;
+  EXPECT_NE(outside.out.find("entry: from outside the stock at x -11.000"), std::string::npos)
+      << outside.out;
+  expect_one_line_error(cnclab("gcode trochoid " + kGroove + " entry.mode=plunge -o g.nc"), 2,
+                        "entry.mode");
   const Result v = cnclab("validate " + kGroove + " trochoid.step=1.2");
   EXPECT_EQ(v.code, 0) << v.err;
   EXPECT_NE(v.out.find("step: 1.2"), std::string::npos) << v.out;

@@ -28,6 +28,23 @@ std::string feed_word(double f) {
   return cat("F", fixed(f, 0), ".");
 }
 
+// The entry ends at (start, cut_z) and starts between cut_z and safe_z.
+void check_entry(std::span<const Eigen::Vector3d> entry, const Eigen::Vector2d& start,
+                 const GcodeOptions& o) {
+  for (std::size_t i = 0; i < entry.size(); ++i) {
+    if (!entry[i].allFinite())
+      throw Error("G-code: entry point " + std::to_string(i) + " is not finite");
+  }
+  const Eigen::Vector3d& last = entry.back();
+  if (entry.size() < 2 || (last.head<2>() - start).norm() > 1e-9 ||
+      std::abs(last.z() - o.cut_z) > 1e-9) {
+    throw Error("G-code: the entry must have >= 2 points and end at the path's start at cut_z");
+  }
+  if (!(entry[0].z() > o.cut_z && entry[0].z() < o.safe_z)) {
+    throw Error("G-code: the entry must start between cut_z and safe_z");
+  }
+}
+
 }  // namespace
 
 void GcodeOptions::validate() const {
@@ -59,7 +76,8 @@ std::string coordinate_words(const Eigen::Vector2d& p, int decimals) {
   return cat("X", fixed(p.x(), decimals), " Y", fixed(p.y(), decimals));
 }
 
-GcodeProgram write_gcode(std::span<const Eigen::Vector2d> path, const GcodeOptions& o) {
+GcodeProgram write_gcode(std::span<const Eigen::Vector2d> path, const GcodeOptions& o,
+                         std::span<const Eigen::Vector3d> entry) {
   o.validate();
   if (path.size() < 2) throw Error("G-code: the path needs at least 2 points");
   for (std::size_t i = 0; i < path.size(); ++i) {
@@ -81,8 +99,21 @@ GcodeProgram write_gcode(std::span<const Eigen::Vector2d> path, const GcodeOptio
   block("G21 G17 G90 G94 (mm, XY plane, absolute, feed per minute)");
   block(cat("G00 Z", fixed(o.safe_z, o.decimals)));
   block(cat("S", fixed(o.spindle_speed, 0), " M03"));
-  prog.point_line_numbers.push_back(block(cat("G00 ", coordinate_words(path[0], o.decimals))));
-  block(cat("G01 Z", fixed(o.cut_z, o.decimals), " ", feed_word(o.plunge_feed)));
+  if (entry.empty()) {
+    prog.point_line_numbers.push_back(block(cat("G00 ", coordinate_words(path[0], o.decimals))));
+    block(cat("G01 Z", fixed(o.cut_z, o.decimals), " ", feed_word(o.plunge_feed)));
+  } else {
+    check_entry(entry, path[0], o);
+    block(cat("G00 ", coordinate_words(entry[0].head<2>(), o.decimals)));
+    block(cat("G00 Z", fixed(entry[0].z(), o.decimals)));
+    int last = 0;
+    for (std::size_t i = 1; i < entry.size(); ++i) {
+      last = block(cat("G01 ", coordinate_words(entry[i].head<2>(), o.decimals), " Z",
+                       fixed(entry[i].z(), o.decimals),
+                       i == 1 ? cat(" ", feed_word(o.plunge_feed)) : ""));
+    }
+    prog.point_line_numbers.push_back(last);
+  }
   for (std::size_t i = 1; i < path.size(); ++i) {
     prog.point_line_numbers.push_back(block(cat("G01 ", coordinate_words(path[i], o.decimals),
                                                 i == 1 ? cat(" ", feed_word(o.feed)) : "")));

@@ -1,7 +1,9 @@
 #pragma once
 // ISO 6983 (G-code) for a 2-D contour at constant depth: header with units,
 // plane, absolute mode and feed mode; spindle on; rapid to the start above
-// the part; plunge; N-numbered G01 moves; safe retract; spindle off; M30.
+// the part; the entry to the cutting depth (a plunge, or the feed moves of a
+// ramp, kinematics/tool_entry.hpp); N-numbered G01 moves; safe retract;
+// spindle off; M30. Without an entry (below, the plunge form):
 //
 //   %
 //   O1000 (title)
@@ -28,7 +30,7 @@ struct GcodeOptions {
   int program_number = 1000;      // O-word, 1..9999
   std::string title;              // comment after the O-word (no parentheses)
   double feed = 800.0;            // G01 feed in the plane [mm/min]
-  double plunge_feed = 200.0;     // G01 feed of the plunge [mm/min]
+  double plunge_feed = 200.0;     // G01 feed of the plunge or entry moves [mm/min]
   double spindle_speed = 3000.0;  // S-word [rpm]
   double safe_z = 5.0;            // retract height above the part top (z = 0) [mm]
   double cut_z = -5.0;            // cutting depth [mm], below safe_z
@@ -49,6 +51,11 @@ struct GcodeProgram {
 };
 
 // The program for `path` (>= 2 points, all finite; else cnclab::Error).
-GcodeProgram write_gcode(std::span<const Eigen::Vector2d> path, const GcodeOptions& options);
+// `entry` (optional, tool_entry.hpp): feed moves (x, y, z) ending at
+// (path[0], cut_z); the tool rapids to above entry[0], down to entry[0]'s z
+// (which must be between cut_z and safe_z), then feeds along the entry at
+// plunge_feed. Without it, the tool plunges at path[0].
+GcodeProgram write_gcode(std::span<const Eigen::Vector2d> path, const GcodeOptions& options,
+                         std::span<const Eigen::Vector3d> entry = {});
 
 }  // namespace cnclab

@@ -22,6 +22,39 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = 180.0 / kPi;
+
+EntryOptions read_entry(const ConfigReader& r) {
+  EntryOptions e;
+  const auto mode = r.get<std::string>("mode", to_string(e.mode));
+  if (mode != "helix" && mode != "outside") r.fail("mode", "must be one of: helix, outside");
+  e.mode = mode == "helix" ? EntryMode::helix : EntryMode::outside;
+  e.ramp_angle = r.get<double>("ramp_angle", e.ramp_angle);
+  e.clearance = r.get<double>("clearance", e.clearance);
+  r.validate([&] { e.validate(); });
+  return e;
+}
+
+std::string entry_report(const TrochoidJob& job, const TrochoidOutcome& res) {
+  std::ostringstream out;
+  const ToolEntry& e = res.entry;
+  const std::string depth = shortest_double(job.program.cut_z);
+  const std::string engaged = fixed_decimals(res.ramp_engagement_rad * kDeg, 1) + " deg";
+  if (e.mode == EntryMode::helix) {
+    out << "  entry: helical ramp at " << shortest_double(job.entry.ramp_angle)
+        << " deg about the start circle (R " << shortest_double(res.groove.radius) << " mm), "
+        << fixed_decimals(e.revolutions, 2) << " turns of "
+        << fixed_decimals(e.depth_per_revolution, 3) << " mm from z "
+        << shortest_double(job.entry.clearance) << " to " << depth << " mm\n"
+        << "    on the ramp (each turn cuts a new layer): max " << engaged << "\n";
+  } else {
+    out << "  entry: from outside the stock at x " << fixed_decimals(e.points.front().x(), 3)
+        << " mm (the groove must be open at x = 0), straight in along y = 0 at z " << depth
+        << " mm\n"
+        << "    straight in (plain slotting; the stock edge is not modelled): max " << engaged
+        << "\n";
+  }
+  return out.str();
+}
 }  // namespace
 
 void TrochoidReportOptions::validate() const {
@@ -72,6 +105,8 @@ TrochoidJob load_trochoid_job(const fs::path& file, const std::vector<std::strin
   c.decimals = static_cast<int>(p.get<std::int64_t>("decimals", c.decimals));
   p.validate([&] { c.validate(); });
 
+  job.entry = read_entry(root.section("entry"));
+
   const ConfigReader r = root.section("report");
   TrochoidReportOptions& rep = job.report;
   rep.table_rows = r.get<std::size_t>("table_rows", rep.table_rows);
@@ -106,6 +141,10 @@ std::string to_yaml(const TrochoidJob& job) {
   out << Key << "cut_z" << Value << shortest_double(p.cut_z);
   out << Key << "line_increment" << Value << p.line_increment;
   out << Key << "decimals" << Value << p.decimals << EndMap;
+  out << Key << "entry" << Value << BeginMap;
+  out << Key << "mode" << Value << to_string(job.entry.mode);
+  out << Key << "ramp_angle" << Value << shortest_double(job.entry.ramp_angle);
+  out << Key << "clearance" << Value << shortest_double(job.entry.clearance) << EndMap;
   const auto& r = job.report;
   out << Key << "report" << Value << BeginMap;
   out << Key << "table_rows" << Value << r.table_rows;
@@ -120,7 +159,8 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
   TrochoidOutcome res;
   res.groove = make_trochoid_groove(job.groove);
   const TrochoidGroove& g = res.groove;
-  res.program = write_gcode(g.points, job.program);
+  res.entry = trochoid_entry(g, job.entry, job.program.cut_z);
+  res.program = write_gcode(g.points, job.program, res.entry.points);
 
   // Point table, Table 3's layout: t, x(t), y(t), line number, coordinates
   // (plus the N-word of the point's block in the program).
@@ -140,9 +180,18 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
     }
   }
 
-  // Radial engagement along the G01 polygon.
+  // Radial engagement along the entry's and the pass's G01 polygon in the
+  // plane: the entry's distinct XY points, then the pass's (from its start,
+  // where the entry ends).
+  std::vector<Eigen::Vector2d> plane;
+  for (std::size_t i = 0; i + 1 < res.entry.points.size(); ++i) {
+    const Eigen::Vector2d xy = res.entry.points[i].head<2>();
+    if (plane.empty() || plane.back() != xy) plane.push_back(xy);
+  }
+  const std::size_t entry_n = plane.size();
+  plane.insert(plane.end(), g.points.begin(), g.points.end());
   std::vector<std::size_t> segment;
-  const auto dense = densify(g.points, job.report.engagement_spacing, &segment);
+  const auto dense = densify(plane, job.report.engagement_spacing, &segment);
   const auto stride = static_cast<std::size_t>(
       std::max(1.0, std::round(job.report.engagement_every / job.report.engagement_spacing)));
   const double tool_radius = job.groove.cutter_diameter / 2;
@@ -151,8 +200,13 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
   double steady_sum = 0;
   std::size_t steady_n = 0;
   for (const auto& e : engagement) {
-    if (e.index == 0) continue;  // the plunge (2 pi)
-    const double t = g.t[segment[e.index]];
+    if (e.index == 0) continue;              // first contact (the 2-D model's full-stock 2 pi)
+    const std::size_t i = segment[e.index];  // the segment ends at plane[i]
+    if (i <= entry_n) {
+      res.ramp_engagement_rad = std::max(res.ramp_engagement_rad, e.angle);
+      continue;
+    }
+    const double t = g.t[i - entry_n];
     if (t <= 2 * kPi + 1e-12) {
       res.entry_engagement_rad = std::max(res.entry_engagement_rad, e.angle);
     } else if (t <= t_loops_end + 1e-12) {
@@ -189,8 +243,7 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
   out << "\nRadial engagement (2-D stock removal, exact disc geometry; G01 path resampled every "
       << shortest_double(job.report.engagement_spacing) << " mm, evaluated every "
       << shortest_double(job.report.engagement_every) << " mm)\n"
-      << "  plunge at the start point:      360 deg (full stock: pre-drill or ramp in)\n"
-      << "  start circle (after the plunge): max "
+      << entry_report(job, res) << "  start circle (after the entry):  max "
       << fixed_decimals(res.entry_engagement_rad * kDeg, 1) << " deg\n"
       << "  trochoidal loops:                max "
       << fixed_decimals(res.max_engagement_rad * kDeg, 1) << " deg, mean "

@@ -12,6 +12,7 @@
 //   trochoid: {cutter_diameter, groove_width, groove_length, step, chord_tolerance}
 //   program: {program_number, title, feed, plunge_feed, spindle_speed, safe_z, cut_z,
 //             line_increment, decimals}
+//   entry: {mode: helix | outside, ramp_angle: 3, clearance: 1}   (kinematics/tool_entry.hpp)
 //   report: {table_rows, engagement_spacing, engagement_every,
 //            compare_with: results/reference/trochoid_table3.csv}
 #include <cstddef>
@@ -22,6 +23,7 @@
 #include <vector>
 
 #include "cnclab/kinematics/gcode.hpp"
+#include "cnclab/kinematics/tool_entry.hpp"
 #include "cnclab/kinematics/trochoid.hpp"
 
 namespace cnclab {
@@ -42,6 +44,7 @@ struct TrochoidJob {
   std::string description;
   TrochoidGrooveOptions groove;
   GcodeOptions program;
+  EntryOptions entry;
   TrochoidReportOptions report;
   std::filesystem::path source_file;
 };
@@ -59,8 +62,10 @@ std::string to_yaml(const TrochoidJob& job);
 struct TrochoidOutcome {
   TrochoidGroove groove;
   GcodeProgram program;
+  ToolEntry entry;
+  double ramp_engagement_rad = 0;   // the entry's feed moves (in the plane)
   double max_engagement_rad = 0;    // steady state: the N loops
-  double entry_engagement_rad = 0;  // start circle, after the plunge
+  double entry_engagement_rad = 0;  // start circle, after the entry
   double exit_engagement_rad = 0;   // end circle
   std::string point_table;          // the full point table (TSV)
   std::string report;               // what is printed
