@@ -15,7 +15,8 @@ namespace cnclab {
 namespace fs = std::filesystem;
 
 int dataset_generate_command(const fs::path& config, const std::vector<std::string>& overrides,
-                             const std::optional<fs::path>& out_file, std::ostream& out) {
+                             const std::optional<fs::path>& out_file, ProgressMode progress,
+                             std::ostream& out, std::ostream& err) {
   ConfigDocument doc = ConfigDocument::load(config);
   for (const auto& text : overrides) doc.apply(parse_override(text));
   const ConfigReader root = doc.root();
@@ -32,7 +33,8 @@ int dataset_generate_command(const fs::path& config, const std::vector<std::stri
       out_file ? *out_file : fs::path("datasets") / (config.stem().string() + ".h5");
 
   const auto start = std::chrono::steady_clock::now();
-  Dataset d = generate_dataset(spec, seed);
+  StagedProgress staged("dataset " + spec.generator->name(), err, {progress, 5.0, 0.1});
+  Dataset d = select_targets(generate_dataset(spec, seed, staged.callback()), spec.targets);
   d.generator_config = dataset_config_text(*spec.generator, seed);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cnclab/core/progress.hpp"
 #include "cnclab/data/dataset.hpp"
 
 namespace cnclab {
@@ -17,11 +18,13 @@ namespace cnclab {
 // ignored), generates the dataset and writes it atomically to `out_file`
 // (default datasets/<config stem>.h5). The seed is dataset.seed, else the
 // one an experiment derives from its top-level `seed` ("generator" stream),
-// else 0. Nothing is written when anything fails. Prints one summary line.
+// else 0. `dataset.targets` (when given) keeps those targets, as a run
+// would. Nothing is written when anything fails. Prints one summary line on
+// `out`; progress of a long generation goes to `err` (`progress` mode).
 int dataset_generate_command(const std::filesystem::path& config,
                              const std::vector<std::string>& overrides,
                              const std::optional<std::filesystem::path>& out_file,
-                             std::ostream& out);
+                             ProgressMode progress, std::ostream& out, std::ostream& err);
 
 // Prints a dataset file: counts, input/target ranges with units, a text
 // histogram of the first target, metadata ranges and, when a metadata column

@@ -194,6 +194,8 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   generate->add_option("overrides", overrides, "Config overrides key=value");
   generate->add_option("--out", dataset_out, "Output file (default datasets/<config stem>.h5)");
+  bool dataset_quiet = false;
+  generate->add_flag("--quiet,-q", dataset_quiet, "No progress output");
   generate->footer(
       "Example:\n  cnclab dataset generate configs/datasets/step_error_surface1.yaml\n  cnclab "
       "dataset generate configs/datasets/step_error_surface2.yaml dataset.options.lines=20 "
@@ -292,7 +294,8 @@ int main(int argc, char** argv) {
       return cnclab::dataset_generate_command(
           experiment, overrides,
           dataset_out ? std::optional<std::filesystem::path>(*dataset_out) : std::nullopt,
-          std::cout);
+          dataset_quiet ? cnclab::ProgressMode::quiet : cnclab::ProgressMode::automatic, std::cout,
+          std::cerr);
     }
     if (*dataset_show) return cnclab::dataset_show_command(experiment, std::cout);
     if (*gcode) {

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <iterator>
 #include <optional>
 #include <set>
@@ -172,7 +173,11 @@ class GraphRun {
         const std::uint64_t seed = generator_seed(exp.spec);
         const fs::path file = dataset_cache_file(exp.spec.dataset, seed, options_.datasets_dir);
         if (regenerated_.insert(file).second) {
-          obtain_dataset(exp.spec.dataset, seed, options_.datasets_dir, log_, true);
+          StagedProgress generation("dataset " + exp.spec.dataset.generator->name(),
+                                    log_ ? *log_ : std::cerr,
+                                    {log_ ? ProgressMode::automatic : ProgressMode::quiet});
+          obtain_dataset(exp.spec.dataset, seed, options_.datasets_dir, log_, true,
+                         generation.callback());
         }
       }
       fs::create_directories(path.parent_path());

@@ -369,6 +369,16 @@ TEST_F(Cli, DatasetGenerateWritesAFileThatShowDescribes) {
   ASSERT_EQ(d.code, 0) << d.err;
   EXPECT_NE(d.out.find("wrote datasets/s1.h5: 8 samples"), std::string::npos) << d.out;
   EXPECT_TRUE(fs::exists(dir_ / "datasets" / "s1.h5"));
+  // dataset.targets keeps those targets, in that order, as a run would.
+  const Result ik = cnclab("dataset generate " CNCLAB_SOURCE_DIR
+                           "/configs/studies/ik_table5.yaml dataset.options.values_per_input=2 "
+                           "\"dataset.targets=[C, X]\" --out ik.h5 --quiet");
+  ASSERT_EQ(ik.code, 0) << ik.err;
+  EXPECT_NE(ik.out.find("wrote ik.h5: 32 samples, 5 inputs, 2 targets"), std::string::npos)
+      << ik.out;
+  EXPECT_EQ(ik.err, "");
+  const Result ik_show = cnclab("dataset show ik.h5");
+  EXPECT_LT(ik_show.out.find(" C "), ik_show.out.find(" X ")) << ik_show.out;
 }
 
 TEST_F(Cli, DatasetGenerateRejectsBadConfigsAndWritesNothing) {

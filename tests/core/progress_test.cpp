@@ -40,6 +40,22 @@ TEST(Progress, TerminalModeRedrawsInPlaceWithEta) {
   EXPECT_EQ(s.back(), '\n');
 }
 
+TEST(Progress, StagedProgressGivesEachStageItsLineInOrder) {
+  std::ostringstream out;
+  {
+    StagedProgress staged("dataset", out, {ProgressMode::plain, 0.0, 0.0});
+    const ProgressCallback report = staged.callback();
+    for (std::size_t i = 1; i <= 3; ++i) report("plan", i, 3);
+    for (std::size_t i = 1; i <= 2; ++i) report("simulate", i, 2);
+  }
+  const std::string s = out.str();
+  const auto plan = s.find("dataset: plan 3/3 (100%)"), sim = s.find("dataset: simulate 2/2");
+  ASSERT_NE(plan, std::string::npos) << s;
+  ASSERT_NE(sim, std::string::npos) << s;
+  EXPECT_LT(plan, sim);
+  EXPECT_EQ(s.find("dataset: plan", sim), std::string::npos) << "a finished stage reappeared";
+}
+
 TEST(Progress, DurationFormat) {
   EXPECT_EQ(Progress::format_duration(12.34), "12.3s");
   EXPECT_EQ(Progress::format_duration(185), "3m05s");

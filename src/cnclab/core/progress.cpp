@@ -89,4 +89,22 @@ void Progress::draw(bool final_line) {
   out_.flush();
 }
 
+StagedProgress::StagedProgress(std::string label, std::ostream& out, Progress::Options options)
+    : label_(std::move(label)), out_(out), options_(options) {}
+
+void StagedProgress::report(const std::string& stage, std::size_t done, std::size_t total) {
+  if (!current_ || stage != stage_) {
+    current_.reset();  // finishes the previous stage's line
+    stage_ = stage;
+    current_ = std::make_unique<Progress>(label_ + ": " + stage, total, out_, options_);
+  }
+  current_->update(done);
+}
+
+ProgressCallback StagedProgress::callback() {
+  return [this](const std::string& stage, std::size_t done, std::size_t total) {
+    report(stage, done, total);
+  };
+}
+
 }  // namespace cnclab

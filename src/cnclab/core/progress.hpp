@@ -5,6 +5,8 @@
 // (from --quiet and isatty), never from global state.
 #include <chrono>
 #include <cstddef>
+#include <functional>
+#include <memory>
 #include <ostream>
 #include <string>
 
@@ -49,6 +51,28 @@ class Progress {
   std::string status_;
   bool finished_ = false;
   bool drawn_ = false;
+};
+
+// How long work in named stages reports to its caller, without knowing how
+// (or whether) it is shown: `done` of `total` units of `stage` finished.
+// Work calls it at its own pace; an empty callback means nobody listens.
+using ProgressCallback =
+    std::function<void(const std::string& stage, std::size_t done, std::size_t total)>;
+
+// Shows a ProgressCallback's reports: one Progress per stage, labelled
+// "<label>: <stage>", finished when another stage starts or at destruction.
+class StagedProgress {
+ public:
+  StagedProgress(std::string label, std::ostream& out, Progress::Options options = {});
+  void report(const std::string& stage, std::size_t done, std::size_t total);
+  // A callback reporting here; valid while this object lives.
+  ProgressCallback callback();
+
+ private:
+  std::string label_, stage_;
+  std::ostream& out_;
+  Progress::Options options_;
+  std::unique_ptr<Progress> current_;
 };
 
 }  // namespace cnclab

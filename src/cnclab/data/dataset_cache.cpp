@@ -62,9 +62,10 @@ bool read_cached(CachedDataset& out, const DatasetGenerator& generator,
 
 }  // namespace
 
-Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed) {
+Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed,
+                         const ProgressCallback& progress) {
   Rng rng(seed);
-  return spec.generator->generate(rng);
+  return spec.generator->generate(rng, progress);
 }
 
 // The cache key's text; a generator that ignores its seed gets none, so every
@@ -85,7 +86,7 @@ fs::path dataset_cache_file(const DatasetSpec& spec, std::uint64_t seed, const f
 }
 
 CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed, const fs::path& dir,
-                             std::ostream* log, bool regenerate) {
+                             std::ostream* log, bool regenerate, const ProgressCallback& progress) {
   // The key must not require generating. The generator's options, version
   // and seed are also stored in the dataset file, so the file says how to
   // make it again.
@@ -99,7 +100,7 @@ CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed, const 
   if (!regenerate && read_cached(out, generator, config_text, nullptr)) return out;
   const FileLock lock(dir / ("." + stem + ".lock"));
   if (!regenerate && read_cached(out, generator, config_text, log)) return out;
-  out.dataset = generate_dataset(spec, seed);
+  out.dataset = generate_dataset(spec, seed, progress);
   out.dataset.generator_config = config_text;
   out.content_hash = out.dataset.content_hash();
   write_dataset(out.path, out.dataset);

@@ -20,7 +20,8 @@ struct CachedDataset {
 };
 
 // Generates the dataset `spec` describes with generator seed `seed`.
-Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed);
+Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed,
+                         const ProgressCallback& progress = {});
 
 // The generator_config text stored in a dataset and hashed into its cache
 // key: the generator's resolved options, its version and the seed.
@@ -42,8 +43,9 @@ std::filesystem::path dataset_cache_file(const DatasetSpec& spec, std::uint64_t 
 // The file itself is written atomically (temporary + rename), so a reader
 // never sees a torn dataset even without the lock. The lock files are left in
 // place (removing them would race with a waiting process).
+// `progress` (optional) hears of the generation's stages when it generates.
 CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed,
                              const std::filesystem::path& dir, std::ostream* log,
-                             bool regenerate = false);
+                             bool regenerate = false, const ProgressCallback& progress = {});
 
 }  // namespace cnclab

@@ -82,12 +82,13 @@ Eigen::VectorXd normalise_minmax(const Eigen::VectorXd& x, const std::string& wh
   return y;
 }
 
-Dataset generate_following_error_dataset(const FollowingErrorOptions& o, Rng& rng) {
+Dataset generate_following_error_dataset(const FollowingErrorOptions& o, Rng& rng,
+                                         const ProgressCallback& progress) {
   o.validate();
   // 1. Path, feedrate, 1 ms references.
   const NurbsPlanarPath path(random_planar_nurbs(o.path, rng));
   const std::uint64_t run_seed = rng.next_u64();
-  const FeedrateProfile profile = plan_feedrate(path, o.planner);
+  const FeedrateProfile profile = plan_feedrate(path, o.planner, progress);
   const ReferenceTrajectory ref = interpolate(path, profile, o.machine.timing.controller_period);
   const Eigen::Index total = ref.samples();
   if (o.samples != 0 && static_cast<std::size_t>(total) < o.samples) {
@@ -107,6 +108,7 @@ Dataset generate_following_error_dataset(const FollowingErrorOptions& o, Rng& rn
     const MachineResponse r =
         simulate_machine(o.machine, ref, derive_seed(run_seed, "run/" + std::to_string(k)));
     mean_error += r.following_error;
+    if (progress) progress("simulate runs", k + 1, o.runs);
   }
   mean_error /= static_cast<double>(o.runs);
 
@@ -142,6 +144,9 @@ Dataset generate_following_error_dataset(const FollowingErrorOptions& o, Rng& rn
         exact * kUmPerMm, std::abs(taylor_contour_error(p, actual)) * kUmPerMm,
         tangent_line_contour_error(p, actual) * kUmPerMm,
         osculating_circle_contour_error(p, actual) * kUmPerMm, k >= n / 2 ? 1.0 : 0.0;
+    if (progress && ((k + 1) % 1000 == 0 || k + 1 == n)) {
+      progress("contour errors", static_cast<std::size_t>(k + 1), static_cast<std::size_t>(n));
+    }
   }
   d.input_names = {"v_x", "v_y"};
   d.input_units = {"1", "1"};

@@ -72,7 +72,10 @@ struct FollowingErrorRanges {
 Eigen::VectorXd normalise_minmax(const Eigen::VectorXd& x, const std::string& what,
                                  ColumnRange* range = nullptr);
 
-Dataset generate_following_error_dataset(const FollowingErrorOptions& options, Rng& rng);
+// `progress` (optional) hears of the planning windows, the simulated runs
+// and the contour errors.
+Dataset generate_following_error_dataset(const FollowingErrorOptions& options, Rng& rng,
+                                         const ProgressCallback& progress = {});
 
 // The ranges of a following_error dataset's normalisation, from its metadata;
 // cnclab::Error if a column is missing.
@@ -104,6 +107,9 @@ class FollowingErrorGenerator : public DatasetGenerator {
   int version() const override { return 3; }
   DatasetShape shape() const override { return {options_.samples, 2, 2}; }
   std::string options_yaml() const override;
+  Dataset generate(Rng& rng, const ProgressCallback& progress) const override {
+    return generate_following_error_dataset(options_, rng, progress);
+  }
   Dataset generate(Rng& rng) const override {
     return generate_following_error_dataset(options_, rng);
   }

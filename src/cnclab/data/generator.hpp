@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/core/progress.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset.hpp"
 
@@ -41,6 +42,11 @@ class DatasetGenerator {
   // generators ignore it). Sets Dataset::generator; the caller sets
   // generator_config.
   virtual Dataset generate(Rng& rng) const = 0;
+  // The same, reporting progress (core/progress.hpp) where generation takes
+  // long enough to need it; by default it reports nothing.
+  virtual Dataset generate(Rng& rng, const ProgressCallback& /*progress*/) const {
+    return generate(rng);
+  }
   // False for a deterministic generator: its seed is then left out of the
   // dataset cache key, so runs with other seeds share one cached file.
   virtual bool uses_seed() const { return true; }

@@ -93,10 +93,13 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
                 init_source->record.provenance.failure_reason + "); nothing to start from");
   }
 
-  // Dataset (generated or reused from the cache).
+  // Dataset (generated or reused from the cache), with progress when generated.
+  StagedProgress generation("dataset " + spec.dataset.generator->name(),
+                            options.log ? *options.log : std::cerr,
+                            {options.log ? options.progress : ProgressMode::quiet, 5.0, 0.1});
   const CachedDataset cached =
       obtain_dataset(spec.dataset, rec.provenance.derived_seeds["generator"], options.datasets_dir,
-                     options.log, options.regenerate_dataset);
+                     options.log, options.regenerate_dataset, generation.callback());
   const Dataset data = select_targets(cached.dataset, spec.dataset.targets);
   rec.dataset_file = cached.path.string();
   rec.dataset_hash = cached.content_hash;

@@ -134,7 +134,7 @@ namespace {
 // The overlapping windows (feedrate_planner.hpp): plan.x over the whole
 // path, one WindowRecord per window.
 std::vector<WindowRecord> plan_windows(const FeedratePlannerOptions& options, WindowSolver& solver,
-                                       ScaledPlan& plan) {
+                                       ScaledPlan& plan, const ProgressCallback& progress) {
   const std::size_t N = plan.grid.size() - 1;
   const std::size_t n_windows =
       N <= options.window_intervals
@@ -162,6 +162,7 @@ std::vector<WindowRecord> plan_windows(const FeedratePlannerOptions& options, Wi
     // Intervals 0..keep-1 and nodes 1..keep (node 0 is the previous end).
     plan.x.insert(plan.x.end(), x.begin() + 2, x.begin() + 4 * keep + 2);
     records.push_back({first, last, keep, s.iterations, s.seconds});
+    if (progress) progress("plan feedrate (windows)", records.size(), n_windows);
     if (final_window) break;
     state = {x[4 * keep], x[4 * keep + 1]};
     overlap.assign(x.begin() + 4 * keep, x.end());
@@ -172,7 +173,8 @@ std::vector<WindowRecord> plan_windows(const FeedratePlannerOptions& options, Wi
 
 }  // namespace
 
-FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptions& options) {
+FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptions& options,
+                              const ProgressCallback& progress) {
   options.validate();
   check_regular_path(path, options.regularity);
   const Scaling scaling = Scaling::for_path(path, options.limits);
@@ -185,7 +187,7 @@ FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptio
                                                        scaling, options.limits);
   }
   WindowSolver solver(options);
-  const std::vector<WindowRecord> windows = plan_windows(options, solver, plan);
+  const std::vector<WindowRecord> windows = plan_windows(options, solver, plan, progress);
   const LimitRefinementSummary refinement =
       feedrate_detail::refine_limits(path, options, scaling, solver, plan);
   FeedrateProfile profile = feedrate_detail::to_profile(plan, scaling);

@@ -31,6 +31,7 @@
 // (the summary in FeedrateProfile::refinement says how it went).
 #include <cstddef>
 
+#include "cnclab/core/progress.hpp"
 #include "cnclab/motion/axis_limits.hpp"
 #include "cnclab/motion/feedrate_profile.hpp"
 #include "cnclab/motion/planar_path.hpp"
@@ -96,7 +97,9 @@ struct FeedratePlannerOptions {
 // and cnclab::Error naming the window (or the refinement round and local
 // window), its nodes, its parameter range and Ipopt's status when a solve
 // fails. A refinement that has not converged after max_rounds is a result,
-// not an error: profile.refinement.converged is false.
-FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptions& options = {});
+// not an error: profile.refinement.converged is false. `progress` (optional)
+// hears of every window solved.
+FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptions& options = {},
+                              const ProgressCallback& progress = {});
 
 }  // namespace cnclab

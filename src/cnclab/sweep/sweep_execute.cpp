@@ -1,6 +1,7 @@
 #include "cnclab/sweep/sweep_execute.hpp"
 
 #include <algorithm>
+#include <iostream>
 #include <map>
 #include <set>
 
@@ -35,7 +36,9 @@ void regenerate_datasets(const SweepPlan& plan, const std::vector<std::size_t>& 
                             spec.dataset.generator->options_yaml() + std::to_string(seed);
     if (!seen.insert(key).second) continue;
     try {
-      obtain_dataset(spec.dataset, seed, o.datasets_dir, log, true);
+      StagedProgress generation("dataset " + spec.dataset.generator->name(), log ? *log : std::cerr,
+                                {log && !o.quiet ? ProgressMode::automatic : ProgressMode::quiet});
+      obtain_dataset(spec.dataset, seed, o.datasets_dir, log, true, generation.callback());
     } catch (const Error&) {
     }
   }
