@@ -86,7 +86,7 @@ void expect_every_key_in_identity(const std::string& trainer_type,
 TEST(FieldIdentity, EveryTrainerKeyChangesTheIdentityAndRoundTrips) {
   expect_every_key_in_identity("sgdm", sgdm_fields().info());
   expect_every_key_in_identity("lm", lm_fields().info());
-  expect_every_key_in_identity("trainbr", lm_fields().info(TrainbrOptions{}));
+  expect_every_key_in_identity("trainbr", trainbr_fields().info(TrainbrOptions{}));
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <memory>
 #include <numbers>
+#include <vector>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/rng.hpp"
@@ -104,6 +106,110 @@ TEST(Lm, GoalAndEpochLimitStop) {
   const Summary s = train_lm(r, w, o);
   EXPECT_EQ(s.termination, Termination::max_epochs);
   EXPECT_EQ(s.history.size(), 1u);
+}
+
+TEST(Lm, GradientAndGoalAreMatlabsMsePerformanceTrainbrsSse) {
+  // trainlm (default performance mse): performance E_D / N, gradient
+  // 2 ||J^T e|| / N; trainbr (sse): E_D and 2 ||J^T e||. Checked with the
+  // linear residual's own Jacobian A at the returned weights.
+  Rng rng(6);
+  const Eigen::MatrixXd a = random_matrix(200, 3, rng);
+  const Eigen::VectorXd t = random_matrix(200, 1, rng);
+  const double n = 200;
+  const auto gradient = [&](const Eigen::VectorXd& w) {
+    return 2 * (a.transpose() * (a * w - t)).norm();
+  };
+  LinearResiduals r(a, t);
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(3);
+  LmOptions o;
+  o.min_gradient = 1e-6;  // on the mse gradient: the sse gradient may be up to 200x larger
+  Summary s = train_lm(r, w, o);
+  ASSERT_EQ(s.termination, Termination::min_gradient) << s.message;
+  EXPECT_LE(gradient(w) / n, 1e-6);
+  EXPECT_NEAR(s.lm_history.back().gradient, gradient(w) / n, 1e-12);
+  // trainbr's data-term gradient does not vanish at its regularised optimum
+  // (beta J^T e = -alpha w), so compare the recorded value only.
+  TrainbrOptions b;
+  b.epochs = 5;
+  w.setZero();
+  s = train_trainbr(r, w, b);
+  ASSERT_EQ(s.termination, Termination::max_epochs) << s.message;
+  EXPECT_NEAR(s.lm_history.back().gradient, gradient(w), 1e-9 * gradient(w));
+  // goal: lm on the mean, trainbr on the sum of squared errors.
+  const Eigen::VectorXd exact = a * Eigen::Vector3d(1, 2, 3) + 0.1 * t;  // mse ~ 0.01
+  LinearResiduals near(a, exact);
+  o = {};
+  o.goal = 0.02;  // above the best mse: met; the sum (~2) is not
+  w.setZero();
+  s = train_lm(near, w, o);
+  EXPECT_EQ(s.termination, Termination::goal) << s.message;
+  EXPECT_LE((a * w - exact).squaredNorm() / n, 0.02);
+  b = {};
+  b.goal = 0.02;
+  w.setZero();
+  EXPECT_NE(train_trainbr(near, w, b).termination, Termination::goal);
+}
+
+// A validation loss hook that replays `values`: the first for the starting
+// parameters, then one per epoch (the last repeats).
+LmHooks replayed_validation(std::vector<double> values, std::vector<Eigen::VectorXd>* params) {
+  LmHooks hooks;
+  auto calls = std::make_shared<std::size_t>(0);
+  hooks.validation_loss = [values, calls](const Eigen::VectorXd&) {
+    return values[std::min((*calls)++, values.size() - 1)];
+  };
+  hooks.on_epoch = [params](const EpochRecord&, const LmEpochRecord&, const Eigen::VectorXd& p) {
+    params->push_back(p);
+    return true;
+  };
+  return hooks;
+}
+
+TEST(Lm, ValidationStopAfterMaxFailReturnsTheBestEpoch) {
+  // trainlm's max_fail: an epoch worse than the best is a failed check, an
+  // equal one is not, a new best resets the count; the best epoch's
+  // parameters are returned. A small sigmoid network trains for many epochs.
+  Rng rng(7);
+  Eigen::MatrixXd x(2, 60), y(1, 60);
+  for (Eigen::Index s = 0; s < 60; ++s) {
+    x.col(s) << rng.uniform(-1, 1), rng.uniform(-1, 1);
+    y(0, s) = std::sin(3 * x(0, s)) * x(1, s);
+  }
+  MlpOptions mo;
+  mo.inputs = 2;
+  mo.hidden = {6};
+  mo.outputs = 1;
+  const Mlp mlp(mo);
+  Eigen::VectorXd start;
+  mlp.initialise(start, rng);
+  MlpResidualObjective objective(mlp, x, y);
+  LmOptions o;
+  o.min_gradient = 0;
+  o.epochs = 100;
+  o.max_fail = 3;
+  // Epochs 1..: 9, 8, 7 (best, epoch 3), 7 (equal: no fail), 7.5, NaN, 7.2 -> 3 fails.
+  std::vector<Eigen::VectorXd> seen;
+  Eigen::VectorXd w = start;
+  Summary s =
+      train_lm(objective, w, o, replayed_validation({10, 9, 8, 7, 7, 7.5, NAN, 7.2}, &seen));
+  EXPECT_EQ(s.termination, Termination::early_stop) << s.message;
+  ASSERT_EQ(seen.size(), 7u);
+  EXPECT_EQ(w, seen[2]) << "the parameters of epoch 3";
+  EXPECT_NE(s.message.find("epoch 3"), std::string::npos) << s.message;
+  // max_fail 0, or trainbr (no validation stop): the epochs run out.
+  for (const bool bayesian : {false, true}) {
+    seen.clear();
+    w = start;
+    o.max_fail = 0;
+    o.epochs = 10;
+    TrainbrOptions b;
+    b.min_gradient = 0;
+    b.epochs = 10;
+    const LmHooks hooks = replayed_validation({10, 9, 8, 7, 7.5, 7.6, 7.7, 7.8}, &seen);
+    s = bayesian ? train_trainbr(objective, w, b, hooks) : train_lm(objective, w, o, hooks);
+    EXPECT_EQ(s.termination, Termination::max_epochs) << s.message;
+    EXPECT_EQ(w, seen.back());
+  }
 }
 
 TEST(Lm, NonFiniteTrialStepsAreRejectedNotPropagated) {

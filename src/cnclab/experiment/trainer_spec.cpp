@@ -21,15 +21,20 @@ SgdmOptions read_sgdm(const ConfigReader& r) {
   return t;
 }
 
+// lm and trainbr: their fields (trainbr's lack max_fail).
+const FieldList<LmOptions>& fields_of(const std::string& type) {
+  return type == "lm" ? lm_fields() : trainbr_fields();
+}
+
 template <class Options>
 Options read_lm(const ConfigReader& r, Options t = {}) {
-  lm_fields().read(r, t);
+  fields_of(std::is_same_v<Options, TrainbrOptions> ? "trainbr" : "lm").read(r, t);
   r.validate([&] { t.validate(); });
   return t;
 }
 
 std::vector<std::string> trainer_keys(const std::string& type) {
-  return type == "sgdm" ? sgdm_fields().keys() : lm_fields().keys();
+  return type == "sgdm" ? sgdm_fields().keys() : fields_of(type).keys();
 }
 
 // Keys that the chosen trainer lacks but another trainer has, set in another
@@ -100,7 +105,7 @@ void emit_trainer(YAML::Emitter& out, const TrainerSpec& trainer) {
         if constexpr (std::is_same_v<T, SgdmOptions>) {
           sgdm_fields().emit(out, t);
         } else {
-          lm_fields().emit(out, t);
+          fields_of(std::is_same_v<T, TrainbrOptions> ? "trainbr" : "lm").emit(out, t);
         }
       },
       trainer);

@@ -52,24 +52,49 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
   }
   double f = reg.beta * ne.sse + reg.alpha * ssw;
   double mu = o.mu;
+  // MATLAB's performance and gradient (lm.hpp): mse for trainlm, sse for trainbr.
+  const double per_residual = bayesian ? 1.0 : 1.0 / n;
+  const auto gradient_now = [&] { return 2.0 * ne.jte.norm() * per_residual; };
+
+  // Validation checks (lm.hpp): the best validation loss and its parameters.
+  const bool validating = !bayesian && o.max_fail > 0 && hooks.validation_loss;
+  double best_validation = INFINITY;
+  std::size_t best_epoch = 0, fails = 0;
+  Eigen::VectorXd best_params;
+  if (validating) {
+    best_validation = hooks.validation_loss(params);
+    if (!std::isfinite(best_validation)) best_validation = INFINITY;
+    best_params = params;
+  }
 
   Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(nw);
   Eigen::MatrixXd damped(nw, nw);
   Eigen::VectorXd rhs(nw), step(nw), trial(nw);
+  std::size_t epochs_done = 0;
   const auto stop = [&](Termination t, std::string message) {
     summary.termination = t;
+    if (validating && best_epoch != epochs_done) {
+      params = best_params;  // as trainlm returns best.net
+      message += "; the parameters of epoch " + std::to_string(best_epoch) +
+                 " (best validation loss) are returned";
+    }
     summary.message = std::move(message);
     return summary;
   };
 
   for (std::size_t epoch = 1;; ++epoch) {
-    const double gradient = 2.0 * ne.jte.norm();
     const std::string after = " after " + std::to_string(epoch - 1) + " epochs";
-    if (f <= o.goal) return stop(Termination::goal, "performance goal met" + after);
-    if (gradient < o.min_gradient) {
+    if (ne.sse * per_residual <= o.goal) {
+      return stop(Termination::goal, "performance goal met" + after);
+    }
+    if (gradient_now() <= o.min_gradient) {
       return stop(Termination::min_gradient, "minimum gradient reached" + after);
     }
     if (epoch > o.epochs) return stop(Termination::max_epochs, "maximum epoch reached" + after);
+    if (validating && fails >= o.max_fail) {
+      return stop(Termination::early_stop, "validation stop: " + std::to_string(fails) +
+                                               " epochs without a better validation loss" + after);
+    }
 
     // One accepted step, raising mu until F decreases.
     rhs = -(reg.beta * ne.jte + reg.alpha * params);
@@ -99,6 +124,7 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
                                            after + " (converged to rounding or stuck)");
     }
     params.swap(trial);
+    epochs_done = epoch;
     ssw = ssw_new;
     mu = std::max(mu * o.mu_dec, kMuFloor);
     if (!builder.build(params, ne)) {
@@ -122,7 +148,17 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
     lm.beta = reg.beta;
     lm.gamma = reg.gamma;
     lm.mu = mu;
-    lm.gradient = 2.0 * ne.jte.norm();
+    lm.gradient = gradient_now();
+    if (validating) {
+      if (record.validation_loss < best_validation) {
+        best_validation = record.validation_loss;
+        best_epoch = epoch;
+        best_params = params;
+        fails = 0;
+      } else if (!(record.validation_loss <= best_validation)) {  // worse, or not finite
+        ++fails;
+      }
+    }
     summary.history.push_back(record);
     summary.lm_history.push_back(lm);
     if (hooks.on_epoch && !hooks.on_epoch(record, lm, params)) {
@@ -134,14 +170,14 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
 
 }  // namespace
 
-const FieldList<LmOptions>& lm_fields() {
+const FieldList<LmOptions>& trainbr_fields() {
   using O = LmOptions;
   static const auto fields =
       FieldList<O>()
           .field("epochs", &O::epochs, "maximum accepted steps (trainlm/trainbr: 1000)",
                  Rule::at_least(1))
           .field("goal", &O::goal,
-                 "stop when the objective F <= goal (lm: E_D; trainbr: βE_D + αE_W)",
+                 "stop when the performance <= goal (lm: E_D/N, MATLAB's mse; trainbr: E_D)",
                  Rule::non_negative())
           .field("mu", &O::mu, "initial damping μ (trainlm: 0.001, trainbr: 0.005)",
                  Rule::positive())
@@ -150,7 +186,20 @@ const FieldList<LmOptions>& lm_fields() {
           .field("mu_inc", &O::mu_inc, "μ ← μ·mu_inc after a failed step, > 1", Rule::above(1))
           .field("mu_max", &O::mu_max,
                  "stop when no step with μ <= mu_max lowers the objective (1e10)", Rule::positive())
-          .field("min_gradient", &O::min_gradient, "stop when 2‖Jᵀe‖ < min_gradient (1e-7)",
+          .field("min_gradient", &O::min_gradient,
+                 "stop when the gradient <= min_gradient (lm: 2‖Jᵀe‖/N, MATLAB's mse; trainbr: "
+                 "2‖Jᵀe‖) (1e-7)",
+                 Rule::non_negative());
+  return fields;
+}
+
+const FieldList<LmOptions>& lm_fields() {
+  using O = LmOptions;
+  static const auto fields =
+      FieldList<O>(trainbr_fields())
+          .field("max_fail", &O::max_fail,
+                 "stop after this many epochs in a row without a better validation loss and "
+                 "return the best (trainlm: 6; 0 = off; needs a validation split)",
                  Rule::non_negative());
   return fields;
 }

@@ -7,9 +7,20 @@
 //   else mu <- mu * mu_inc and solve again, up to mu_max.
 // A step whose factorisation fails or whose objective is NaN/Inf counts as a
 // failed step (mu is raised); non-finite values never reach the parameters.
-// Stops (checked before every epoch, in MATLAB's order): F <= goal,
-// 2 ||J^T e|| < min_gradient, epochs done; and when no step with mu <= mu_max
-// decreases F (termination mu_max).
+// Stops (checked before every epoch, in MATLAB's order): performance <= goal,
+// gradient <= min_gradient, epochs done, max_fail validation checks; and when
+// no step with mu <= mu_max decreases F (termination mu_max). Performance and
+// gradient are MATLAB's (nntraining.perfs_jejj, R2010b+): trainlm uses the
+// network's performance function, by default mse, so performance = E_D / N
+// and gradient = 2 ||J^T e|| / N (N residuals); trainbr forces sse, so
+// performance = E_D and gradient = 2 ||J^T e|| (the data term's, without
+// beta). Validation (lm only; trainbr, as MATLAB's, has no validation
+// stop): with a validation loss hook and max_fail > 0, an epoch whose
+// validation loss exceeds the best so far is a failed check, a new best
+// resets the count, and max_fail consecutive fails stop training
+// (termination early_stop); whenever it stops, the parameters of the best
+// validation loss (the initial ones included) are returned, as trainlm
+// returns best.net.
 #include <Eigen/Core>
 #include <cstddef>
 #include <functional>
@@ -24,12 +35,13 @@ class FieldList;
 
 struct LmOptions {
   std::size_t epochs = 1000;  // maximum number of accepted steps (trainlm: 1000)
-  double goal = 0;            // stop when F <= goal; lm: F = E_D (sum of squares) (trainlm: 0)
+  double goal = 0;            // stop when the performance (above) <= goal (trainlm: 0)
   double mu = 1e-3;           // initial damping mu (trainlm: 0.001)
   double mu_dec = 0.1;        // mu <- mu * mu_dec after a successful step, in (0, 1) (trainlm: 0.1)
   double mu_inc = 10;         // mu <- mu * mu_inc after a failed step, > 1 (trainlm: 10)
   double mu_max = 1e10;       // stop when mu exceeds this (trainlm: 1e10)
-  double min_gradient = 1e-7;  // stop when 2 ||J^T e|| < min_gradient (trainlm: 1e-7)
+  double min_gradient = 1e-7;  // stop when the gradient (above) <= min_gradient (trainlm: 1e-7)
+  std::size_t max_fail = 6;    // validation checks (above); 0 = off (trainlm: 6)
   // Rows of J per symmetric rank update; 0 = automatic (about 8 MB of J).
   std::size_t block_rows = 0;
 
@@ -38,10 +50,12 @@ struct LmOptions {
   void validate() const;
 };
 
-// The YAML fields of LmOptions (`trainer:` with type lm or trainbr; block_rows
-// is a tuning knob, not part of a config), declared once (core/fields.hpp);
-// validate() checks their rules and mu <= mu_max.
+// The YAML fields of LmOptions (`trainer:` with type lm; block_rows is a
+// tuning knob, not part of a config), declared once (core/fields.hpp);
+// validate() checks their rules and mu <= mu_max. trainbr_fields(): the same
+// without max_fail (trainbr has no validation stop).
 const FieldList<LmOptions>& lm_fields();
+const FieldList<LmOptions>& trainbr_fields();
 
 struct LmHooks {
   // Loss on held-out data at the end of each epoch (stored in EpochRecord).

@@ -15,8 +15,9 @@
 // (no explicit inverse). Guard: when N - gamma <= 0 (few residuals, many
 // parameters) beta would not be positive; the previous beta is kept and
 // Summary::beta_guard_count says how often. An E_D of 0 gives beta = 1 and an
-// E_W of 0 gives alpha = 1 (MATLAB). The min-gradient test uses the data
-// term's gradient 2 ||J^T e||; goal is compared with F. No validation stop.
+// E_W of 0 gives alpha = 1 (MATLAB). As MATLAB's trainbr (which forces the
+// sse performance), goal is compared with E_D and min_gradient with the data
+// term's gradient 2 ||J^T e||. No validation stop.
 #include <Eigen/Core>
 
 #include "cnclab/train/lm.hpp"
@@ -25,7 +26,10 @@ namespace cnclab {
 
 // trainbr's defaults differ from trainlm's only in the initial mu.
 struct TrainbrOptions : LmOptions {
-  TrainbrOptions() { mu = 0.005; }  // trainbr: mu 0.005, mu_dec 0.1, mu_inc 10, mu_max 1e10
+  TrainbrOptions() {  // trainbr: mu 0.005, mu_dec 0.1, mu_inc 10, mu_max 1e10
+    mu = 0.005;
+    max_fail = 0;  // MATLAB's trainbr disables validation (merges it into training)
+  }
 };
 
 Summary train_trainbr(ResidualObjective& objective, Eigen::VectorXd& params,
