@@ -131,6 +131,14 @@ int main(int argc, char** argv) {
       ->add_option("--jobs,-j", sweep_options.jobs,
                    "Trials at once (default: the number of cores this process may use)")
       ->check(count);
+  sweep
+      ->add_option("--trial-timeout", sweep_options.trial_timeout,
+                   "Kill a trial running longer than SECONDS; it is recorded as failed "
+                   "(timeout) and a resume runs it again only with --retry-failed")
+      ->type_name("SECONDS")
+      ->check(CLI::PositiveNumber);
+  sweep->add_flag("--retry-failed", sweep_options.retry_failed,
+                  "Run the failed trials (failed results, timeouts) again");
   sweep->add_option("--shard", sweep_options.shard,
                     "K/N: run only shard K of N (trials K, K+N, ...), e.g. one per Slurm task");
   sweep->add_option("--dir", sweep_options.dir,

@@ -7,12 +7,12 @@
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/upstream.hpp"
+#include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/report/sweep_report.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 #include "cnclab/sweep/sweep_summary.hpp"
 #include "cnclab/sweep/trial_pool.hpp"
-#include "cnclab/io/atomic_file.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -54,6 +54,8 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
   SweepExecuteOptions exec;
   exec.common = o.common;
   exec.jobs = o.jobs;
+  exec.trial_timeout = o.trial_timeout;
+  exec.retry_failed = o.retry_failed;
   if (!o.shard.empty()) std::tie(exec.shard, exec.shards) = parse_shard(o.shard);
   const std::size_t shard = exec.shard, shards = exec.shards;
   SweepPlan plan = plan_sweep(experiment, args.overrides, seed, spec, o.common.profile);

@@ -21,6 +21,8 @@ struct SweepCommandOptions {
   std::string shard;          // "K/N" or "" for all trials
   std::filesystem::path dir;  // sweep folder; "" = <results>/<name>/sweep-<plan hash>
   bool regenerate = false;    // regenerate the datasets the trials need once
+  double trial_timeout = 0;   // seconds; a trial running longer is killed, failed "timeout"
+  bool retry_failed = false;  // run failed trials (failed status, timeout) again
   // Command-line settings of the sweep block (override the YAML's).
   std::optional<std::size_t> repeats, trials;
   std::optional<std::string> method, objective;

@@ -308,6 +308,33 @@ TEST(SweepCli, ThrowingTrialIsRecordedWithItsReasonAndRetriedOnResume) {
   EXPECT_NE(dump.out.find("\"error"), std::string::npos) << dump.out;
 }
 
+TEST(SweepCli, TrialTimeoutKillsTheTrialAndRecordsItAsFailed) {
+  TempDir dir;
+  // 1 epoch against 10^6 (minutes): the second trial runs into the timeout.
+  const std::string sweep = kCnclab + " sweep " + kExperiment +
+                            " trainer.epochs=1,1000000 dataset.options.samples=200 --jobs 2 "
+                            "--data-dir data --dir s --trial-timeout 2";
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = sh(dir.path(), sweep);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 60.0);
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.out.find("1 complete, 1 failed"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("failed: timeout: killed after running longer than 2 s"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(trial_files(dir / "s").size(), 1u);  // no result of the killed trial
+  // Failed, not an error: a resume leaves it alone...
+  const Result resume = sh(dir.path(), sweep);
+  EXPECT_NE(resume.err.find("2 already done, running 0"), std::string::npos) << resume.err;
+  // ...unless asked to retry failed trials.
+  const Result retry = sh(dir.path(), sweep + " --retry-failed");
+  EXPECT_NE(retry.err.find("1 already done, running 1"), std::string::npos) << retry.err;
+  EXPECT_NE(sh(dir.path(), kCnclab + " sweep " + kExperiment + " --trial-timeout 0")
+                .err.find("--trial-timeout"),
+            std::string::npos);
+}
+
 TEST(SweepCli, ShardsThenMergeEqualAnUnshardedSweep) {
   TempDir dir;
   ASSERT_EQ(sh(dir.path(), kCnclab + " sweep " + sweep_args("--jobs 2 --dir whole")).code, 0);

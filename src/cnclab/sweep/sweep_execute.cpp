@@ -87,7 +87,8 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
   const std::size_t stale = invalidate_stale(plan, ex.mine, o.common.results_dir, ex.outcomes);
   std::vector<std::size_t> todo;
   for (std::size_t i : ex.mine) {
-    if (o.rerun || !ex.outcomes[i].done()) todo.push_back(i);
+    const bool retry = o.retry_failed && ex.outcomes[i].status == TrialOutcome::Status::failed;
+    if (o.rerun || retry || !ex.outcomes[i].done()) todo.push_back(i);
   }
   const std::size_t jobs = o.jobs > 0 ? o.jobs : available_cores();
   if (note) {
@@ -112,12 +113,13 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
   pool.jobs = jobs;
   pool.run.results_dir = o.common.results_dir;
   pool.run.datasets_dir = o.common.datasets_dir;
+  pool.trial_timeout_seconds = o.trial_timeout;
   ex.ran = todo.size();
   ex.stopped = run_trial_pool(pool_jobs, pool, [&](std::size_t job, const TrialExit& exit) {
     const std::size_t i = todo[job];
     if (exit.kind == TrialExit::Kind::interrupted) return;
     ex.outcomes[i] = read_trial_outcome(dir, plan.trials[i]);
-    if (ex.outcomes[i].done()) {
+    if (!ex.outcomes[i].result_file.empty()) {
       std::error_code ec;
       fs::remove(trial_error_path(dir, plan.trials[i].id), ec);  // a stale note of an earlier try
     }

@@ -17,6 +17,8 @@ struct SweepExecuteOptions {
   std::size_t jobs = 0;   // trials at once; 0 = the cores this process may use (affinity)
   std::size_t shard = 1, shards = 1;  // run trials of shard `shard` (1-based) of `shards`
   bool rerun = false;                 // run every trial of the shard, even those with a result
+  bool retry_failed = false;          // run failed trials (failed status, timeout) again
+  double trial_timeout = 0;           // seconds; a trial still running is killed; 0 = none
 };
 
 struct SweepExecution {

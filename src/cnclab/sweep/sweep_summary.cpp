@@ -12,6 +12,7 @@
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/sweep/trial_pool.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -127,8 +128,10 @@ TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) 
   }
   const fs::path note = trial_error_path(dir, trial.id);
   if (fs::exists(note, ec)) {
-    o.status = TrialOutcome::Status::error;
     o.reason = read_text(note);
+    // A timed-out trial is a failure of its config (too slow), not of the run.
+    o.status = o.reason.rfind(kTimeoutNote, 0) == 0 ? TrialOutcome::Status::failed
+                                                    : TrialOutcome::Status::error;
   }
   return o;
 }

@@ -32,8 +32,10 @@
 namespace cnclab {
 
 struct TrialOutcome {
-  // complete / failed: a result file with that status; error: no result but
-  // a note why (exception, crash); missing: not run yet (or unreadable).
+  // complete / failed: a result file with that status, or (failed) a trial
+  // killed by the trial timeout (its note starts with "timeout:"); error: no
+  // result but a note why (exception, crash); missing: not run yet (or
+  // unreadable).
   enum class Status { complete, failed, error, missing };
   Status status = Status::missing;
   std::string reason;                     // failed/error: why; missing: unreadable result
@@ -41,7 +43,8 @@ struct TrialOutcome {
   std::string result_file;                // relative to the sweep folder; "" if none
   std::vector<UpstreamRef> upstream;      // upstream results the trial was made from
 
-  // A complete result exists (status complete or failed): resume skips it.
+  // Complete or failed: resume skips it (failed ones run again with
+  // --retry-failed).
   bool done() const { return status == Status::complete || status == Status::failed; }
 };
 std::string to_string(TrialOutcome::Status status);

@@ -8,12 +8,14 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <ctime>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 #include "cnclab/core/error.hpp"
@@ -119,16 +121,34 @@ int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
   const BlockedSignals blocked(watched);
   const pid_t self = ::getpid();
 
-  std::map<pid_t, TrialJob> running;
+  using Clock = std::chrono::steady_clock;
+  struct Running {
+    TrialJob job;
+    Clock::time_point start;
+    bool timed_out = false;
+  };
+  std::map<pid_t, Running> running;
   std::optional<TrialJob> pending;  // taken from next_ready, not yet started (fork failed)
   int stop_signal = 0;
   const auto reap = [&](pid_t pid, int status) {
     const auto it = running.find(pid);
     if (it == running.end()) return;  // not a trial (e.g. a read probe)
-    const TrialJob job = it->second;
+    const TrialJob job = it->second.job;
+    const bool timed_out = it->second.timed_out;
     running.erase(it);
     TrialExit exit;
-    if (WIFEXITED(status)) {
+    if (timed_out) {
+      exit.kind = TrialExit::Kind::error;
+      exit.timeout = true;
+      std::ostringstream m;
+      m << kTimeoutNote << " killed after running longer than " << options.trial_timeout_seconds
+        << " s (--trial-timeout)";
+      exit.message = m.str();
+      try {
+        write_note(job.error_file, exit.message);
+      } catch (const std::exception&) {
+      }
+    } else if (WIFEXITED(status)) {
       const int code = WEXITSTATUS(status);
       exit.kind = code == kExitResult || code == kExitFailed ? TrialExit::Kind::result
                                                              : TrialExit::Kind::error;
@@ -164,7 +184,7 @@ int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
         break;  // retry when a slot frees
       }
       if (pid == 0) run_child(*pending, options, self, blocked.original());
-      running.emplace(pid, std::move(*pending));
+      running.emplace(pid, Running{std::move(*pending), Clock::now()});
       pending.reset();
     }
     // Reap everything that ended (on_done may make more jobs ready), then
@@ -187,7 +207,17 @@ int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
     if (options.on_tick) options.on_tick();
     if ((sig == SIGINT || sig == SIGTERM) && stop_signal == 0) {
       stop_signal = sig;
-      for (const auto& [pid, job] : running) ::kill(pid, SIGTERM);
+      for (const auto& [pid, trial] : running) ::kill(pid, SIGTERM);
+    }
+    if (options.trial_timeout_seconds > 0 && stop_signal == 0) {
+      const auto now = Clock::now();
+      for (auto& [pid, trial] : running) {
+        const double seconds = std::chrono::duration<double>(now - trial.start).count();
+        if (!trial.timed_out && seconds > options.trial_timeout_seconds) {
+          trial.timed_out = true;
+          ::kill(pid, SIGKILL);
+        }
+      }
     }
   }
   // Drop pending SIGCHLDs of our children before the mask is restored.

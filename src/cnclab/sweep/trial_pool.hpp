@@ -11,6 +11,10 @@
 // results), so a re-run resumes with nothing lost or duplicated. Children die
 // with the parent (PR_SET_PDEATHSIG), so `kill -9` of the sweep leaves no
 // trial running.
+//
+// Timeout: a trial running longer than PoolOptions::trial_timeout_seconds is
+// killed (SIGKILL) and ends as an error whose note starts with "timeout:"
+// (kTimeoutNote), which the sweep records as a failed trial.
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -35,7 +39,11 @@ struct TrialExit {
   enum class Kind { result, error, interrupted } kind = Kind::result;
   std::string message;        // error: the exception text or the signal that killed it
   bool config_error = false;  // error: the run threw a ConfigError (its text is in error_file)
+  bool timeout = false;       // error: killed after the trial timeout
 };
+
+// The start of a timed-out trial's error note.
+inline constexpr const char* kTimeoutNote = "timeout:";
 
 struct PoolOptions {
   std::size_t jobs = 1;  // trials at once (>= 1)
@@ -45,6 +53,9 @@ struct PoolOptions {
   bool trial_output = false;
   // Called in the parent about once a second while trials run (progress).
   std::function<void()> on_tick;
+  // Kill a trial still running after this many seconds; 0 = no limit. The
+  // pool checks about once a second.
+  double trial_timeout_seconds = 0;
 };
 
 // Cores this process may run on (the affinity mask: what Slurm or taskset
