@@ -33,7 +33,14 @@ struct ResultStatus {
 };
 ResultStatus read_result_status(const std::filesystem::path& path);
 
-// Human-readable summary for `cnclab show`.
+// The parts every result has, shared with job results (job_result.hpp):
+// /metrics (one attribute each, plus `units`) and /upstream.
+class H5File;
+void write_result_upstream(H5File& file, const std::vector<UpstreamRef>& upstream);
+std::map<std::string, double> read_metrics(const H5File& file);
+std::vector<UpstreamRef> read_upstream(const H5File& file);
+
+// Human-readable summary for `cnclab show` (job results: print_job_result).
 void print_result(const RunRecord& record, std::ostream& out);
 
 }  // namespace cnclab
