@@ -32,13 +32,7 @@ void write_job_result(const fs::path& path, const RunRecord& r) {
   AtomicOutput out(path);
   try {
     H5File f = H5File::create(out.temp_path());
-    write_format(f, kResultFormat, kResultFormatVersion);
-    f.set_attribute("/", "kind", r.kind);
-    f.set_attribute("/", "experiment", r.experiment);
-    f.set_attribute("/", "config_hash", r.config_hash);
-    f.set_attribute("/", "status", r.provenance.status);
-    f.write_string("/config", r.resolved_yaml);
-    write_provenance(f, "/provenance", r.provenance);
+    write_result_header(f, r);
     f.create_group("/metrics");
     for (const auto& [name, value] : r.metrics) f.set_attribute("/metrics", name, value);
     write_result_upstream(f, r.upstream);
@@ -106,14 +100,7 @@ void print_job_result(const RunRecord& r, std::ostream& out) {
     out << "  " << std::left << std::setw(static_cast<int>(width)) << name << format_metric(value)
         << "\n";
   }
-  out << "config\n";
-  std::size_t start = 0;
-  while (start < r.resolved_yaml.size()) {
-    const auto end = r.resolved_yaml.find('\n', start);
-    out << "  " << r.resolved_yaml.substr(start, end - start) << "\n";
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
+  print_result_config(r.resolved_yaml, out);
 }
 
 fs::path output_path(const RunRecord& record, const fs::path& result_file,

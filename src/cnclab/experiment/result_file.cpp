@@ -90,12 +90,7 @@ void write_result(const fs::path& path, const RunRecord& r) {
   AtomicOutput out(path);
   try {
     H5File f = H5File::create(out.temp_path());
-    write_format(f, kResultFormat, kResultFormatVersion);
-    f.set_attribute("/", "experiment", r.experiment);
-    f.set_attribute("/", "config_hash", r.config_hash);
-    f.set_attribute("/", "status", r.provenance.status);
-    f.write_string("/config", r.resolved_yaml);
-    write_provenance(f, "/provenance", r.provenance);
+    write_result_header(f, r);
 
     f.create_group("/dataset");
     f.set_attribute("/dataset", "file", r.dataset_file);
@@ -169,6 +164,27 @@ void write_result(const fs::path& path, const RunRecord& r) {
   } catch (const IoError& e) {
     // Name the file the user asked for; the temporary is removed by `out`.
     throw IoError(path.string() + ": result not written: " + std::string(e.what()));
+  }
+}
+
+void write_result_header(H5File& f, const RunRecord& r) {
+  write_format(f, kResultFormat, kResultFormatVersion);
+  if (r.kind != "train") f.set_attribute("/", "kind", r.kind);  // absent: train
+  f.set_attribute("/", "experiment", r.experiment);
+  f.set_attribute("/", "config_hash", r.config_hash);
+  f.set_attribute("/", "status", r.provenance.status);
+  f.write_string("/config", r.resolved_yaml);
+  write_provenance(f, "/provenance", r.provenance);
+}
+
+void print_result_config(const std::string& resolved_yaml, std::ostream& out) {
+  out << "config\n";
+  std::size_t start = 0;
+  while (start < resolved_yaml.size()) {
+    const auto end = resolved_yaml.find('\n', start);
+    out << "  " << resolved_yaml.substr(start, end - start) << "\n";
+    if (end == std::string::npos) break;
+    start = end + 1;
   }
 }
 
@@ -381,14 +397,7 @@ void print_result(const RunRecord& r, std::ostream& out) {
     out << "  " << std::left << std::setw(static_cast<int>(width)) << name << format_metric(value)
         << "\n";
   }
-  out << "config\n";
-  std::size_t start = 0;
-  while (start < r.resolved_yaml.size()) {
-    const auto end = r.resolved_yaml.find('\n', start);
-    out << "  " << r.resolved_yaml.substr(start, end - start) << "\n";
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
+  print_result_config(r.resolved_yaml, out);
 }
 
 }  // namespace cnclab
