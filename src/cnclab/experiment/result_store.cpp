@@ -31,7 +31,7 @@ fs::path ResultStore::path_of(const ResultKey& key) const {
 
 std::string ResultStore::make_command(const ResultKey& key) const {
   std::string command = std::string("cnclab ") + (key.has_upstream ? "reproduce " : "run ") +
-                        key.source_file.string();
+                        key.source_file.lexically_normal().string();
   if (!profile_.empty()) command += " --profile " + profile_;
   // The CLI's default: results, or results/<profile> with a profile.
   const fs::path default_dir =
@@ -45,7 +45,7 @@ LoadedExperiment ResultStore::load(const fs::path& experiment_file) const {
 }
 
 std::string ResultStore::missing_text(const ResultKey& key, const std::string& why) const {
-  return "no result for " + key.source_file.string() +
+  return "no result for " + key.source_file.lexically_normal().string() +
          (profile_.empty() ? "" : " (profile " + profile_ + ")") + ": " + why + "; make it with `" +
          make_command(key) + "`";
 }
