@@ -17,6 +17,7 @@
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/result_store.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/atomic_file.hpp"
@@ -50,6 +51,7 @@ class GraphRun {
       : graph_(graph),
         options_(options),
         run_(run_options(options, log)),
+        store_(options.results_dir, options.profile),
         log_(run_.log),
         state_(graph.size()) {}
 
@@ -140,12 +142,11 @@ class GraphRun {
       upstream.push_back({up_name, result_identity(*state_[j].record)});
     }
     const LoadedExperiment& exp = *node.experiment;
-    const fs::path path = result_path(exp, options_.results_dir);
-    std::error_code ec;
     if (options_.force) return "--force";
-    if (!fs::exists(path, ec)) return "no result for this resolved config yet";
     try {
-      RunRecord existing = read_result(path);
+      std::optional<StoredResult> stored = store_.existing(result_key(exp));
+      if (!stored) return "no result for this resolved config yet";
+      RunRecord& existing = stored->record;
       std::string why = staleness(existing.upstream, upstream);
       // The dataset file name carries the generator version (not part of the
       // resolved config): a new generator version makes a new dataset.
@@ -272,8 +273,9 @@ class GraphRun {
 
   const std::vector<GraphNode>& graph_;
   const CommandOptions& options_;
-  const RunOptions run_;  // the trials' options
-  std::ostream* log_;     // progress; null when quiet
+  const RunOptions run_;     // the trials' options
+  const ResultStore store_;  // where current results are found (reuse)
+  std::ostream* log_;        // progress; null when quiet
   std::vector<NodeState> state_;
   std::set<fs::path> regenerated_;
   std::size_t started_ = 0, finished_ = 0;

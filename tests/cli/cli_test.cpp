@@ -549,6 +549,20 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
   EXPECT_TRUE(fs::exists(dir_ / "results/g/g.nc"));
   EXPECT_TRUE(fs::exists(dir_ / "results/g/g-points.tsv"));
   EXPECT_NE(r.out.find("Table 3 IS Eq. 6"), std::string::npos) << r.out;
+  // The G-code job's standard result: `show` prints it with its outputs, and
+  // `compare` of two configs shows the differing key and the metric deltas.
+  const Result g2 = cnclab("run experiments/trochoid/g.yaml trochoid.step=1.2 --quiet");
+  ASSERT_EQ(g2.code, 0) << g2.err;
+  std::string g2_file = g2.out.substr(g2.out.rfind('\n', g2.out.size() - 2) + 1);
+  g2_file.pop_back();  // the newline
+  EXPECT_EQ(g2_file.rfind("results/g/g-", 0), 0u) << g2.out;
+  const Result shown = cnclab("show " + g2_file);
+  EXPECT_NE(shown.out.find("experiment   g (kind: gcode)"), std::string::npos) << shown.out;
+  EXPECT_NE(shown.out.find("output       program: g.nc"), std::string::npos) << shown.out;
+  const Result cmp = cnclab("compare results/g --format csv");
+  ASSERT_EQ(cmp.code, 0) << cmp.err;
+  EXPECT_NE(cmp.out.find("\nconfig,trochoid.step,"), std::string::npos) << cmp.out;
+  EXPECT_NE(cmp.out.find("\nmetric,loops,"), std::string::npos) << cmp.out;
   // No reference folder in the working directory: the table is skipped with a note.
   EXPECT_NE(r.out.find("(table ik not printed"), std::string::npos) << r.out;
 
@@ -561,6 +575,12 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
   EXPECT_NE(t.out.find("adds up to 2432"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("Machine-space error"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("(n = 100,"), std::string::npos) << t.out;
+  // Each table names the files it read: the paper's numbers and the results.
+  const std::string sources = "\nsources: " CNCLAB_SOURCE_DIR
+                              "/results/reference/ik_table5.yaml, "
+                              "results/ik_x/ik_x-seed4-";
+  EXPECT_NE(t.out.find(sources), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("\nsources: results/ik_x/ik_x-seed4-"), std::string::npos) << t.out;
 
   // No search or trainbr results: said in the notes, the rest printed.
   EXPECT_NE(t.out.find("- search: no results for any axis; X not available: "

@@ -96,6 +96,7 @@ def main():
         for f, text in texts.items():
             check("Table 8" in text and "Table 7" in text, f"{f}: all tables printed")
             check("not printed" not in text, f"{f}: no table missing")
+        check_sources(texts["text"], source)
         check(texts["latex"].count("\\begin{tabular}") == texts["latex"].count("\\end{tabular}")
               and texts["latex"].count("\\begin{tabular}") >= 10, "latex: balanced tabulars")
         check_csv(csv_tables(texts["csv"]))
@@ -111,6 +112,23 @@ def main():
         return 1
     print("step-error study: all checks passed")
     return 0
+
+
+def check_sources(text, source):
+    """Every table ends with the files it read: the paper's numbers first
+    (except the normaliser table, which has none), then result files that
+    exist."""
+    lines = [l[len("sources: "):] for l in text.splitlines() if l.startswith("sources: ")]
+    # Tables 2, 3, surface-1 text, 4, 6, 5, 7, normaliser, 8.
+    check(len(lines) == 9, f"one sources line per table: {len(lines)}")
+    for line in lines:
+        files = line.split(", ")
+        for f in files:
+            check(os.path.isfile(os.path.join(source, f)), f"sources: {f} exists")
+        check(sum(f.endswith("seed000_step_error.yaml") for f in files) <= 1, f"reference once: {line}")
+        check(any(f.endswith(".h5") for f in files), f"sources name result files: {line}")
+    check(sum(l.startswith("results/reference/seed000_step_error.yaml") for l in lines) == 8,
+          "the paper's numbers are named where they are used")
 
 
 def quick_results(results):

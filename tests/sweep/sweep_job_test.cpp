@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/io/h5.hpp"
 #include "common/temp_dir.hpp"
@@ -119,6 +120,17 @@ TEST_F(SweepJobTest, SelectsTheTrialWithTheLeastValidationMse) {
             chosen.model.hidden);
   // The fixed override reached every trial.
   EXPECT_EQ(chosen.training.history.size(), 5u);
+
+  // The selection as a standard result: found by the store under the job's
+  // key, naming the same trial (its metrics, its file beside it).
+  const SweepJob job = load_sweep_job(dir_ / "search.yaml");
+  const StoredResult stored = ResultStore(dir_ / "results").get(sweep_job_key(job, s.plan));
+  EXPECT_EQ(stored.file, r.result_file);
+  EXPECT_EQ(stored.record.kind, "sweep");
+  EXPECT_EQ(stored.record.facts.at("selected_trial"), best_id);
+  EXPECT_EQ(stored.record.metrics.at("normalised_validation_mse"), best);
+  EXPECT_EQ(stored.record.metrics.at("sweep.complete"), 5.0);
+  EXPECT_EQ(output_path(stored.record, stored.file, "selected_trial"), s.selected_result());
 }
 
 TEST_F(SweepJobTest, SecondRunReusesTheFinishedSweep) {

@@ -6,6 +6,7 @@
 #include <iomanip>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
@@ -89,12 +90,7 @@ void write_result(const fs::path& path, const RunRecord& r) {
   AtomicOutput out(path);
   try {
     H5File f = H5File::create(out.temp_path());
-    write_format(f, kResultFormat, kResultFormatVersion);
-    f.set_attribute("/", "experiment", r.experiment);
-    f.set_attribute("/", "config_hash", r.config_hash);
-    f.set_attribute("/", "status", r.provenance.status);
-    f.write_string("/config", r.resolved_yaml);
-    write_provenance(f, "/provenance", r.provenance);
+    write_result_header(f, r);
 
     f.create_group("/dataset");
     f.set_attribute("/dataset", "file", r.dataset_file);
@@ -160,17 +156,7 @@ void write_result(const fs::path& path, const RunRecord& r) {
     f.set_attribute("/metrics", "units", target_units + " (squared for mse; r2 is 1)");
     for (const auto& [name, value] : r.metrics) f.set_attribute("/metrics", name, value);
 
-    if (!r.upstream.empty()) {
-      std::vector<std::string> experiments, files, identities;
-      for (const auto& u : r.upstream) {
-        experiments.push_back(u.experiment);
-        files.push_back(u.result_file);
-        identities.push_back(u.identity);
-      }
-      f.write_strings("/upstream/experiments", experiments);
-      f.write_strings("/upstream/result_files", files);
-      f.write_strings("/upstream/identities", identities);
-    }
+    write_result_upstream(f, r.upstream);
 
     mark_complete(f);  // last
     f.close();
@@ -181,9 +167,39 @@ void write_result(const fs::path& path, const RunRecord& r) {
   }
 }
 
-namespace {
+void write_result_header(H5File& f, const RunRecord& r) {
+  write_format(f, kResultFormat, kResultFormatVersion);
+  if (r.kind != "train") f.set_attribute("/", "kind", r.kind);  // absent: train
+  f.set_attribute("/", "experiment", r.experiment);
+  f.set_attribute("/", "config_hash", r.config_hash);
+  f.set_attribute("/", "status", r.provenance.status);
+  f.write_string("/config", r.resolved_yaml);
+  write_provenance(f, "/provenance", r.provenance);
+}
 
-RunRecord read_result_in_process(const std::filesystem::path& path);
+void print_result_config(const std::string& resolved_yaml, std::ostream& out) {
+  out << "config\n";
+  std::size_t start = 0;
+  while (start < resolved_yaml.size()) {
+    const auto end = resolved_yaml.find('\n', start);
+    out << "  " << resolved_yaml.substr(start, end - start) << "\n";
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+}
+
+void write_result_upstream(H5File& f, const std::vector<UpstreamRef>& upstream) {
+  if (upstream.empty()) return;
+  std::vector<std::string> experiments, files, identities;
+  for (const auto& u : upstream) {
+    experiments.push_back(u.experiment);
+    files.push_back(u.result_file);
+    identities.push_back(u.identity);
+  }
+  f.write_strings("/upstream/experiments", experiments);
+  f.write_strings("/upstream/result_files", files);
+  f.write_strings("/upstream/identities", identities);
+}
 
 std::map<std::string, double> read_metrics(const H5File& f) {
   std::map<std::string, double> metrics;
@@ -207,6 +223,10 @@ std::vector<UpstreamRef> read_upstream(const H5File& f) {
   }
   return out;
 }
+
+namespace {
+
+RunRecord read_result_in_process(const std::filesystem::path& path);
 
 ResultStatus read_status_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
@@ -236,6 +256,9 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
   const auto bad = [&](const std::string& what) { throw IoError(path.string() + ": " + what); };
   require_format(f, kResultFormat, kResultFormatVersion);
+  if (f.has_attribute("/", "kind") && f.attribute_string("/", "kind") != "train") {
+    return read_job_result(f);
+  }
   RunRecord r;
   r.experiment = f.attribute_string("/", "experiment");
   r.config_hash = f.attribute_string("/", "config_hash");
@@ -309,6 +332,10 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
 }  // namespace
 
 void print_result(const RunRecord& r, std::ostream& out) {
+  if (r.kind != "train") {
+    print_job_result(r, out);
+    return;
+  }
   const Provenance& p = r.provenance;
   out << "experiment   " << r.experiment << "\n"
       << "status       " << p.status << (p.failure_reason.empty() ? "" : ": " + p.failure_reason)
@@ -370,14 +397,7 @@ void print_result(const RunRecord& r, std::ostream& out) {
     out << "  " << std::left << std::setw(static_cast<int>(width)) << name << format_metric(value)
         << "\n";
   }
-  out << "config\n";
-  std::size_t start = 0;
-  while (start < r.resolved_yaml.size()) {
-    const auto end = r.resolved_yaml.find('\n', start);
-    out << "  " << r.resolved_yaml.substr(start, end - start) << "\n";
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
+  print_result_config(r.resolved_yaml, out);
 }
 
 }  // namespace cnclab

@@ -33,7 +33,18 @@ struct ResultStatus {
 };
 ResultStatus read_result_status(const std::filesystem::path& path);
 
-// Human-readable summary for `cnclab show`.
+// The parts every result has, shared with job results (job_result.hpp):
+// root attributes format, kind (jobs only), experiment, config_hash, status,
+// then /config and /provenance (write_result_header); /metrics (one
+// attribute each, plus `units`); /upstream; and `show`'s config block.
+class H5File;
+void write_result_header(H5File& file, const RunRecord& record);
+void print_result_config(const std::string& resolved_yaml, std::ostream& out);
+void write_result_upstream(H5File& file, const std::vector<UpstreamRef>& upstream);
+std::map<std::string, double> read_metrics(const H5File& file);
+std::vector<UpstreamRef> read_upstream(const H5File& file);
+
+// Human-readable summary for `cnclab show` (job results: print_job_result).
 void print_result(const RunRecord& record, std::ostream& out);
 
 }  // namespace cnclab

@@ -21,7 +21,17 @@ struct UpstreamRef {
   std::string identity;     // result_identity() of that result (upstream.hpp)
 };
 
+// A file a job wrote beside its result (job_result.hpp).
+struct OutputRef {
+  std::string role;  // "program", "points", "report", ...
+  std::string file;  // relative to the result file's folder
+};
+
 struct RunRecord {
+  // "train": a training run (everything below). Any other value: the result
+  // of a `kind: <job>` file (job_result.hpp), which has only the experiment
+  // name, config, provenance, metrics, upstream, outputs and facts.
+  std::string kind = "train";
   std::string experiment;     // spec.name
   std::string resolved_yaml;  // the full resolved config
   std::string config_hash;    // identity of the run: hash of resolved_yaml
@@ -43,6 +53,10 @@ struct RunRecord {
   Eigen::MatrixXd test_targets;
   std::map<std::string, double> metrics;
   std::vector<UpstreamRef> upstream;  // empty without needs / init_from
+
+  // Job results only.
+  std::vector<OutputRef> outputs;
+  std::map<std::string, std::string> facts;  // named text a job reports (selected trial, ...)
 };
 
 }  // namespace cnclab

@@ -59,13 +59,6 @@ void check_run_memory(const ExperimentSpec& spec) {
 
 }  // namespace
 
-fs::path result_path(const LoadedExperiment& experiment, const fs::path& results_dir) {
-  const auto& spec = experiment.spec;
-  const std::string hash = hash_hex(experiment.resolved_yaml).substr(0, 8);
-  return results_dir / spec.name /
-         (spec.name + "-seed" + std::to_string(spec.seed) + "-" + hash + ".h5");
-}
-
 RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& options) {
   const ExperimentSpec& spec = experiment.spec;
   const auto wall_start = std::chrono::steady_clock::now();

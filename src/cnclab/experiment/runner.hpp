@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cnclab/core/progress.hpp"
+#include "cnclab/experiment/result_store.hpp"  // result_path: where a run writes
 #include "cnclab/experiment/spec.hpp"
 
 namespace cnclab {
@@ -33,9 +34,5 @@ struct RunOutcome {
 // Runs one experiment. Bad configuration or I/O problems throw; a run whose
 // training diverges is a failed result (written, ok = false), not an error.
 RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& options);
-
-// results/<name>/<name>-seed<seed>-<hash of the resolved config, 8 digits>.h5
-std::filesystem::path result_path(const LoadedExperiment& experiment,
-                                  const std::filesystem::path& results_dir);
 
 }  // namespace cnclab

@@ -2,8 +2,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
-#include "cnclab/experiment/result_file.hpp"
-#include "cnclab/experiment/runner.hpp"
+#include "cnclab/experiment/result_store.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -34,20 +33,17 @@ std::string result_identity(const RunRecord& r) {
 
 UpstreamResult load_upstream(const fs::path& experiment_file, const fs::path& results_dir,
                              const std::string& profile) {
-  UpstreamResult up{
-      load_experiment(experiment_file, std::vector<std::string>{}, std::nullopt, profile), {}, {}};
-  up.result_file = result_path(up.experiment, results_dir);
-  std::error_code ec;
-  if (!fs::exists(up.result_file, ec)) {
-    throw IoError("upstream experiment " + experiment_file.string() + " has no result " +
-                  up.result_file.string() + " yet; `cnclab reproduce` runs upstream experiments " +
-                  "first, or run `cnclab run " + experiment_file.string() + "`");
-  }
+  const ResultStore store(results_dir, profile);
+  UpstreamResult up{store.load(experiment_file), {}, {}};
+  // Failed upstream runs are returned: init_from refuses them (runner.cpp),
+  // needs records them.
   try {
-    up.record = read_result(up.result_file);
-  } catch (const IoError& e) {
-    throw IoError("upstream experiment " + experiment_file.string() +
-                  ": result unreadable: " + e.what());
+    StoredResult r = store.get(up.experiment, Accept::complete_or_failed);
+    up.result_file = std::move(r.file);
+    up.record = std::move(r.record);
+  } catch (const MissingResults& e) {
+    throw MissingResults("upstream experiment " + experiment_file.string() + " has no result: " +
+                         e.what() + " (`cnclab reproduce` runs upstream experiments first)");
   }
   return up;
 }

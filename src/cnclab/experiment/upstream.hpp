@@ -21,9 +21,9 @@ struct UpstreamResult {
   RunRecord record;
 };
 
-// The result `cnclab run experiment_file` writes into `results_dir`. Throws
-// IoError naming the experiment and the expected file (and how to make it)
-// when it is missing or unreadable.
+// The result `cnclab run experiment_file` writes into `results_dir`
+// (ResultStore::get, failed runs included). Throws MissingResults naming the
+// experiment, the expected file and how to make it when there is none.
 // `profile` is the downstream run's (ExperimentSpec::profile).
 UpstreamResult load_upstream(const std::filesystem::path& experiment_file,
                              const std::filesystem::path& results_dir,

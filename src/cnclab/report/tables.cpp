@@ -1,5 +1,6 @@
 #include "cnclab/report/tables.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <utility>
 
@@ -8,6 +9,27 @@ namespace cnclab {
 double normalised_test_mse(const RunRecord& r) {
   const ScalingRecord& y = r.target_scaling;
   return (y.transform(r.test_predictions) - y.transform(r.test_targets)).array().square().mean();
+}
+
+ResultStore table_store(const TablesOptions& options) {
+  return ResultStore(options.results_dir, options.profile);
+}
+
+void print_table_sources(std::ostream& out, TableFormat format,
+                         const std::vector<std::filesystem::path>& files) {
+  std::vector<std::string> seen;
+  std::string line = "sources:";
+  for (const auto& f : files) {
+    const std::string text = source_path_text(f);
+    if (std::find(seen.begin(), seen.end(), text) != seen.end()) continue;
+    line += (seen.empty() ? " " : ", ") + text;
+    seen.push_back(text);
+  }
+  if (format == TableFormat::text) {
+    out << "\n" << line << "\n";  // a footer line, not one of the notes
+  } else {
+    print_table_notes(out, format, {line});
+  }
 }
 
 namespace {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/experiment/result_store.hpp"
 #include "cnclab/experiment/run_record.hpp"
 #include "cnclab/report/text_table.hpp"
 
@@ -26,11 +27,9 @@ struct TablesOptions {
   std::string profile;
 };
 
-// A table's input results do not exist yet (run the experiments first).
-class MissingResults : public IoError {
- public:
-  using IoError::IoError;
-};
+// A table's input results do not exist yet: MissingResults
+// (experiment/result_store.hpp), whose message names the command that makes
+// them. Tables find their results through a ResultStore{results_dir, profile}.
 
 struct TableEntry {
   std::string name;     // `cnclab tables <name>`
@@ -42,6 +41,16 @@ struct TableEntry {
 // Test MSE in the normalised units the network was trained in: the mean of
 // (T(prediction) - T(target))^2 with T the run's target scaling.
 double normalised_test_mse(const RunRecord& r);
+
+// The store a table reads its results from: the options' results folder and profile.
+ResultStore table_store(const TablesOptions& options);
+
+// A table's footer: the files it read (results, and the reference files its
+// paper numbers come from), one line "sources: a, b, ..." in the format's
+// comment or list syntax (print_table_notes), paths relative to the working
+// directory (source_path_text). Duplicates are listed once, in first-read order.
+void print_table_sources(std::ostream& out, TableFormat format,
+                         const std::vector<std::filesystem::path>& files);
 
 // Registers a table (src/cli/builtins.cpp, before any command runs);
 // std::logic_error for a name registered twice.

@@ -7,8 +7,12 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/override.hpp"
+#include "cnclab/experiment/job_result.hpp"
+#include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/spec.hpp"
+#include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/sweep/sweep_execute.hpp"
 
@@ -49,7 +53,45 @@ std::string selection_yaml(const SweepJob& job, const SweepJobState& s) {
   return std::string(out.c_str()) + "\n";
 }
 
+// The selection as a standard result (sweep_job.hpp, "Result").
+RunRecord selection_record(const SweepJob& job, const SweepJobState& s, const fs::path& file,
+                           double wall_seconds) {
+  RunRecord rec = make_job_record("sweep", sweep_job_key(job, s.plan));
+  rec.provenance.end_utc = utc_now_iso8601();
+  rec.provenance.wall_seconds = wall_seconds;
+  const auto beside = [&](const fs::path& p) {
+    return p.lexically_relative(file.parent_path()).string();
+  };
+  rec.metrics["sweep.trials"] = static_cast<double>(s.plan.trials.size());
+  rec.metrics["sweep.complete"] = static_cast<double>(s.summary.complete);
+  rec.metrics["sweep.failed"] = static_cast<double>(s.summary.failed + s.summary.errors);
+  rec.metrics["sweep.points"] = static_cast<double>(s.summary.points.size());
+  rec.facts["objective"] =
+      s.plan.objective.metric + " (" + (s.plan.objective.maximize ? "max" : "min") + ")";
+  rec.outputs.push_back({"summary", beside(s.dir / "summary.h5")});
+  rec.outputs.push_back({"selection", "selection.yaml"});
+  if (!s.selected) {
+    rec.provenance.status = "failed";
+    rec.provenance.failure_reason = selection_line(s);
+    return rec;
+  }
+  const PlannedTrial& t = s.plan.trials[*s.selected];
+  const fs::path trial = s.selected_result();
+  rec.facts["selected_trial"] = t.id;
+  rec.facts["selected_point"] = point_text(s.plan.keys, t.values);
+  for (const auto& [name, v] : s.outcomes[*s.selected].metrics) rec.metrics[name] = v;
+  rec.outputs.push_back({"selected_trial", beside(trial)});
+  rec.upstream.push_back(
+      {job.experiment.string(), trial.string(), result_identity(read_result(trial))});
+  return rec;
+}
+
 }  // namespace
+
+ResultKey sweep_job_key(const SweepJob& job, const SweepPlan& plan) {
+  return {job.name, std::nullopt, to_yaml(job) + "plan_hash: " + plan.hash() + "\n",
+          job.source_file, true};
+}
 
 SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& overrides,
                         const std::string& profile) {
@@ -62,8 +104,8 @@ SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& ov
   job.profile = profile;
   job.name = read_experiment_name(root);
   job.description = root.get<std::string>("description", "");
-  job.experiment = upstream_file(root, "experiment", root.require<std::string>("experiment"),
-                                 file.parent_path());
+  job.experiment_as_written = root.require<std::string>("experiment");
+  job.experiment = upstream_file(root, "experiment", job.experiment_as_written, file.parent_path());
   job.overrides = root.get<std::vector<std::string>>("overrides", {});
   for (const auto& text : job.overrides) {
     try {
@@ -89,7 +131,7 @@ std::string to_yaml(const SweepJob& job) {
   YAML::Emitter out;
   out << BeginMap << Key << "kind" << Value << "sweep" << Key << "name" << Value << job.name;
   out << Key << "description" << Value << job.description;
-  out << Key << "experiment" << Value << job.experiment.string();
+  out << Key << "experiment" << Value << job.experiment_as_written;
   out << Key << "overrides" << Value << YAML::Flow << job.overrides;
   out << Key << "jobs" << Value << job.jobs;
   out << Key << "sweep" << Value << BeginMap;
@@ -154,13 +196,17 @@ SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options
   s.selected.reset();
   if (s.summary.best_trial >= 0) s.selected = static_cast<std::size_t>(s.summary.best_trial);
   const fs::path selection = options.results_dir / job.name / "selection.yaml";
+  const ResultStore store(options.results_dir, job.profile);
+  const fs::path result = store.path_of(sweep_job_key(job, s.plan));
   std::error_code ec;
-  if (r.stopped == 0 &&
-      (r.ran > 0 || !fs::exists(s.dir / "summary.h5", ec) || !fs::exists(selection, ec))) {
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (r.stopped == 0 && (r.ran > 0 || !fs::exists(s.dir / "summary.h5", ec) ||
+                         !fs::exists(selection, ec) || !fs::exists(result, ec))) {
     write_summary(s.dir / "summary.h5", s.plan, s.outcomes, s.summary);
     write_text_atomically(selection, selection_yaml(job, s));
+    write_job_result(result, selection_record(job, s, result, r.wall_seconds));
   }
-  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (r.stopped == 0) r.result_file = result;
   return r;
 }
 

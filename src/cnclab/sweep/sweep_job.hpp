@@ -21,6 +21,14 @@
 // Reuse: the folder is named by the plan's hash, and a trial's identity is
 // its resolved config, so running the job again runs only trials without a
 // result; a finished sweep with the same plan runs nothing (`reused`).
+//
+// Result: the selection is a standard result file (experiment/job_result.hpp,
+// kind sweep) at the result store's path for sweep_job_key (the resolved job
+// and the plan hash): the selected trial's metrics plus sweep.trials,
+// sweep.complete, sweep.failed, sweep.points; facts objective,
+// selected_trial, selected_point; outputs selected_trial, summary, selection
+// (selection.yaml, for people and scripts); upstream the selected trial.
+// Status failed when no trial completed.
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -29,6 +37,7 @@
 #include <vector>
 
 #include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/result_store.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 #include "cnclab/sweep/sweep_spec.hpp"
 #include "cnclab/sweep/sweep_summary.hpp"
@@ -40,6 +49,7 @@ struct SweepJob {
   std::string description;
   std::filesystem::path source_file;
   std::filesystem::path experiment;    // resolved, must exist
+  std::string experiment_as_written;   // as in the file (the identity holds this)
   std::vector<std::string> overrides;  // plain key=value settings of every trial
   std::size_t jobs = 0;                // 0 = the cores this process may use
   SweepSpec sweep;
@@ -55,6 +65,10 @@ SweepJob load_sweep_job(const std::filesystem::path& file,
 
 // The resolved job as YAML (what `cnclab validate` prints).
 std::string to_yaml(const SweepJob& job);
+
+// The selection result's identity: name, to_yaml(job) plus the plan's hash
+// (which covers every trial's resolved config under the job's profile).
+ResultKey sweep_job_key(const SweepJob& job, const SweepPlan& plan);
 
 // The job's sweep as it stands in `results_dir` (nothing run or written).
 struct SweepJobState {
@@ -72,16 +86,18 @@ struct SweepJobState {
 SweepJobState sweep_job_state(const SweepJob& job, const std::filesystem::path& results_dir);
 
 struct SweepJobOutcome {
-  SweepJobState state;  // after the run
-  std::size_t ran = 0;  // trials run now (0: reused)
-  int stopped = 0;      // signal that interrupted the trials; 0: none
+  SweepJobState state;                // after the run
+  std::size_t ran = 0;                // trials run now (0: reused)
+  int stopped = 0;                    // signal that interrupted the trials; 0: none
+  std::filesystem::path result_file;  // the selection result (empty when stopped)
   double wall_seconds = 0;
 };
 
 // Runs the trials without a result (all with options.force), writes
-// summary.h5 and results/<name>/selection.yaml (the selected trial: id,
-// parameters, metrics, result file; atomic). Progress lines to `log`
-// (nullptr: silent).
+// summary.h5, results/<name>/selection.yaml (the selected trial: id,
+// parameters, metrics, result file) and the selection result (see above),
+// each atomically, when a trial ran or one of them is missing. Progress lines
+// to `log` (nullptr: silent).
 SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options,
                               std::ostream* log);
 

@@ -1,15 +1,18 @@
 // The Table 8 timing job on a small step-error experiment: it finds the test
 // segments of the result on the surface (its consistency checks compare the
 // exact method with the dataset's targets and the network rebuilt from the
-// surface with the result's predictions), writes a result that reads back,
+// surface with the result's predictions), writes a standard result the
+// store finds and that reads back,
 // and rejects bad files and missing results.
 #include "cnclab/studies/step_error/step_error_timing.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/report/tables.hpp"
 #include "common/temp_dir.hpp"
@@ -67,18 +70,34 @@ TEST(StepErrorTiming, TimesTheResultsTestSegmentsAndRoundTrips) {
     EXPECT_TRUE(std::isfinite(s.network_max_error_um));
   }
 
-  const auto file = write_step_error_timing(r, dir / "results");
-  EXPECT_EQ(file, dir / "results" / "timing_small" / "timing_small.yaml");
-  const StepErrorTimingResult back = read_step_error_timing(file);
+  // A standard result, found by the store under the job's identity; `show`
+  // prints it and the timing reads back.
+  const ResultStore store(dir / "results");
+  const auto file = write_step_error_timing(job, r, store);
+  const StoredResult stored = store.get(step_error_timing_key(job));
+  EXPECT_EQ(stored.file, file);
+  EXPECT_EQ(file.parent_path(), dir / "results" / "timing_small");
+  EXPECT_EQ(stored.record.kind, "step_error_timing");
+  ASSERT_EQ(stored.record.upstream.size(), 2u);
+  EXPECT_EQ(stored.record.upstream[0].result_file, r.surfaces[0].result_file);
+  const StepErrorTimingResult back = read_step_error_timing(stored.record, stored.file);
   EXPECT_EQ(back.name, r.name);
   EXPECT_EQ(back.repeats, 2u);
   ASSERT_EQ(back.surfaces.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(back.surfaces[i].surface, r.surfaces[i].surface);
     EXPECT_EQ(back.surfaces[i].test_samples, r.surfaces[i].test_samples);
+    EXPECT_EQ(back.surfaces[i].result_file, r.surfaces[i].result_file);
     EXPECT_DOUBLE_EQ(back.surfaces[i].exact_s, r.surfaces[i].exact_s);
     EXPECT_DOUBLE_EQ(back.surfaces[i].network_total_s(), r.surfaces[i].network_total_s());
   }
+  std::ostringstream shown;
+  print_result(stored.record, shown);
+  EXPECT_NE(shown.str().find("(kind: step_error_timing)"), std::string::npos) << shown.str();
+  EXPECT_NE(shown.str().find("surface3.network_forward_s"), std::string::npos) << shown.str();
+  // Another config (repeats) is another result: not found.
+  const StepErrorTimingJob other = load_step_error_timing_job(dir / "job.yaml", {"repeats=1"});
+  EXPECT_THROW(store.get(step_error_timing_key(other)), MissingResults);
 }
 
 TEST(StepErrorTiming, StrictJobFile) {

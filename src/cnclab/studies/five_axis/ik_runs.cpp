@@ -1,7 +1,9 @@
 #include "cnclab/studies/five_axis/ik_runs.hpp"
 
+#include <algorithm>
+
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_file.hpp"
-#include "cnclab/experiment/runner.hpp"
 #include "cnclab/sweep/sweep_job.hpp"
 
 namespace cnclab {
@@ -12,16 +14,14 @@ std::string lower(const std::string& axis) {
   return std::string(1, static_cast<char>(axis[0] - 'A' + 'a'));
 }
 
-// Checks that `result` is a complete run for the single target `axis`.
+// Checks that `result` is a run for the single target `axis` (the store
+// returned it complete).
 IkAxisRun checked(const std::string& axis, const fs::path& source, LoadedExperiment loaded,
-                  const fs::path& result) {
-  IkAxisRun run{axis, source, std::move(loaded), read_result(result)};
+                  StoredResult result) {
+  IkAxisRun run{
+      axis, source, std::move(loaded), std::move(result.file), {}, std::move(result.record)};
   if (run.record.target_names != std::vector<std::string>{axis}) {
-    throw Error(result.string() + ": expected the single target " + axis);
-  }
-  if (run.record.provenance.status != "complete") {
-    throw Error(result.string() + ": training failed (" + run.record.provenance.failure_reason +
-                ")");
+    throw Error(run.result_file.string() + ": expected the single target " + axis);
   }
   return run;
 }
@@ -31,38 +31,46 @@ IkAxisRun load_experiment_axis(const TablesOptions& o, const std::string& folder
                                const std::string& axis) {
   const fs::path file = o.experiments_dir / folder / ("ik_" + lower(axis) + ".yaml");
   if (!fs::exists(file)) throw MissingResults(file.string() + ": experiment file not found");
-  LoadedExperiment loaded =
-      load_experiment(file, std::vector<std::string>{}, std::nullopt, o.profile);
-  const fs::path result = result_path(loaded, o.results_dir);
-  if (!fs::exists(result)) {
-    throw MissingResults("no result for " + file.string() + " (expected " + result.string() +
-                         "); run `cnclab reproduce " + (o.experiments_dir / folder).string() +
-                         "` first");
-  }
-  return checked(axis, file, std::move(loaded), result);
+  const ResultStore store = table_store(o);
+  LoadedExperiment loaded = store.load(file);
+  StoredResult result = store.get(loaded);
+  return checked(axis, file, std::move(loaded), std::move(result));
 }
 
-// The trial the search job selected (its sweep finished: every trial has a
-// result or an error note).
+// The trial the search job selected: its selection result (sweep_job.hpp,
+// found by the job's resolved config and plan) names it.
 IkAxisRun load_search_axis(const TablesOptions& o, const std::string& axis, std::string& note) {
   const fs::path file = o.experiments_dir / "ik_search" / ("search_" + lower(axis) + ".yaml");
   if (!fs::exists(file)) throw MissingResults(file.string() + ": sweep job file not found");
   const SweepJob job = load_sweep_job(file, {}, o.profile);
-  const SweepJobState s = sweep_job_state(job, o.results_dir);
-  const std::size_t have = s.plan.trials.size() - s.summary.missing;
-  if (!s.finished()) {
-    throw MissingResults(file.string() + ": " + std::to_string(have) + " of " +
-                         std::to_string(s.plan.trials.size()) + " trials have results in " +
-                         s.dir.string() + "; run `cnclab reproduce " +
-                         (o.experiments_dir / "ik_search").string() + "`");
+  const SweepPlan plan =
+      plan_sweep(job.experiment, job.overrides, std::nullopt, job.sweep, job.profile);
+  const StoredResult selection = table_store(o).get(sweep_job_key(job, plan));
+  const RunRecord& s = selection.record;
+  const auto count = [&](const std::string& name) {
+    const auto it = s.metrics.find(name);
+    if (it == s.metrics.end()) throw IoError(selection.file.string() + ": no metric " + name);
+    return std::to_string(static_cast<long long>(it->second));
+  };
+  const auto fact = [&](const std::string& name) {
+    const auto it = s.facts.find(name);
+    if (it == s.facts.end()) throw IoError(selection.file.string() + ": no fact " + name);
+    return it->second;
+  };
+  const std::string id = fact("selected_trial");
+  const auto trial = std::find_if(plan.trials.begin(), plan.trials.end(),
+                                  [&](const PlannedTrial& t) { return t.id == id; });
+  if (trial == plan.trials.end()) {
+    throw IoError(selection.file.string() + ": selected trial " + id + " is not in the plan");
   }
-  if (!s.selected) throw Error(file.string() + ": no trial of the search completed");
-  note = axis + ": the best point by mean " + s.plan.objective.metric + " of " +
-         std::to_string(s.summary.points.size()) + " (" + std::to_string(s.summary.complete) +
-         " complete trial(s) of " + std::to_string(s.plan.trials.size()) +
-         " planned), its median repeat";
-  return checked(axis, s.selected_result(), *s.plan.trials[*s.selected].experiment,
-                 s.selected_result());
+  const std::string objective = fact("objective");
+  note = axis + ": the best point by mean " + objective.substr(0, objective.find(' ')) + " of " +
+         count("sweep.points") + " (" + count("sweep.complete") + " complete trial(s) of " +
+         count("sweep.trials") + " planned), its median repeat";
+  const fs::path result = output_path(s, selection.file, "selected_trial");
+  IkAxisRun run = checked(axis, result, *trial->experiment, {result, read_result(result)});
+  run.selection = selection.file;
+  return run;
 }
 
 }  // namespace

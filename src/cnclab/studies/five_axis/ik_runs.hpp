@@ -24,6 +24,8 @@ struct IkAxisRun {
   std::string axis;
   std::filesystem::path source;  // experiment file, or the sweep trial's result file
   LoadedExperiment loaded;
+  std::filesystem::path result_file;  // the result read
+  std::filesystem::path selection;    // search only: the job's selection result that named it
   RunRecord record;
 };
 
@@ -35,8 +37,9 @@ struct IkVariant {
   bool any() const;
 };
 
-// sgdm first, then search and trainbr. Throws MissingResults when an sgdm
-// result is missing, Error when a result is for another target or failed.
+// sgdm first, then search and trainbr, found through the result store
+// (experiment/result_store.hpp). Throws MissingResults when an sgdm result is
+// missing, Error when a result is for another target or failed.
 std::vector<IkVariant> load_ik_variants(const TablesOptions& options);
 
 }  // namespace cnclab

@@ -144,8 +144,20 @@ TextTable table5(const std::vector<Column>& columns, const Reference& ref) {
   return t;
 }
 
-void print_table5(const std::vector<IkVariant>& variants, const Reference& ref, TableFormat format,
-                  std::ostream& out) {
+// The result files of every variant's networks, variant by variant.
+std::vector<fs::path> result_files(const std::vector<IkVariant>& variants) {
+  std::vector<fs::path> files;
+  for (const auto& v : variants) {
+    for (const auto& a : v.axes) {
+      if (a && !a->selection.empty()) files.push_back(a->selection);
+      if (a) files.push_back(a->result_file);
+    }
+  }
+  return files;
+}
+
+void print_table5(const std::vector<IkVariant>& variants, const Reference& ref,
+                  const fs::path& reference_file, TableFormat format, std::ostream& out) {
   std::vector<const IkVariant*> shown;
   for (const auto& v : variants) {
     if (v.any()) shown.push_back(&v);
@@ -218,6 +230,9 @@ void print_table5(const std::vector<IkVariant>& variants, const Reference& ref, 
     for (const auto& note : v.notes) notes.push_back(v.label + ": " + note);
   }
   print_table_notes(out, format, notes);
+  std::vector<fs::path> sources = {reference_file};
+  for (const auto& f : result_files(variants)) sources.push_back(f);
+  print_table_sources(out, format, sources);
 }
 
 // The variant's networks, with the sgdm network for an axis it lacks
@@ -247,10 +262,12 @@ void print_machine_error(const std::vector<IkVariant>& variants, TableFormat for
   t.header = {"Networks",     "Predicted joints", "tip mean [mm]",  "tip p95 [mm]",
               "tip max [mm]", "axis mean [deg]",  "axis p95 [deg]", "axis max [deg]"};
   std::vector<std::string> notes;
+  std::vector<fs::path> sources;
   for (const auto& v : variants) {
     if (!v.any()) continue;
     std::string borrowed;
     const auto runs = networks(v, sgdm, borrowed);
+    for (const IkAxisRun* r : runs) sources.push_back(r->result_file);
     Eigen::MatrixXd predicted(5, n), truth(5, n);
     for (std::size_t i = 0; i < 5; ++i) {
       const IkAxisRun& r = *runs[i];
@@ -293,14 +310,16 @@ void print_machine_error(const std::vector<IkVariant>& variants, TableFormat for
                 "two tool orientations; p95 = 95th percentile (linear interpolation).",
                 "Rows with some joints exact show which networks the error comes from."});
   print_table_notes(out, format, notes);
+  print_table_sources(out, format, sources);
 }
 
 }  // namespace
 
 void print_ik_tables(const TablesOptions& options, std::ostream& out) {
   const std::vector<IkVariant> variants = load_ik_variants(options);
-  const Reference ref = read_reference(options.reference_dir / "ik_table5.yaml");
-  print_table5(variants, ref, options.format, out);
+  const fs::path reference_file = options.reference_dir / "ik_table5.yaml";
+  const Reference ref = read_reference(reference_file);
+  print_table5(variants, ref, reference_file, options.format, out);
   print_machine_error(variants, options.format, out);
 }
 

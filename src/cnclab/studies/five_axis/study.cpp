@@ -29,8 +29,8 @@ JobKind gcode_kind() {
     return JobReport{job.name,
                      "ran",
                      "gcode job (seconds; always re-run)",
-                     detail,
-                     written.program.string(),
+                     std::string(detail) + "; program " + written.program.string(),
+                     written.result.string(),
                      "== " + job.name + " ==\n" + written.outcome.report};
   };
   k.resolved_yaml = [](const fs::path& file, const JobContext& c) {

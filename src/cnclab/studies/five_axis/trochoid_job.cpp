@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -10,8 +11,10 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/provenance.hpp"
 #include "cnclab/kinematics/engagement.hpp"
 #include "cnclab/report/text_table.hpp"
 #include "cnclab/studies/five_axis/trochoid_table3.hpp"
@@ -168,15 +171,19 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
   shown.header = {"t", "x(t)", "y(t)", "Line N°", "Block", "Coordinates"};
   res.point_table = "t\tx\ty\tline\tblock\tcoordinates\n";
   for (std::size_t i = 0; i < g.points.size(); ++i) {
+    // Appended, not `"N" + std::string`: GCC 12 warns falsely (-Wrestrict, PR105329).
+    std::string block = "N";
+    block += std::to_string(res.program.point_line_numbers[i]);
     const std::vector<std::string> cells = {fixed_decimals(g.t[i], 4),
                                             fixed_decimals(g.points[i].x(), 4),
                                             fixed_decimals(g.points[i].y(), 4),
                                             std::to_string(i + 1),
-                                            "N" + std::to_string(res.program.point_line_numbers[i]),
+                                            block,
                                             coordinate_words(g.points[i], job.program.decimals)};
     if (i < job.report.table_rows) shown.rows.push_back(cells);
     for (std::size_t k = 0; k < cells.size(); ++k) {
-      res.point_table += cells[k] + (k + 1 < cells.size() ? "\t" : "\n");
+      res.point_table += cells[k];
+      res.point_table += k + 1 < cells.size() ? '\t' : '\n';
     }
   }
 
@@ -261,12 +268,38 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
   return res;
 }
 
+ResultKey trochoid_key(const TrochoidJob& job) {
+  return {job.name, std::nullopt, to_yaml(job), job.source_file, false};
+}
+
 TrochoidFiles write_trochoid_outputs(const TrochoidJob& job, const fs::path& results_dir) {
-  TrochoidFiles files{results_dir / job.name / (job.name + ".nc"), run_trochoid_job(job)};
+  const ResultKey key = trochoid_key(job);
+  RunRecord rec = make_job_record("gcode", key);
+  const auto start = std::chrono::steady_clock::now();
   const fs::path dir = results_dir / job.name;
-  write_text_atomically(files.program, files.outcome.program.text);
-  write_text_atomically(dir / (job.name + "-points.tsv"), files.outcome.point_table);
-  write_text_atomically(dir / (job.name + "-report.txt"), files.outcome.report);
+  TrochoidFiles files{dir / (job.name + ".nc"), result_path(key, results_dir),
+                      run_trochoid_job(job)};
+  const TrochoidOutcome& o = files.outcome;
+  rec.outputs = {{"program", job.name + ".nc"},
+                 {"points", job.name + "-points.tsv"},
+                 {"report", job.name + "-report.txt"}};
+  write_text_atomically(files.program, o.program.text);
+  write_text_atomically(dir / rec.outputs[1].file, o.point_table);
+  write_text_atomically(dir / rec.outputs[2].file, o.report);
+  rec.metrics = {{"points", static_cast<double>(o.groove.points.size())},
+                 {"program_lines", static_cast<double>(std::count(o.program.text.begin(),
+                                                                  o.program.text.end(), '\n'))},
+                 {"loops", static_cast<double>(o.groove.loops)},
+                 {"radius_mm", o.groove.radius},
+                 {"advance_mm", o.groove.advance},
+                 {"max_engagement_deg", o.max_engagement_rad * kDeg},
+                 {"ramp_engagement_deg", o.ramp_engagement_rad * kDeg},
+                 {"start_circle_engagement_deg", o.entry_engagement_rad * kDeg},
+                 {"exit_engagement_deg", o.exit_engagement_rad * kDeg}};
+  rec.provenance.end_utc = utc_now_iso8601();
+  rec.provenance.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_job_result(files.result, rec);  // last: it names the files above
   return files;
 }
 

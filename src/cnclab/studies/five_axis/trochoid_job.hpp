@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "cnclab/experiment/result_store.hpp"
 #include "cnclab/kinematics/gcode.hpp"
 #include "cnclab/kinematics/tool_entry.hpp"
 #include "cnclab/kinematics/trochoid.hpp"
@@ -76,11 +77,19 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job);
 
 struct TrochoidFiles {
   std::filesystem::path program;  // results/<name>/<name>.nc
+  std::filesystem::path result;   // the standard result naming the outputs
   TrochoidOutcome outcome;
 };
 
+// The result's identity: the job's name and resolved YAML.
+ResultKey trochoid_key(const TrochoidJob& job);
+
 // Runs the job and writes results/<name>/<name>.nc, <name>-points.tsv and
-// <name>-report.txt, each atomically (what `run` and `reproduce` do).
+// <name>-report.txt, then the standard result (experiment/job_result.hpp,
+// kind gcode; metrics points, program_lines, loops, radius_mm, advance_mm,
+// {max,entry,exit}_engagement_deg; outputs program, points, report) at the
+// result store's path for trochoid_key, each atomically (what `run` and
+// `reproduce` do).
 TrochoidFiles write_trochoid_outputs(const TrochoidJob& job,
                                      const std::filesystem::path& results_dir);
 

@@ -7,13 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "cnclab/experiment/result_file.hpp"
-#include "cnclab/experiment/runner.hpp"
 #include "cnclab/report/text_table.hpp"
-#include "cnclab/studies/step_error/step_error_manifest.hpp"
-#include "cnclab/studies/step_error/step_error_reference.hpp"
-#include "cnclab/studies/step_error/step_error_stats.hpp"
-#include "cnclab/studies/step_error/step_error_timing.hpp"
+#include "cnclab/studies/step_error/step_error_study.hpp"
+#include "cnclab/studies/step_error/step_error_table8.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -21,84 +17,17 @@ namespace {
 
 constexpr double kFineTuneReported = 15;  // Tables 6, 7 and the normaliser table: 15 %
 
-// One result of the study with the figures the tables quote.
-struct Run {
-  std::string name;  // experiment name
-  RunRecord record;
-  ErrorFigures figures;
-  std::string failure;  // non-empty: training failed (no figures)
-};
+using Run = StepErrorRun;
+using Study = StepErrorStudy;
 
-struct Study {
-  StudyManifest manifest;
-  Seed000Reference ref;
-  std::map<fs::path, Run> runs;  // experiment file -> its result
-  const Run& at(const fs::path& file) const { return runs.at(file); }
-  const Run* find(const std::map<double, fs::path>& files, double key) const {
-    const auto it = files.find(key);
-    return it == files.end() ? nullptr : &runs.at(it->second);
-  }
-};
-
-Run load_run(const fs::path& experiment, const TablesOptions& o) {
-  if (!fs::exists(experiment)) {
-    throw MissingResults(experiment.string() + ": experiment file not found");
-  }
-  const LoadedExperiment loaded =
-      load_experiment(experiment, std::vector<std::string>{}, std::nullopt, o.profile);
-  const fs::path result = result_path(loaded, o.results_dir);
-  if (!fs::exists(result)) {
-    throw MissingResults("no result for " + experiment.string() + " (expected " + result.string() +
-                         "); run `cnclab reproduce " + (o.experiments_dir / "step_error").string() +
-                         "` first");
-  }
-  Run run;
-  run.name = loaded.spec.name;
-  run.record = read_result(result);
-  if (run.record.provenance.status != "complete") {
-    // Table 2 shows a diverged keep probability as such; elsewhere it is an
-    // error (load_study).
-    run.failure =
-        result.string() + ": training failed (" + run.record.provenance.failure_reason + ")";
-    return run;
-  }
-  if (run.record.target_units != std::vector<std::string>{"µm"}) {
-    throw Error(result.string() + ": expected one step-error target in µm");
-  }
-  const auto& p = run.record.test_predictions;
-  const auto& t = run.record.test_targets;
-  run.figures = error_figures(std::vector<double>(p.data(), p.data() + p.size()),
-                              std::vector<double>(t.data(), t.data() + t.size()));
-  return run;
-}
-
-// Every result the manifest names, read before anything is printed.
-Study load_study(const TablesOptions& o) {
-  Study s;
-  s.manifest = read_step_error_manifest(o.configs_dir / "studies" / "step_error_tables.yaml");
-  s.ref = read_seed000_reference(o.reference_dir / "seed000_step_error.yaml");
+// A table's footer: the paper's numbers file (`reference`, unless empty),
+// then the result files of `runs`.
+void print_sources(std::ostream& out, TableFormat format, const fs::path& reference,
+                   const std::vector<const Run*>& runs) {
   std::vector<fs::path> files;
-  for (const auto& v : s.manifest.variants) {
-    for (const auto& [p, f] : v.table2) files.push_back(f);
-    files.push_back(v.surface1);
-    files.push_back(v.surface1_no_dropout);
-    for (const auto& [pct, f] : v.surface2) files.push_back(f);
-    for (const auto& [pct, f] : v.surface3) files.push_back(f);
-  }
-  for (const auto& n : s.manifest.normaliser) {
-    files.push_back(n.surface2);
-    files.push_back(n.surface3);
-  }
-  for (const auto& f : files) {
-    if (!s.runs.count(f)) s.runs.emplace(f, load_run(f, o));
-  }
-  for (const auto& v : s.manifest.variants) {
-    for (const auto& [p, f] : v.table2) files.erase(std::find(files.begin(), files.end(), f));
-  }
-  for (const auto& f : files) {
-    if (!s.runs.at(f).failure.empty()) throw Error(s.runs.at(f).failure);
-  }
-  return s;
+  if (!reference.empty()) files.push_back(reference);
+  for (const Run* r : runs) files.push_back(r->file);
+  print_table_sources(out, format, files);
 }
 
 std::string fixed(double v, int decimals = 2) {
@@ -195,6 +124,7 @@ BinCounts relative_bins(const ErrorFigures& f, const std::vector<double>& edges)
 // A pair of bin tables (absolute, relative) for `sources` (label, run).
 void print_bin_tables(std::ostream& out, TableFormat format, const std::string& table,
                       const std::string& what, const PaperBinTable& paper,
+                      const fs::path& reference,
                       const std::vector<std::pair<std::string, const Run*>>& sources,
                       std::vector<std::string> notes) {
   TextTable a;
@@ -221,6 +151,9 @@ void print_bin_tables(std::ostream& out, TableFormat format, const std::string& 
   notes.push_back(kBinsNote);
   notes.push_back(kRelativeNote);
   print_table_notes(out, format, notes);
+  std::vector<const Run*> runs;
+  for (const auto& [label, run] : sources) runs.push_back(run);
+  print_sources(out, format, reference, runs);
 }
 
 std::string ours(const StudyVariant& v) {
@@ -241,12 +174,20 @@ void print_table2(const Study& s, TableFormat format, std::ostream& out) {
   for (double m : s.ref.table2_mse) paper.push_back(table_number(m));
   t.rows.push_back(paper);
   std::vector<std::string> notes;
+  std::vector<const Run*> read;
+  // The paper's minimum, from its own row.
+  const auto paper_min = std::min_element(s.ref.table2_mse.begin(), s.ref.table2_mse.end());
+  const double paper_best_p =
+      paper_min == s.ref.table2_mse.end()
+          ? NAN
+          : s.ref.table2_p[static_cast<std::size_t>(paper_min - s.ref.table2_mse.begin())];
   for (const auto& v : s.manifest.variants) {
     std::vector<std::string> test = {ours(v), "test MSE (z-score units)"};
     std::vector<std::string> train = {ours(v), "training loss, last epoch"};
     double best = NAN, best_p = NAN;
     for (double p : s.ref.table2_p) {
       const Run* run = s.find(v.table2, p);
+      if (run) read.push_back(run);
       if (run && !run->failure.empty()) {
         test.push_back("diverged");
         train.push_back("diverged");
@@ -264,7 +205,7 @@ void print_table2(const Study& s, TableFormat format, std::ostream& out) {
     t.rows.push_back(test);
     t.rows.push_back(train);
     notes.push_back(ours(v) + ": lowest test MSE at p = " + table_number(best_p) +
-                    " (paper: minimum at p = 0.5).");
+                    " (paper: minimum at p = " + table_number(paper_best_p) + ").");
   }
   print_table_title(
       out, format, "Seed 000 Table 2: dropout keep probability p and MSE (surface 1, 70/30 split)");
@@ -278,6 +219,7 @@ void print_table2(const Study& s, TableFormat format, std::ostream& out) {
       "with a non-finite loss at that p; its result file says when.");
   print_variant_notes(s, notes);
   print_table_notes(out, format, notes);
+  print_sources(out, format, s.reference_file, read);
 }
 
 // The text's share of relative errors above 10 % against Table 3's own counts
@@ -305,8 +247,8 @@ void print_table3(const Study& s, TableFormat format, std::ostream& out) {
     sources.push_back({ours(v) + ", no dropout", &s.at(v.surface1_no_dropout)});
   }
   print_bin_tables(out, format, "Seed 000 Table 3",
-                   "prediction error of the surface-1 test samples", s.ref.table3, sources,
-                   checks_about(s.ref, "Table 3"));
+                   "prediction error of the surface-1 test samples", s.ref.table3, s.reference_file,
+                   sources, checks_about(s.ref, "Table 3"));
 
   TextTable t;
   t.header = {"Surface 1 test set", "paper"};
@@ -340,6 +282,9 @@ void print_table3(const Study& s, TableFormat format, std::ostream& out) {
            fixed(s.ref.table3_share_below_0_5um) + " %, " + table_number(s.ref.table3_max_abs_um) +
            " µm).",
        paper_relative_above_10_note(s.ref), kSurfacesNote});
+  std::vector<const Run*> runs;
+  for (const auto& [label, run] : sources) runs.push_back(run);
+  print_sources(out, format, s.reference_file, runs);
 }
 
 // Tables 4 and 5 with the text's figures per fine-tune share.
@@ -425,6 +370,13 @@ void print_fine_tune_table(const Study& s, TableFormat format, std::ostream& out
   }
   for (auto& c : checks_about(s.ref, "Tables 4 and 5")) notes.push_back(c);
   print_table_notes(out, format, notes);
+  std::vector<const Run*> runs;
+  for (const auto& v : s.manifest.variants) {
+    for (double p : shares) {
+      if (const Run* run = s.find(files(v), p)) runs.push_back(run);
+    }
+  }
+  print_sources(out, format, s.reference_file, runs);
 }
 
 void print_bins_at_15(const Study& s, TableFormat format, std::ostream& out, int surface) {
@@ -438,17 +390,19 @@ void print_bins_at_15(const Study& s, TableFormat format, std::ostream& out, int
   print_bin_tables(out, format, "Seed 000 Table " + std::to_string(table),
                    "prediction error of the surface-" + std::to_string(surface) +
                        " test set at 15 % fine-tuning",
-                   surface == 2 ? s.ref.table6 : s.ref.table7, sources,
+                   surface == 2 ? s.ref.table6 : s.ref.table7, s.reference_file, sources,
                    checks_about(s.ref, "Table " + std::to_string(table)));
 }
 
 void print_normaliser_table(const Study& s, TableFormat format, std::ostream& out) {
   TextTable t;
+  std::vector<const Run*> read;
   t.header = {"Normaliser at 15 %", "test samples",  "max |e| (µm)",
               "|e| < 1 µm (%)",     "mean |e| (µm)", "relative error < 10 % (%)"};
   for (const char* surface : {"surface2", "surface3"}) {
     for (const auto& n : s.manifest.normaliser) {
       const Run& r = s.at(std::string(surface) == "surface2" ? n.surface2 : n.surface3);
+      read.push_back(&r);
       const std::string label =
           std::string(surface == std::string("surface2") ? "surface 2" : "surface 3") + ", " +
           n.name + (n.name == s.manifest.normaliser_default ? " (default)" : "");
@@ -465,100 +419,13 @@ void print_normaliser_table(const Study& s, TableFormat format, std::ostream& ou
       out, format,
       {"The paper does not say which it does; the default (" + s.manifest.normaliser_default +
        ") is the better-performing one and is what Tables 4-7 use."});
-}
-
-void print_table8(const Study& s, const TablesOptions& o, std::ostream& out) {
-  const fs::path job_file = o.experiments_dir / "step_error" / "table8_timing.yaml";
-  std::string missing;
-  StepErrorTimingResult timing;
-  try {
-    if (!fs::exists(job_file)) throw MissingResults(job_file.string() + ": not found");
-    const StepErrorTimingJob job = load_step_error_timing_job(job_file, {}, o.profile);
-    const fs::path file = step_error_timing_path(job.name, o.results_dir);
-    if (!fs::exists(file)) {
-      throw MissingResults("no timing result (expected " + file.string() + "); run `cnclab " +
-                           "reproduce " + (o.experiments_dir / "step_error").string() + "` first");
-    }
-    timing = read_step_error_timing(file);
-  } catch (const MissingResults& e) {
-    out << "\n(Seed 000 Table 8 not printed: " << e.what() << ")\n";
-    return;
-  }
-  std::map<std::string, const SurfaceTiming*> by;
-  for (const auto& t : timing.surfaces) by[t.surface] = &t;
-  for (const char* surface : {"surface2", "surface3"}) {
-    if (!by.count(surface)) throw Error("Table 8 timing result lacks " + std::string(surface));
-  }
-  const SurfaceTiming& t2 = *by.at("surface2");
-  const SurfaceTiming& t3 = *by.at("surface3");
-  TextTable t;
-  t.header = {"Method", "Surface 2 (s) ours", "paper", "Surface 3 (s) ours", "paper"};
-  const auto sec = [](double v) { return table_number(v, 4); };
-  const auto row = [&](const std::string& label, double SurfaceTiming::*field,
-                       const std::map<std::string, double>* paper) {
-    t.rows.push_back({label, sec(t2.*field), paper ? sec(paper->at("surface2")) : "-",
-                      sec(t3.*field), paper ? sec(paper->at("surface3")) : "-"});
-  };
-  row("tool-path planning (shared start of all three)", &SurfaceTiming::planning_s, nullptr);
-  row("(a) geometric method (iterative)", &SurfaceTiming::iterative_s, &s.ref.table8_geometric);
-  row("(b) exact method (ours)", &SurfaceTiming::exact_s, nullptr);
-  row("(c) network: load model from result file", &SurfaceTiming::network_load_s, nullptr);
-  row("(c) network: inputs from the tool path", &SurfaceTiming::network_inputs_s, nullptr);
-  row("(c) network: normalise + forward pass", &SurfaceTiming::network_forward_s, nullptr);
-  t.rows.push_back({"(c) network total (\"proposed method\")", sec(t2.network_total_s()),
-                    sec(s.ref.table8_proposed.at("surface2")), sec(t3.network_total_s()),
-                    sec(s.ref.table8_proposed.at("surface3"))});
-  const auto ratio = [](double a, double b) { return table_number(a / b, 3); };
-  t.rows.push_back(
-      {"ratio network total / geometric", ratio(t2.network_total_s(), t2.iterative_s),
-       ratio(s.ref.table8_proposed.at("surface2"), s.ref.table8_geometric.at("surface2")),
-       ratio(t3.network_total_s(), t3.iterative_s),
-       ratio(s.ref.table8_proposed.at("surface3"), s.ref.table8_geometric.at("surface3"))});
-  t.rows.push_back({"ratio network load + forward / geometric",
-                    ratio(t2.network_load_s + t2.network_forward_s, t2.iterative_s), "-",
-                    ratio(t3.network_load_s + t3.network_forward_s, t3.iterative_s), "-"});
-  const TableFormat format = o.format;
-  print_table_title(out, format,
-                    "Seed 000 Table 8: time to obtain the step errors of the surface-2 and "
-                    "surface-3 test sets (15 % fine-tuning; " +
-                        std::to_string(t2.test_samples) + " and " +
-                        std::to_string(t3.test_samples) + " samples)");
-  t.print(out, format);
-  const auto verdict = [](const SurfaceTiming& x, const std::string& name) {
-    const double r = x.network_total_s() / x.iterative_s;
-    return name + ": the network end to end is " +
-           (r < 1 ? table_number(1 / r, 3) + "x faster than"
-                  : table_number(r, 3) + "x slower than") +
-           " the iterative geometric method and " +
-           table_number(x.network_total_s() / x.exact_s, 3) + "x the exact method's time.";
-  };
-  print_table_notes(
-      out, format,
-      {verdict(t2, "Surface 2"), verdict(t3, "Surface 3"),
-       "Measured in one run by " + timing.name + " on " + timing.host + " (" + timing.utc +
-           ", cnclab " + timing.cnclab_version + ", " + timing.git_commit +
-           "), single thread, "
-           "median of " +
-           std::to_string(timing.repeats) +
-           " repeat(s). The paper: i7-12700KF, RTX 3070 Ti, PyTorch (other hardware and software).",
-       "All three start from the same planned tool-path lines (CC curve, CC and CL points), "
-       "timed once on the first row. The paper's network read precomputed samples (its time "
-       "includes loading the model only), so 'load model' + 'forward pass' is the figure "
-       "comparable with its " +
-           table_number(s.ref.table8_proposed.at("surface2")) + " / " +
-           table_number(s.ref.table8_proposed.at("surface3")) +
-           " s; 'network total' adds computing the 73 inputs from the tool path, the same start "
-           "as the geometric methods.",
-       "Accuracy against the exact value: iterative max |e| " + um(t2.iterative_max_error_um) +
-           " / " + um(t3.iterative_max_error_um) + " µm, network max |e| " +
-           um(t2.network_max_error_um) + " / " + um(t3.network_max_error_um) +
-           " µm (surface 2 / 3)."});
+  print_sources(out, format, {}, read);  // no paper numbers here
 }
 
 }  // namespace
 
 void print_step_error_tables(const TablesOptions& options, std::ostream& out) {
-  const Study study = load_study(options);
+  const Study study = load_step_error_study(options);
   const TableFormat f = options.format;
   print_table2(study, f, out);
   print_table3(study, f, out);
@@ -567,7 +434,7 @@ void print_step_error_tables(const TablesOptions& options, std::ostream& out) {
   print_fine_tune_table(study, f, out, 3, study.ref.surface3);
   print_bins_at_15(study, f, out, 3);
   print_normaliser_table(study, f, out);
-  print_table8(study, options, out);
+  print_step_error_table8(study, options, out);
 }
 
 }  // namespace cnclab

@@ -12,13 +12,12 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/data/step_error.hpp"
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_file.hpp"
-#include "cnclab/experiment/runner.hpp"
 #include "cnclab/experiment/spec.hpp"
-#include "cnclab/io/atomic_file.hpp"
+#include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/mlp.hpp"
-#include "cnclab/report/tables.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -48,31 +47,26 @@ struct SurfaceCase {
   LoadedExperiment experiment;
   const StepErrorDatasetOptions* dataset = nullptr;  // inside experiment.spec
   fs::path result_file;
+  std::string identity;                // result_identity of that result
   std::vector<std::size_t> test;       // dataset sample indices
   std::vector<double> targets_um;      // the result's test targets
   std::vector<double> predictions_um;  // the result's test predictions
 };
 
-SurfaceCase prepare(const std::string& surface, const fs::path& file, const std::string& profile,
-                    const fs::path& results_dir) {
+SurfaceCase prepare(const std::string& surface, const fs::path& file, const ResultStore& store) {
   SurfaceCase c;
   c.surface = surface;
-  c.experiment = load_experiment(file, std::vector<std::string>{}, std::nullopt, profile);
+  c.experiment = store.load(file);
   const auto* generator =
       dynamic_cast<const StepErrorGenerator*>(c.experiment.spec.dataset.generator.get());
   if (!generator) {
     throw ConfigError(file.string() + ": Table 8 timing needs a step_error dataset");
   }
   c.dataset = &generator->options();
-  c.result_file = result_path(c.experiment, results_dir);
-  if (!fs::exists(c.result_file)) {
-    throw MissingResults("no result for " + file.string() + " (expected " + c.result_file.string() +
-                         "); run `cnclab reproduce` first");
-  }
-  const RunRecord r = read_result(c.result_file);
-  if (r.provenance.status != "complete") {
-    throw Error(c.result_file.string() + ": training failed (" + r.provenance.failure_reason + ")");
-  }
+  StoredResult stored = store.get(c.experiment);  // complete only
+  c.result_file = stored.file;
+  const RunRecord& r = stored.record;
+  c.identity = result_identity(r);
   if (r.target_units != std::vector<std::string>{"µm"}) {
     throw Error(c.result_file.string() + ": expected one step-error target in µm");
   }
@@ -122,7 +116,9 @@ SurfaceTiming time_surface(const SurfaceCase& c, const StepErrorTimingOptions& o
   SurfaceTiming t;
   t.surface = c.surface;
   t.experiment = c.experiment.spec.name;
+  t.experiment_file = c.experiment.spec.source_file.string();
   t.result_file = c.result_file.string();
+  t.identity = c.identity;
   t.test_samples = c.test.size();
   std::vector<double> planning, iterative, exact, load, inputs, forward;
   std::vector<double> e_iterative, e_exact, e_network;
@@ -214,8 +210,9 @@ StepErrorTimingJob load_step_error_timing_job(const fs::path& file,
   job.description = root.get<std::string>("description", "");
   const ConfigReader e = root.section("experiments");
   for (const auto& surface : kSurfaces) {
-    job.experiments[surface] =
-        resolve_config_path(e.location(surface).file, e.require<std::string>(surface));
+    const auto text = e.require<std::string>(surface);
+    job.experiments_as_written[surface] = text;
+    job.experiments[surface] = resolve_config_path(e.location(surface).file, text);
   }
   StepErrorTimingOptions& o = job.options;
   o.repeats = root.get<std::size_t>("repeats", o.repeats);
@@ -244,21 +241,24 @@ StepErrorTimingResult run_step_error_timing(const StepErrorTimingJob& job,
   result.git_commit = p.git_commit;
   result.repeats = job.options.repeats;
   // Everything read first, so a missing upstream result fails before timing.
+  const ResultStore store(results_dir, job.profile);
   std::vector<SurfaceCase> cases;
   for (const auto& [surface, file] : job.experiments) {
-    cases.push_back(prepare(surface, file, job.profile, results_dir));
+    cases.push_back(prepare(surface, file, store));
   }
+  const auto start = Clock::now();
   for (const auto& c : cases) result.surfaces.push_back(time_surface(c, job.options));
+  result.wall_seconds = seconds_since(start);
   return result;
 }
 
-fs::path step_error_timing_path(const std::string& name, const fs::path& results_dir) {
-  return results_dir / name / (name + ".yaml");
+ResultKey step_error_timing_key(const StepErrorTimingJob& job) {
+  return {job.name, std::nullopt, to_yaml(job), job.source_file, true};
 }
 
 namespace {
 
-// Timing fields in file order: key, member.
+// Per-surface figures in metric order: "<surface>.<key>", member.
 const std::vector<std::pair<const char*, double SurfaceTiming::*>> kSeconds = {
     {"planning_s", &SurfaceTiming::planning_s},
     {"iterative_s", &SurfaceTiming::iterative_s},
@@ -272,30 +272,63 @@ const std::vector<std::pair<const char*, double SurfaceTiming::*>> kSeconds = {
 
 }  // namespace
 
-fs::path write_step_error_timing(const StepErrorTimingResult& r, const fs::path& results_dir) {
-  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
-  YAML::Emitter out;
-  out << BeginMap;
-  out << Key << "name" << Value << r.name;
-  out << Key << "host" << Value << r.host << Key << "utc" << Value << r.utc;
-  out << Key << "cnclab_version" << Value << r.cnclab_version;
-  out << Key << "git_commit" << Value << r.git_commit;
-  out << Key << "repeats" << Value << r.repeats;
-  out << Key << "surfaces" << Value << BeginMap;
+fs::path write_step_error_timing(const StepErrorTimingJob& job, const StepErrorTimingResult& r,
+                                 const ResultStore& store) {
+  const ResultKey key = step_error_timing_key(job);
+  RunRecord rec = make_job_record("step_error_timing", key);
+  rec.provenance.start_utc = r.utc;
+  rec.provenance.end_utc = utc_now_iso8601();
+  rec.provenance.wall_seconds = r.wall_seconds;
   for (const auto& s : r.surfaces) {
-    out << Key << s.surface << Value << BeginMap;
-    out << Key << "experiment" << Value << s.experiment;
-    out << Key << "result_file" << Value << s.result_file;
-    out << Key << "test_samples" << Value << s.test_samples;
-    out << Key << "lines" << Value << s.lines;
-    for (const auto& [key, field] : kSeconds)
-      out << Key << key << Value << shortest_double(s.*field);
-    out << EndMap;
+    for (const auto& [name, field] : kSeconds) rec.metrics[s.surface + "." + name] = s.*field;
+    rec.metrics[s.surface + ".test_samples"] = static_cast<double>(s.test_samples);
+    rec.metrics[s.surface + ".lines"] = static_cast<double>(s.lines);
+    // In surface order (kSurfaces); read_step_error_timing relies on it.
+    rec.upstream.push_back({s.experiment_file, s.result_file, s.identity});
+    rec.facts[s.surface + ".experiment"] = s.experiment;
   }
-  out << EndMap << EndMap;
-  const fs::path file = step_error_timing_path(r.name, results_dir);
-  write_text_atomically(file, std::string(out.c_str()) + "\n");
+  const fs::path file = store.path_of(key);
+  write_job_result(file, rec);
   return file;
+}
+
+StepErrorTimingResult read_step_error_timing(const RunRecord& rec, const fs::path& file) {
+  if (rec.kind != "step_error_timing") {
+    throw IoError(file.string() + ": a " + rec.kind + " result, not a step_error_timing one");
+  }
+  StepErrorTimingResult r;
+  r.name = rec.experiment;
+  r.host = rec.provenance.host;
+  r.utc = rec.provenance.start_utc;
+  r.cnclab_version = rec.provenance.cnclab_version;
+  r.git_commit = rec.provenance.git_commit;
+  try {
+    r.repeats = YAML::Load(rec.resolved_yaml)["repeats"].as<std::size_t>();
+  } catch (const YAML::Exception& e) {
+    throw IoError(file.string() + ": /config: no repeats (" + e.what() + ")");
+  }
+  const auto metric = [&](const std::string& name) {
+    const auto it = rec.metrics.find(name);
+    if (it == rec.metrics.end()) throw IoError(file.string() + ": no metric " + name);
+    return it->second;
+  };
+  if (rec.upstream.size() != kSurfaces.size()) {
+    throw IoError(file.string() + ": /upstream: expected one result per surface");
+  }
+  for (std::size_t i = 0; i < kSurfaces.size(); ++i) {
+    SurfaceTiming t;
+    t.surface = kSurfaces[i];
+    const auto fact = rec.facts.find(t.surface + ".experiment");
+    t.experiment = fact == rec.facts.end() ? "" : fact->second;
+    t.experiment_file = rec.upstream[i].experiment;
+    t.result_file = rec.upstream[i].result_file;
+    t.identity = rec.upstream[i].identity;
+    t.test_samples = static_cast<std::size_t>(metric(t.surface + ".test_samples"));
+    t.lines = static_cast<std::size_t>(metric(t.surface + ".lines"));
+    for (const auto& [name, field] : kSeconds) t.*field = metric(t.surface + "." + name);
+    r.surfaces.push_back(t);
+  }
+  return r;
 }
 
 std::string to_yaml(const StepErrorTimingJob& job) {
@@ -304,8 +337,8 @@ std::string to_yaml(const StepErrorTimingJob& job) {
   out << BeginMap << Key << "kind" << Value << "step_error_timing";
   out << Key << "name" << Value << job.name << Key << "description" << Value << job.description;
   out << Key << "experiments" << Value << BeginMap;
-  for (const auto& [surface, file] : job.experiments)
-    out << Key << surface << Value << file.string();
+  for (const auto& [surface, text] : job.experiments_as_written)
+    out << Key << surface << Value << text;
   out << EndMap << Key << "repeats" << Value << job.options.repeats;
   const auto& it = job.options.iterative;
   out << Key << "iterative" << Value << BeginMap;
@@ -325,32 +358,6 @@ std::string step_error_timing_summary(const StepErrorTimingResult& r) {
     line += buf;
   }
   return line;
-}
-
-StepErrorTimingResult read_step_error_timing(const fs::path& file) {
-  const ConfigDocument doc = ConfigDocument::load(file);
-  const ConfigReader root = doc.root();
-  StepErrorTimingResult r;
-  r.name = root.require<std::string>("name");
-  r.host = root.require<std::string>("host");
-  r.utc = root.require<std::string>("utc");
-  r.cnclab_version = root.require<std::string>("cnclab_version");
-  r.git_commit = root.require<std::string>("git_commit");
-  r.repeats = root.require<std::size_t>("repeats");
-  const ConfigReader surfaces = root.section("surfaces");
-  for (const auto& name : surfaces.keys()) {
-    const ConfigReader s = surfaces.section(name);
-    SurfaceTiming t;
-    t.surface = name;
-    t.experiment = s.require<std::string>("experiment");
-    t.result_file = s.require<std::string>("result_file");
-    t.test_samples = s.require<std::size_t>("test_samples");
-    t.lines = s.require<std::size_t>("lines");
-    for (const auto& [key, field] : kSeconds) t.*field = s.require<double>(key);
-    r.surfaces.push_back(t);
-  }
-  doc.check_all_consumed();
-  return r;
 }
 
 }  // namespace cnclab

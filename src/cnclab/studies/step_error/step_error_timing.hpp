@@ -28,12 +28,17 @@
 //   repeats: 3
 //   iterative: {points_per_pass: 10, relative_tolerance: 1e-6, max_passes: 100}
 //   profiles: {quick: {repeats: 1}}
-// Output: results/<name>/<name>.yaml (atomic), read by `cnclab tables step-error`.
+// Output: a standard result file (experiment/job_result.hpp, kind
+// step_error_timing) at the result store's path for the resolved job
+// (results/<name>/<name>-<hash>.h5, atomic): metrics "<surface>.<field>"
+// (seconds, µm, counts), the timed results as its upstream; read by `cnclab
+// tables step-error`, `cnclab show` and `cnclab compare`.
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "cnclab/experiment/result_store.hpp"
 #include "cnclab/geometry/step_error.hpp"
 
 namespace cnclab {
@@ -45,10 +50,13 @@ struct StepErrorTimingOptions {
 };
 
 struct StepErrorTimingJob {
-  std::string name;  // file-name-safe; results/<name>/<name>.yaml
+  std::string name;  // file-name-safe; results/<name>/
   std::string description;
-  // Table 8's surfaces ("surface2", "surface3") -> resolved experiment file.
+  // Table 8's surfaces ("surface2", "surface3") -> resolved experiment file,
+  // and as written in the file (relative to it; what the identity holds, so
+  // it does not depend on how the job file was named on the command line).
   std::map<std::string, std::filesystem::path> experiments;
+  std::map<std::string, std::string> experiments_as_written;
   StepErrorTimingOptions options;
   std::filesystem::path source_file;
   std::string profile;  // applied to the upstream experiments as well
@@ -61,14 +69,17 @@ StepErrorTimingJob load_step_error_timing_job(const std::filesystem::path& file,
                                               const std::vector<std::string>& overrides = {},
                                               const std::string& profile = {});
 
-// The resolved job as YAML that loads back to the same job (`cnclab validate`).
+// The resolved job as YAML that loads back to the same job (`cnclab validate`;
+// the result's identity).
 std::string to_yaml(const StepErrorTimingJob& job);
 
 // Timings of one surface's test set [s] (medians over the repeats).
 struct SurfaceTiming {
   std::string surface;
-  std::string experiment;   // experiment name
-  std::string result_file;  // the model that was loaded
+  std::string experiment;       // experiment name
+  std::string experiment_file;  // its file
+  std::string result_file;      // the model that was loaded
+  std::string identity;         // result_identity of that result (upstream.hpp)
   std::size_t test_samples = 0;
   std::size_t lines = 0;         // tool-path lines planned
   double planning_s = 0;         // CC curves, CC/CL points of those lines (shared start)
@@ -87,23 +98,27 @@ struct StepErrorTimingResult {
   std::string name;
   std::string host, utc, cnclab_version, git_commit;
   std::size_t repeats = 0;
+  double wall_seconds = 0;  // the whole timing [s]
   std::vector<SurfaceTiming> surfaces;
 };
 
-// Times every surface; reads the upstream results from results_dir. Throws
-// MissingResults when an experiment has no result there.
+// Times every surface; reads the upstream results from results_dir (the
+// result store with the job's profile). Throws MissingResults when an
+// experiment has no result there.
 StepErrorTimingResult run_step_error_timing(const StepErrorTimingJob& job,
                                             const std::filesystem::path& results_dir);
 
-// results/<name>/<name>.yaml
-std::filesystem::path step_error_timing_path(const std::string& name,
-                                             const std::filesystem::path& results_dir);
-// Writes the result atomically; returns the file.
-std::filesystem::path write_step_error_timing(const StepErrorTimingResult& result,
-                                              const std::filesystem::path& results_dir);
+// The result's identity: the job's name and resolved YAML (it has upstream results).
+ResultKey step_error_timing_key(const StepErrorTimingJob& job);
+// Writes the result (job_result.hpp) atomically at store.path_of(key); returns the file.
+std::filesystem::path write_step_error_timing(const StepErrorTimingJob& job,
+                                              const StepErrorTimingResult& result,
+                                              const ResultStore& store);
 // One line per run for `cnclab reproduce`: each surface's seconds by method.
 std::string step_error_timing_summary(const StepErrorTimingResult& result);
-// Reads it back strictly (ConfigError on a malformed file).
-StepErrorTimingResult read_step_error_timing(const std::filesystem::path& file);
+// The timing of a result record; IoError naming `file` when it is not a
+// step_error_timing result or lacks a surface's figures.
+StepErrorTimingResult read_step_error_timing(const RunRecord& record,
+                                             const std::filesystem::path& file);
 
 }  // namespace cnclab

@@ -1,0 +1,64 @@
+#include "cnclab/studies/step_error/step_error_study.hpp"
+
+#include <algorithm>
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+StepErrorRun load_run(const fs::path& experiment, const ResultStore& store) {
+  StoredResult stored = store.get(experiment, Accept::complete_or_failed);
+  StepErrorRun run;
+  run.name = stored.record.experiment;
+  run.file = stored.file;
+  run.record = std::move(stored.record);
+  if (run.record.provenance.status != "complete") {
+    // Table 2 shows a diverged keep probability as such; elsewhere it is an
+    // error (load_step_error_study).
+    run.failure =
+        run.file.string() + ": training failed (" + run.record.provenance.failure_reason + ")";
+    return run;
+  }
+  if (run.record.target_units != std::vector<std::string>{"µm"}) {
+    throw Error(run.file.string() + ": expected one step-error target in µm");
+  }
+  const auto& p = run.record.test_predictions;
+  const auto& t = run.record.test_targets;
+  run.figures = error_figures(std::vector<double>(p.data(), p.data() + p.size()),
+                              std::vector<double>(t.data(), t.data() + t.size()));
+  return run;
+}
+
+}  // namespace
+
+StepErrorStudy load_step_error_study(const TablesOptions& o) {
+  StepErrorStudy s;
+  s.manifest = read_step_error_manifest(o.configs_dir / "studies" / "step_error_tables.yaml");
+  s.reference_file = o.reference_dir / "seed000_step_error.yaml";
+  s.ref = read_seed000_reference(s.reference_file);
+  std::vector<fs::path> files;
+  for (const auto& v : s.manifest.variants) {
+    for (const auto& [p, f] : v.table2) files.push_back(f);
+    files.push_back(v.surface1);
+    files.push_back(v.surface1_no_dropout);
+    for (const auto& [pct, f] : v.surface2) files.push_back(f);
+    for (const auto& [pct, f] : v.surface3) files.push_back(f);
+  }
+  for (const auto& n : s.manifest.normaliser) {
+    files.push_back(n.surface2);
+    files.push_back(n.surface3);
+  }
+  const ResultStore store = table_store(o);
+  for (const auto& f : files) {
+    if (!s.runs.count(f)) s.runs.emplace(f, load_run(f, store));
+  }
+  for (const auto& v : s.manifest.variants) {
+    for (const auto& [p, f] : v.table2) files.erase(std::find(files.begin(), files.end(), f));
+  }
+  for (const auto& f : files) {
+    if (!s.runs.at(f).failure.empty()) throw Error(s.runs.at(f).failure);
+  }
+  return s;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,45 @@
+#pragma once
+// The step-error study's results as `cnclab tables step-error` reads them:
+// every experiment the manifest (configs/studies/step_error_tables.yaml)
+// names, found through the result store (experiment/result_store.hpp), and
+// the paper's numbers (results/reference/seed000_step_error.yaml).
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cnclab/experiment/run_record.hpp"
+#include "cnclab/report/tables.hpp"
+#include "cnclab/studies/step_error/step_error_manifest.hpp"
+#include "cnclab/studies/step_error/step_error_reference.hpp"
+#include "cnclab/studies/step_error/step_error_stats.hpp"
+
+namespace cnclab {
+
+// One result of the study with the figures the tables quote.
+struct StepErrorRun {
+  std::string name;            // experiment name
+  std::filesystem::path file;  // the result file read
+  RunRecord record;
+  ErrorFigures figures;
+  std::string failure;  // non-empty: training failed (no figures)
+};
+
+struct StepErrorStudy {
+  StudyManifest manifest;
+  Seed000Reference ref;
+  std::filesystem::path reference_file;
+  std::map<std::filesystem::path, StepErrorRun> runs;  // experiment file -> its result
+  const StepErrorRun& at(const std::filesystem::path& file) const { return runs.at(file); }
+  const StepErrorRun* find(const std::map<double, std::filesystem::path>& files, double key) const {
+    const auto it = files.find(key);
+    return it == files.end() ? nullptr : &runs.at(it->second);
+  }
+};
+
+// Every result the manifest names, read before anything is printed. Throws
+// MissingResults (naming the command that makes it) for a missing result,
+// Error for a failed one outside Table 2 (which shows divergence as such).
+StepErrorStudy load_step_error_study(const TablesOptions& options);
+
+}  // namespace cnclab
