@@ -10,6 +10,7 @@
 #include "cnclab/core/resources.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset_cache.hpp"
+#include "cnclab/experiment/narx_runner.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/training.hpp"
 #include "cnclab/experiment/upstream.hpp"
@@ -67,6 +68,7 @@ fs::path result_path(const LoadedExperiment& experiment, const fs::path& results
 }
 
 RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& options) {
+  if (experiment.spec.narx) return run_narx_experiment(experiment, options);
   const ExperimentSpec& spec = experiment.spec;
   const auto wall_start = std::chrono::steady_clock::now();
   RunRecord rec;
@@ -107,7 +109,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
 
   // Split.
   Rng split_rng(spec.seed, "split");
-  rec.split = make_random_split(data.num_samples(), spec.split, split_rng);
+  rec.split = make_split(data.num_samples(), spec.split, split_rng);
   // (load_experiment checked that the training part is large enough.)
   Eigen::MatrixXd x_train = columns(data.inputs, rec.split.train);
   Eigen::MatrixXd y_train = columns(data.targets, rec.split.train);
