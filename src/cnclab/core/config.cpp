@@ -492,6 +492,14 @@ YAML::Node ConfigReader::raw(const std::string& key) const {
   return child(key);
 }
 
+ConfigReader ConfigReader::element(const std::string& key, std::size_t index) const {
+  const YAML::Node list = child(key);
+  if (!list.IsSequence() || index >= list.size() || !list[index].IsMap()) {
+    fail(key, "entry " + std::to_string(index) + " must be a map");
+  }
+  return ConfigReader(*doc_, list[index], dotted(key) + "[" + std::to_string(index) + "]");
+}
+
 std::vector<std::string> ConfigReader::keys() const {
   std::vector<std::string> out;
   if (!node_.IsMap()) return out;

@@ -113,6 +113,10 @@ class ConfigReader {
   ConfigReader section(const std::string& key) const;
   // The raw node of a key, marked consumed with everything beneath it.
   YAML::Node raw(const std::string& key) const;
+  // Entry `index` of the list at `key`, a map, as a reader named
+  // "<path>.<key>[<index>]" (its keys are not checked by check_all_consumed:
+  // read the list with raw() and check the entry's keys yourself).
+  ConfigReader element(const std::string& key, std::size_t index) const;
   std::vector<std::string> keys() const;
 
   std::string dotted(const std::string& key) const;

@@ -55,6 +55,7 @@ void SplitOptions::validate_for(std::size_t n) const {
 }
 
 SplitOptions::Sizes SplitOptions::sizes(std::size_t n) const {
+  if (mode == SplitMode::sequential_halves) return {n / 2, n - n / 2, 0};
   validate_for(n);
   Sizes s;
   if (uses_counts()) {
@@ -89,6 +90,13 @@ Split make_random_split(std::size_t n, const SplitOptions& options, Rng& rng) {
                       order.begin() + static_cast<std::ptrdiff_t>(n_train + n_val));
   s.test.assign(order.begin() + static_cast<std::ptrdiff_t>(n_train + n_val), order.end());
   for (auto* part : {&s.train, &s.validation, &s.test}) std::sort(part->begin(), part->end());
+  return s;
+}
+
+Split make_split(std::size_t n, const SplitOptions& options, Rng& rng) {
+  if (options.mode == SplitMode::random) return make_random_split(n, options, rng);
+  Split s;
+  for (std::size_t i = 0; i < n; ++i) (i < n / 2 ? s.train : s.validation).push_back(i);
   return s;
 }
 

@@ -8,6 +8,13 @@
 
 namespace cnclab {
 
+// random: the partition of make_random_split. sequential_halves: the samples
+// in time order, the first half (N / 2, rounded down) for training, the rest
+// for validation, no test part (seed 002: "the first half for training, the
+// second for validation"; a time series for a recurrent model must not be
+// shuffled). The fractions and counts apply to random only.
+enum class SplitMode { random, sequential_halves };
+
 struct SplitOptions {
   double train_fraction = 0.7;       // share of all samples used for training (seed 000: 70 %)
   double validation_fraction = 0.0;  // share held out of training for early stopping
@@ -24,6 +31,7 @@ struct SplitOptions {
   std::optional<std::size_t> train_count = std::nullopt;
   std::optional<std::size_t> validation_count = std::nullopt;
   std::optional<std::size_t> test_count = std::nullopt;
+  SplitMode mode = SplitMode::random;  // last: SplitOptions{0.7, 0.1} stays valid
 
   bool uses_counts() const { return train_count.has_value(); }
   void validate() const;
@@ -50,5 +58,9 @@ struct Split {
 // with round = std::llround (halves away from zero); with counts as given.
 // Deterministic given the rng state; each part is sorted ascending.
 Split make_random_split(std::size_t n, const SplitOptions& options, Rng& rng);
+
+// The split `options.mode` says: make_random_split (drawing from `rng`), or
+// the sequential halves (no draws).
+Split make_split(std::size_t n, const SplitOptions& options, Rng& rng);
 
 }  // namespace cnclab

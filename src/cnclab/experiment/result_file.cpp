@@ -7,6 +7,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/job_result.hpp"
+#include "cnclab/experiment/result_narx.hpp"
 #include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
@@ -68,21 +69,55 @@ ScalingRecord read_scaling(const H5File& f, const std::string& g) {
   return s;
 }
 
-// Levenberg-Marquardt history (lm, trainbr): one value per epoch.
-struct LmSeries {
-  const char* name;
-  double LmEpochRecord::*field;
-  const char* units;
-};
-constexpr LmSeries kLmSeries[] = {
-    {"sse", &LmEpochRecord::sse, "normalised target units squared (E_D, sum)"},
-    {"ssw", &LmEpochRecord::ssw, "1 (E_W, sum of squared parameters)"},
-    {"alpha", &LmEpochRecord::alpha, "1"},
-    {"beta", &LmEpochRecord::beta, "1"},
-    {"gamma", &LmEpochRecord::gamma, "1 (effective number of parameters)"},
-    {"mu", &LmEpochRecord::mu, "1"},
-    {"gradient", &LmEpochRecord::gradient, "2 |J^T e|"},
-};
+void write_mlp_sections(H5File& f, const RunRecord& r) {
+  f.create_group("/model");
+  f.set_attribute("/model", "type", "mlp");
+  std::vector<double> sizes;
+  sizes.push_back(static_cast<double>(r.model.inputs));
+  for (auto h : r.model.hidden) sizes.push_back(static_cast<double>(h));
+  sizes.push_back(static_cast<double>(r.model.outputs));
+  f.write_vector("/model/layer_sizes", sizes, "1");
+  f.set_attribute("/model", "hidden_activation", to_string(r.model.hidden_activation));
+  f.set_attribute("/model", "output_activation", to_string(r.model.output_activation));
+  f.set_attribute("/model", "dropout_keep_probability", r.model.dropout_keep_probability);
+  f.set_attribute("/model", "dropout_placement", to_string(r.model.dropout_placement));
+  f.set_attribute("/model", "parameter_layout",
+                  "per layer: W (n_out x n_in, column-major) then b (n_out)");
+  f.write_vector("/model/parameters", to_std(r.parameters), "1");
+  write_scaling(f, "/model/input_scaling", r.input_scaling, join(r.input_units, ","));
+  write_scaling(f, "/model/target_scaling", r.target_scaling, join(r.target_units, ","));
+
+  f.create_group("/training");
+  f.set_attribute("/training", "trainer", r.trainer);
+  f.set_attribute("/training", "termination", to_string(r.training.termination));
+  f.set_attribute("/training", "message", r.training.message);
+  f.set_attribute("/training", "best_epoch", static_cast<std::int64_t>(r.training.best_epoch));
+  std::vector<double> epoch, train, val, wall;
+  for (const auto& e : r.training.history) {
+    epoch.push_back(static_cast<double>(e.epoch));
+    train.push_back(e.train_loss);
+    val.push_back(e.validation_loss);
+    wall.push_back(e.wall_seconds);
+  }
+  f.write_vector("/history/epoch", epoch, "1");
+  f.write_vector("/history/train_loss", train, "normalised MSE");
+  f.write_vector("/history/validation_loss", val, "normalised MSE");
+  f.write_vector("/history/test_loss", r.test_loss, "normalised MSE");
+  f.write_vector("/history/wall_seconds", wall, "s");
+  if (r.trainer != "sgdm") {
+    f.set_attribute("/training", "beta_guard_count",
+                    static_cast<std::int64_t>(r.training.beta_guard_count));
+    for (const auto& series : kLmSeries) {
+      std::vector<double> v;
+      for (const auto& e : r.training.lm_history) v.push_back(e.*series.field);
+      f.write_vector(std::string("/history/") + series.name, v, series.units);
+    }
+  }
+
+  const std::string target_units = join(r.target_units, ",");
+  f.write_matrix("/test/predictions", r.test_predictions, target_units);
+  f.write_matrix("/test/targets", r.test_targets, target_units);
+}
 
 }  // namespace
 
@@ -104,56 +139,16 @@ void write_result(const fs::path& path, const RunRecord& r) {
     f.write_indices("/split/validation", r.split.validation);
     f.write_indices("/split/test", r.split.test);
 
-    f.create_group("/model");
-    f.set_attribute("/model", "type", "mlp");
-    std::vector<double> sizes;
-    sizes.push_back(static_cast<double>(r.model.inputs));
-    for (auto h : r.model.hidden) sizes.push_back(static_cast<double>(h));
-    sizes.push_back(static_cast<double>(r.model.outputs));
-    f.write_vector("/model/layer_sizes", sizes, "1");
-    f.set_attribute("/model", "hidden_activation", to_string(r.model.hidden_activation));
-    f.set_attribute("/model", "output_activation", to_string(r.model.output_activation));
-    f.set_attribute("/model", "dropout_keep_probability", r.model.dropout_keep_probability);
-    f.set_attribute("/model", "dropout_placement", to_string(r.model.dropout_placement));
-    f.set_attribute("/model", "parameter_layout",
-                    "per layer: W (n_out x n_in, column-major) then b (n_out)");
-    f.write_vector("/model/parameters", to_std(r.parameters), "1");
-    write_scaling(f, "/model/input_scaling", r.input_scaling, join(r.input_units, ","));
-    write_scaling(f, "/model/target_scaling", r.target_scaling, join(r.target_units, ","));
-
-    f.create_group("/training");
-    f.set_attribute("/training", "trainer", r.trainer);
-    f.set_attribute("/training", "termination", to_string(r.training.termination));
-    f.set_attribute("/training", "message", r.training.message);
-    f.set_attribute("/training", "best_epoch", static_cast<std::int64_t>(r.training.best_epoch));
-    std::vector<double> epoch, train, val, wall;
-    for (const auto& e : r.training.history) {
-      epoch.push_back(static_cast<double>(e.epoch));
-      train.push_back(e.train_loss);
-      val.push_back(e.validation_loss);
-      wall.push_back(e.wall_seconds);
+    if (r.narx) {
+      write_narx_sections(f, r);
+    } else {
+      write_mlp_sections(f, r);
     }
-    f.write_vector("/history/epoch", epoch, "1");
-    f.write_vector("/history/train_loss", train, "normalised MSE");
-    f.write_vector("/history/validation_loss", val, "normalised MSE");
-    f.write_vector("/history/test_loss", r.test_loss, "normalised MSE");
-    f.write_vector("/history/wall_seconds", wall, "s");
-    if (r.trainer != "sgdm") {
-      f.set_attribute("/training", "beta_guard_count",
-                      static_cast<std::int64_t>(r.training.beta_guard_count));
-      for (const auto& series : kLmSeries) {
-        std::vector<double> v;
-        for (const auto& e : r.training.lm_history) v.push_back(e.*series.field);
-        f.write_vector(std::string("/history/") + series.name, v, series.units);
-      }
-    }
-
-    const std::string target_units = join(r.target_units, ",");
-    f.write_matrix("/test/predictions", r.test_predictions, target_units);
-    f.write_matrix("/test/targets", r.test_targets, target_units);
 
     f.create_group("/metrics");
-    f.set_attribute("/metrics", "units", target_units + " (squared for mse; r2 is 1)");
+    f.set_attribute("/metrics", "units",
+                    r.narx ? std::string("per metric: the registered sequence metrics' units")
+                           : join(r.target_units, ",") + " (squared for mse; r2 is 1)");
     for (const auto& [name, value] : r.metrics) f.set_attribute("/metrics", name, value);
 
     write_result_upstream(f, r.upstream);
@@ -228,6 +223,29 @@ namespace {
 
 RunRecord read_result_in_process(const std::filesystem::path& path);
 
+std::map<std::string, double> read_metrics(const H5File& f) {
+  std::map<std::string, double> metrics;
+  for (const auto& name : f.attribute_names("/metrics")) {
+    if (name != "units") metrics[name] = f.attribute_double("/metrics", name);
+  }
+  return metrics;
+}
+
+std::vector<UpstreamRef> read_upstream(const H5File& f) {
+  std::vector<UpstreamRef> out;
+  if (!f.exists("/upstream")) return out;
+  const auto experiments = f.read_strings("/upstream/experiments");
+  const auto files = f.read_strings("/upstream/result_files");
+  const auto identities = f.read_strings("/upstream/identities");
+  if (files.size() != experiments.size() || identities.size() != experiments.size()) {
+    throw IoError(f.path().string() + ": /upstream: lists of different lengths");
+  }
+  for (std::size_t i = 0; i < experiments.size(); ++i) {
+    out.push_back({experiments[i], files[i], identities[i]});
+  }
+  return out;
+}
+
 ResultStatus read_status_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
   require_format(f, kResultFormat, kResultFormatVersion);
@@ -252,28 +270,9 @@ RunRecord read_result(const std::filesystem::path& path) {
 }
 
 namespace {
-RunRecord read_result_in_process(const std::filesystem::path& path) {
-  const H5File f = H5File::open_read(path);
+void read_mlp_sections(const H5File& f, RunRecord& r) {
+  const auto& path = f.path();
   const auto bad = [&](const std::string& what) { throw IoError(path.string() + ": " + what); };
-  require_format(f, kResultFormat, kResultFormatVersion);
-  if (f.has_attribute("/", "kind") && f.attribute_string("/", "kind") != "train") {
-    return read_job_result(f);
-  }
-  RunRecord r;
-  r.experiment = f.attribute_string("/", "experiment");
-  r.config_hash = f.attribute_string("/", "config_hash");
-  r.resolved_yaml = f.read_string("/config");
-  r.provenance = read_provenance(f, "/provenance");
-  r.dataset_file = f.attribute_string("/dataset", "file");
-  r.dataset_hash = f.attribute_string("/dataset", "content_hash");
-  r.input_names = f.read_strings("/dataset/input_names");
-  r.input_units = f.read_strings("/dataset/input_units");
-  r.target_names = f.read_strings("/dataset/target_names");
-  r.target_units = f.read_strings("/dataset/target_units");
-  r.split.train = f.read_indices("/split/train");
-  r.split.validation = f.read_indices("/split/validation");
-  r.split.test = f.read_indices("/split/test");
-
   const auto sizes = f.read_vector("/model/layer_sizes");
   if (sizes.size() < 2) bad("/model/layer_sizes: needs at least 2 entries");
   r.model.inputs = static_cast<std::size_t>(sizes.front());
@@ -325,38 +324,43 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   r.test_loss = f.read_vector("/history/test_loss");
   r.test_predictions = f.read_matrix("/test/predictions");
   r.test_targets = f.read_matrix("/test/targets");
+}
+
+RunRecord read_result_in_process(const std::filesystem::path& path) {
+  const H5File f = H5File::open_read(path);
+  require_format(f, kResultFormat, kResultFormatVersion);
+  if (f.has_attribute("/", "kind") && f.attribute_string("/", "kind") != "train") {
+    return read_job_result(f);
+  }
+  RunRecord r;
+  r.experiment = f.attribute_string("/", "experiment");
+  r.config_hash = f.attribute_string("/", "config_hash");
+  r.resolved_yaml = f.read_string("/config");
+  r.provenance = read_provenance(f, "/provenance");
+  r.dataset_file = f.attribute_string("/dataset", "file");
+  r.dataset_hash = f.attribute_string("/dataset", "content_hash");
+  r.input_names = f.read_strings("/dataset/input_names");
+  r.input_units = f.read_strings("/dataset/input_units");
+  r.target_names = f.read_strings("/dataset/target_names");
+  r.target_units = f.read_strings("/dataset/target_units");
+  r.split.train = f.read_indices("/split/train");
+  r.split.validation = f.read_indices("/split/validation");
+  r.split.test = f.read_indices("/split/test");
+
+  if (f.has_attribute("/model", "type") && f.attribute_string("/model", "type") == "narx") {
+    read_narx_sections(f, r);
+  } else {
+    read_mlp_sections(f, r);
+  }
   r.metrics = read_metrics(f);
   r.upstream = read_upstream(f);
   return r;
 }
 }  // namespace
 
-void print_result(const RunRecord& r, std::ostream& out) {
-  if (r.kind != "train") {
-    print_job_result(r, out);
-    return;
-  }
-  const Provenance& p = r.provenance;
-  out << "experiment   " << r.experiment << "\n"
-      << "status       " << p.status << (p.failure_reason.empty() ? "" : ": " + p.failure_reason)
-      << "\n"
-      << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
-      << "run          " << p.start_utc << " -> " << p.end_utc << " ("
-      << format_metric(p.wall_seconds) << " s) on " << p.host << "\n"
-      << "seed         " << p.master_seed << " (";
-  bool first = true;
-  for (const auto& [name, seed] : p.derived_seeds) {
-    out << (first ? "" : ", ") << name << " " << seed;
-    first = false;
-  }
-  out << ")\n";
-  out << "dataset      " << r.dataset_file << " ("
-      << r.test_targets.cols() +
-             static_cast<Eigen::Index>(r.split.train.size() + r.split.validation.size())
-      << " samples, hash " << r.dataset_hash << ")\n"
-      << "split        train " << r.split.train.size() << ", validation "
-      << r.split.validation.size() << ", test " << r.split.test.size() << "\n"
-      << "model        mlp " << r.model.inputs;
+namespace {
+void print_mlp_model(const RunRecord& r, std::ostream& out) {
+  out << "model        mlp " << r.model.inputs;
   for (auto h : r.model.hidden) out << "-" << h;
   out << "-" << r.model.outputs << " (" << to_string(r.model.hidden_activation) << ", keep p "
       << format_metric(r.model.dropout_keep_probability) << ", " << r.parameters.size()
@@ -385,13 +389,49 @@ void print_result(const RunRecord& r, std::ostream& out) {
       out << "\n";
     }
   }
+}
+
+}  // namespace
+
+void print_result(const RunRecord& r, std::ostream& out) {
+  if (r.kind != "train") {
+    print_job_result(r, out);
+    return;
+  }
+  const Provenance& p = r.provenance;
+  out << "experiment   " << r.experiment << "\n"
+      << "status       " << p.status << (p.failure_reason.empty() ? "" : ": " + p.failure_reason)
+      << "\n"
+      << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
+      << "run          " << p.start_utc << " -> " << p.end_utc << " ("
+      << format_metric(p.wall_seconds) << " s) on " << p.host << "\n"
+      << "seed         " << p.master_seed << " (";
+  bool first = true;
+  for (const auto& [name, seed] : p.derived_seeds) {
+    out << (first ? "" : ", ") << name << " " << seed;
+    first = false;
+  }
+  out << ")\n";
+  out << "dataset      " << r.dataset_file << " ("
+      << r.test_targets.cols() +
+             static_cast<Eigen::Index>(r.split.train.size() + r.split.validation.size())
+      << " samples, hash " << r.dataset_hash << ")\n"
+      << "split        train " << r.split.train.size() << ", validation "
+      << r.split.validation.size() << ", test " << r.split.test.size() << "\n";
+  if (r.narx) {
+    print_narx_model(r, out);
+  } else {
+    print_mlp_model(r, out);
+  }
   std::size_t width = 14;
   bool normalised = false;
   for (const auto& [name, value] : r.metrics) {
     width = std::max(width, name.size() + 2);
     normalised = normalised || name.starts_with("normalised_");
   }
-  out << "metrics      (test split, " << join(r.target_units)
+  out << "metrics      ("
+      << (r.narx ? "validation part, closed loop; units: the metric's own (sequence_metrics.hpp)"
+                 : "test split, " + join(r.target_units))
       << (normalised ? "; normalised_*: the network's scaled units" : "") << ")\n";
   for (const auto& [name, value] : r.metrics) {
     out << "  " << std::left << std::setw(static_cast<int>(width)) << name << format_metric(value)

@@ -3,12 +3,14 @@
 // reads back. Plain data.
 #include <Eigen/Core>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cnclab/data/split.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/mlp.hpp"
+#include "cnclab/nn/narx.hpp"
 #include "cnclab/nn/scaling.hpp"
 #include "cnclab/train/summary.hpp"
 
@@ -25,6 +27,29 @@ struct UpstreamRef {
 struct OutputRef {
   std::string role;  // "program", "points", "report", ...
   std::string file;  // relative to the result file's folder
+};
+
+// One trained network of a narx run (model.type narx): one target.
+struct NarxStageRecord {
+  std::string mode;     // open_loop | closed_loop
+  std::string trainer;  // lm | trainbr
+  Summary summary;
+};
+struct NarxNetworkRecord {
+  std::string axis;            // e_x -> x
+  std::string input, target;   // the dataset's column names
+  Eigen::VectorXd parameters;  // Narx layout (nn/narx.hpp)
+  std::vector<NarxStageRecord> stages;
+  double seconds = 0;  // training time of this network
+};
+struct NarxRecord {
+  NarxOptions options;
+  std::vector<NarxNetworkRecord> networks;  // in target order
+  // Closed-loop prediction of the validation part per network (rows), in the
+  // dataset's target units; the first `first_step` columns are the measured
+  // initial states. `targets`: the measured values.
+  Eigen::MatrixXd predictions, targets;
+  std::size_t first_step = 0;
 };
 
 struct RunRecord {
@@ -57,6 +82,11 @@ struct RunRecord {
   // Job results only.
   std::vector<OutputRef> outputs;
   std::map<std::string, std::string> facts;  // named text a job reports (selected trial, ...)
+};
+
+// model.type narx: the networks (model, parameters, training and test_*
+// above are then unused).
+std::optional<NarxRecord> narx;
 };
 
 }  // namespace cnclab

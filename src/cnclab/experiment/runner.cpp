@@ -10,6 +10,7 @@
 #include "cnclab/core/resources.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset_cache.hpp"
+#include "cnclab/experiment/narx_runner.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/training.hpp"
 #include "cnclab/experiment/upstream.hpp"
@@ -59,7 +60,17 @@ void check_run_memory(const ExperimentSpec& spec) {
 
 }  // namespace
 
+CachedDataset obtain_run_dataset(const ExperimentSpec& spec, std::uint64_t seed,
+                                 const RunOptions& options) {
+  StagedProgress generation("dataset " + spec.dataset.generator->name(),
+                            options.log ? *options.log : std::cerr,
+                            {options.log ? options.progress : ProgressMode::quiet, 5.0, 0.1});
+  return obtain_dataset(spec.dataset, seed, options.datasets_dir, options.log,
+                        options.regenerate_dataset, generation.callback());
+}
+
 RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& options) {
+  if (experiment.spec.narx) return run_narx_experiment(experiment, options);
   const ExperimentSpec& spec = experiment.spec;
   const auto wall_start = std::chrono::steady_clock::now();
   RunRecord rec;
@@ -86,13 +97,9 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
                 init_source->record.provenance.failure_reason + "); nothing to start from");
   }
 
-  // Dataset (generated or reused from the cache), with progress when generated.
-  StagedProgress generation("dataset " + spec.dataset.generator->name(),
-                            options.log ? *options.log : std::cerr,
-                            {options.log ? options.progress : ProgressMode::quiet, 5.0, 0.1});
+  // Dataset (generated or reused from the cache).
   const CachedDataset cached =
-      obtain_dataset(spec.dataset, rec.provenance.derived_seeds["generator"], options.datasets_dir,
-                     options.log, options.regenerate_dataset, generation.callback());
+      obtain_run_dataset(spec, rec.provenance.derived_seeds["generator"], options);
   const Dataset data = select_targets(cached.dataset, spec.dataset.targets);
   rec.dataset_file = cached.path.string();
   rec.dataset_hash = cached.content_hash;
@@ -103,7 +110,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
 
   // Split.
   Rng split_rng(spec.seed, "split");
-  rec.split = make_random_split(data.num_samples(), spec.split, split_rng);
+  rec.split = make_split(data.num_samples(), spec.split, split_rng);
   // (load_experiment checked that the training part is large enough.)
   Eigen::MatrixXd x_train = columns(data.inputs, rec.split.train);
   Eigen::MatrixXd y_train = columns(data.targets, rec.split.train);

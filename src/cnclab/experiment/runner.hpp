@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cnclab/core/progress.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/result_store.hpp"  // result_path: where a run writes
 #include "cnclab/experiment/spec.hpp"
 
@@ -34,5 +35,10 @@ struct RunOutcome {
 // Runs one experiment. Bad configuration or I/O problems throw; a run whose
 // training diverges is a failed result (written, ok = false), not an error.
 RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& options);
+
+// The run's dataset with generator seed `seed`, generated (with progress on
+// options.log) or read from the cache (data/dataset_cache.hpp).
+CachedDataset obtain_run_dataset(const ExperimentSpec& spec, std::uint64_t seed,
+                                 const RunOptions& options);
 
 }  // namespace cnclab

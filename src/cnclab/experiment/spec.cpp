@@ -10,6 +10,8 @@
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/core/suggest.hpp"
+#include "cnclab/experiment/sequence_metrics.hpp"
+#include "cnclab/experiment/spec_narx.hpp"
 #include "cnclab/experiment/spec_text.hpp"
 #include "cnclab/nn/metrics.hpp"
 
@@ -125,7 +127,7 @@ void require_subject(const ConfigReader& root, const std::filesystem::path& base
   if (!root.has("model")) {
     root.fail("model", "is required (the network, e.g. model: {type: mlp, hidden: [28, 20]})");
   }
-  if (!root.section("trainer").has("type")) {
+  if (!root.section("trainer").has("type") && !root.section("trainer").has("stages")) {
     root.section("trainer").fail(
         "type", "is required (sgdm, lm or trainbr)" + fragment_hint(base, "trainers"));
   }
@@ -133,6 +135,13 @@ void require_subject(const ConfigReader& root, const std::filesystem::path& base
 
 SplitOptions read_split(const ConfigReader& r, std::size_t samples) {
   SplitOptions s;
+  if (choice(r, "mode", "random", {"random", "sequential_halves"}) == "sequential_halves") {
+    s.mode = SplitMode::sequential_halves;
+    for (const auto& key : r.keys()) {
+      if (key != "mode") r.fail(key, "applies to split.mode random only");
+    }
+    return s;
+  }
   s.train_count = r.optional<std::size_t>("train_count");
   s.validation_count = r.optional<std::size_t>("validation_count");
   s.test_count = r.optional<std::size_t>("test_count");
@@ -271,17 +280,22 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
   spec.normalisation.input_range = read_range(norm, "input_range", spec.normalisation.input_range);
   spec.normalisation.target_range =
       read_range(norm, "target_range", spec.normalisation.target_range);
-  spec.model = read_model(root.section("model"));
   std::vector<std::string> notes;
-  spec.trainer = read_trainer(root.section("trainer"), &notes);
+  if (read_model_type(root.section("model")) == "narx") {
+    read_narx_experiment(root, spec);
+  } else {
+    spec.model = read_model(root.section("model"));
+    spec.trainer = read_trainer(root.section("trainer"), &notes);
+  }
   if (is_levenberg_marquardt(spec.trainer) && spec.model.dropout_keep_probability < 1.0) {
     root.section("model").section("dropout").fail(
         "keep_probability", "must be 1 with trainer " + trainer_name(spec.trainer) +
                                 " (Levenberg-Marquardt needs a deterministic network)");
   }
-  spec.metrics = root.get<std::vector<std::string>>("metrics", spec.metrics);
+  spec.metrics = root.get<std::vector<std::string>>(
+      "metrics", spec.narx ? sequence_metric_names() : spec.metrics);
   for (const auto& m : spec.metrics) {
-    const auto& known = known_metrics();
+    const auto known = spec.narx ? sequence_metric_names() : known_metrics();
     if (std::find(known.begin(), known.end(), m) == known.end()) {
       root.fail("metrics",
                 "unknown metric '" + m + "'" + did_you_mean(m, known) + "; " + one_of(known));
@@ -304,6 +318,25 @@ void emit_initializer(YAML::Emitter& out, const Initializer& init) {
     out << YAML::Key << "high" << YAML::Value << shortest_double(init.high);
   }
   out << YAML::EndMap;
+}
+
+void emit_mlp_model(YAML::Emitter& out, const MlpOptions& m) {
+  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
+  out << Key << "model" << Value << BeginMap;
+  out << Key << "type" << Value << "mlp";
+  out << Key << "hidden" << Value << YAML::Flow << m.hidden;
+  out << Key << "hidden_activation" << Value << to_string(m.hidden_activation);
+  out << Key << "output_activation" << Value << to_string(m.output_activation);
+  out << Key << "dropout" << Value << BeginMap;
+  out << Key << "keep_probability" << Value << shortest_double(m.dropout_keep_probability);
+  out << Key << "placement" << Value << to_string(m.dropout_placement);
+  out << EndMap;
+  out << Key << "init" << Value << BeginMap;
+  out << Key << "weights" << Value;
+  emit_initializer(out, m.weights);
+  out << Key << "biases" << Value;
+  emit_initializer(out, m.biases);
+  out << EndMap << EndMap;
 }
 
 std::vector<Override> parse_overrides(const std::vector<std::string>& texts) {
@@ -398,7 +431,9 @@ std::string to_yaml(const ExperimentSpec& spec) {
 
   const SplitOptions& split = spec.split;
   out << Key << "split" << Value << BeginMap;
-  if (split.uses_counts()) {
+  if (split.mode == SplitMode::sequential_halves) {
+    out << Key << "mode" << Value << "sequential_halves";
+  } else if (split.uses_counts()) {
     out << Key << "train_count" << Value << *split.train_count;
     if (split.validation_count)
       out << Key << "validation_count" << Value << *split.validation_count;
@@ -424,25 +459,18 @@ std::string to_yaml(const ExperimentSpec& spec) {
   }
   out << EndMap;
 
-  const MlpOptions& m = spec.model;
-  out << Key << "model" << Value << BeginMap;
-  out << Key << "type" << Value << "mlp";
-  out << Key << "hidden" << Value << YAML::Flow << m.hidden;
-  out << Key << "hidden_activation" << Value << to_string(m.hidden_activation);
-  out << Key << "output_activation" << Value << to_string(m.output_activation);
-  out << Key << "dropout" << Value << BeginMap;
-  out << Key << "keep_probability" << Value << shortest_double(m.dropout_keep_probability);
-  out << Key << "placement" << Value << to_string(m.dropout_placement);
-  out << EndMap;
-  out << Key << "init" << Value << BeginMap;
-  out << Key << "weights" << Value;
-  emit_initializer(out, m.weights);
-  out << Key << "biases" << Value;
-  emit_initializer(out, m.biases);
-  out << EndMap << EndMap;
-
+  if (spec.narx) {
+    out << Key << "model" << Value;
+    emit_narx_model(out, *spec.narx);
+  } else {
+    emit_mlp_model(out, spec.model);
+  }
   out << Key << "trainer" << Value;
-  emit_trainer(out, spec.trainer);
+  if (spec.narx) {
+    emit_stages(out, spec.stages);
+  } else {
+    emit_trainer(out, spec.trainer);
+  }
 
   out << Key << "metrics" << Value << YAML::Flow << spec.metrics;
   // Emitted only when set, so experiments without them keep their identity.

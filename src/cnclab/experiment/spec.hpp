@@ -15,6 +15,7 @@
 #include "cnclab/data/dataset_spec.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/split.hpp"
+#include "cnclab/experiment/narx_spec.hpp"
 #include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/nn/mlp.hpp"
 #include "cnclab/nn/scaling.hpp"
@@ -64,6 +65,12 @@ struct ExperimentSpec {
   // model: type mlp; `inputs`/`outputs` come from the dataset at run time.
   MlpOptions model;
   TrainerSpec trainer;  // trainer: type sgdm | lm | trainbr (trainer_spec.hpp)
+  // model.type narx (narx_spec.hpp): one NARX network per target, trained in
+  // `stages` (trainer.stages); `model` and `trainer` are then unused. A narx
+  // experiment needs split.mode sequential_halves and normalisation none (the
+  // following_error generator scales its columns itself).
+  std::optional<NarxModelSpec> narx;
+  std::vector<TrainingStage> stages;
   std::vector<std::string> metrics = {"mse", "rmse", "mae", "max_abs_error", "r2"};
   // needs: [FILE, ...]: experiments whose results this one depends on (paths
   // relative to the experiment file given, also when the key comes from an

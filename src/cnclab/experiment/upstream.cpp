@@ -28,6 +28,11 @@ std::string result_identity(const RunRecord& r) {
                                    &r.target_scaling.mean, &r.target_scaling.std}) {
     h.add(static_cast<std::uint64_t>(v->size())).add(values(*v));
   }
+  if (r.narx) {
+    for (const auto& net : r.narx->networks) {
+      h.add(static_cast<std::uint64_t>(net.parameters.size())).add(values(net.parameters));
+    }
+  }
   return h.hex();
 }
 

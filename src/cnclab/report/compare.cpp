@@ -217,6 +217,16 @@ void flatten(const YAML::Node& node, const std::string& prefix,
     }
     return;
   }
+  // A list of maps (trainer.stages) by entry: trainer.stages[1].epochs.
+  const bool maps =
+      node.IsSequence() && node.size() > 0 &&
+      std::all_of(node.begin(), node.end(), [](const YAML::Node& n) { return n.IsMap(); });
+  if (maps) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      flatten(node[i], prefix + "[" + std::to_string(i) + "]", out);
+    }
+    return;
+  }
   out.emplace_back(prefix, node_text(node));
 }
 

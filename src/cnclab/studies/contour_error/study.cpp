@@ -4,6 +4,7 @@
 #include "cnclab/report/tables.hpp"
 #include "cnclab/studies/contour_error/contour_error_tables.hpp"
 #include "cnclab/studies/contour_error/narx_job.hpp"
+#include "cnclab/studies/contour_error/narx_metrics.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -38,6 +39,7 @@ JobKind narx_kind() {
 }  // namespace
 
 void register_contour_error_study() {
+  register_contour_error_metrics();
   register_job_kind(narx_kind());
   register_table(
       {"contour-error",

@@ -1,0 +1,211 @@
+#include "cnclab/experiment/narx_runner.hpp"
+
+#include <chrono>
+#include <ostream>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/hash.hpp"
+#include "cnclab/core/rng.hpp"
+#include "cnclab/data/dataset_cache.hpp"
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/sequence_metrics.hpp"
+#include "cnclab/experiment/upstream.hpp"
+#include "cnclab/io/provenance.hpp"
+#include "cnclab/train/narx_training.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// e_x -> x: the part after the last '_' (the whole name without one).
+std::string axis_of(const std::string& target) {
+  const auto cut = target.rfind('_');
+  return cut == std::string::npos ? target : target.substr(cut + 1);
+}
+
+// The dataset rows of the targets (dataset.targets, default all); target k
+// is predicted from input k.
+std::vector<Eigen::Index> target_rows(const Dataset& d, const std::vector<std::string>& wanted) {
+  if (d.inputs.rows() != d.targets.rows()) {
+    throw ConfigError("model.type narx: dataset " + d.generator + " has " +
+                      std::to_string(d.inputs.rows()) + " inputs and " +
+                      std::to_string(d.targets.rows()) +
+                      " targets; a SISO network per target needs one input per target");
+  }
+  std::vector<Eigen::Index> rows;
+  for (std::size_t k = 0; k < d.target_names.size(); ++k) {
+    const bool take = wanted.empty() ||
+                      std::find(wanted.begin(), wanted.end(), d.target_names[k]) != wanted.end();
+    if (take) rows.push_back(static_cast<Eigen::Index>(k));
+  }
+  return rows;
+}
+
+// One stage from `params` in place: series-parallel or parallel residuals
+// over the training series, trained by the stage's lm or trainbr.
+Summary train_stage(const Narx& narx, const TrainingStage& stage, const Eigen::VectorXd& v,
+                    const Eigen::VectorXd& e, Eigen::VectorXd& params) {
+  const auto train = [&](ResidualObjective& objective) {
+    if (const auto* br = std::get_if<TrainbrOptions>(&stage.trainer)) {
+      return train_trainbr(objective, params, *br);
+    }
+    return train_lm(objective, params, std::get<LmOptions>(stage.trainer));
+  };
+  if (stage.mode == StageMode::open_loop) {
+    NarxOpenLoopObjective open(narx, v, e);
+    return train(open);
+  }
+  NarxClosedLoopObjective closed(narx, v, e);
+  return train(closed);
+}
+
+const NarxNetworkRecord* upstream_network(const std::optional<UpstreamResult>& up,
+                                          const std::string& axis) {
+  if (!up) return nullptr;
+  for (const auto& net : up->record.narx->networks) {
+    if (net.axis == axis) return &net;
+  }
+  throw ConfigError("init_from: " + up->result_file.string() + " has no network for axis " + axis);
+}
+
+// init_from of a narx experiment: a complete narx result with the same network.
+std::optional<UpstreamResult> upstream_results(const ExperimentSpec& spec, const RunOptions& o,
+                                               RunRecord& rec) {
+  std::optional<UpstreamResult> init;
+  for (const auto& file : upstream_files(spec)) {
+    UpstreamResult up = load_upstream(file, o.results_dir, spec.profile);
+    rec.upstream.push_back({file.string(), up.result_file.string(), result_identity(up.record)});
+    if (spec.init_from && file == spec.init_from->resolved_file) init = std::move(up);
+  }
+  if (!init) return init;
+  const auto& r = init->record;
+  if (r.provenance.status != "complete") {
+    throw Error("init_from: " + init->result_file.string() + " is a failed run (" +
+                r.provenance.failure_reason + "); nothing to start from");
+  }
+  const NarxOptions ours = spec.narx->options();
+  if (!r.narx || r.narx->options.hidden != ours.hidden ||
+      r.narx->options.hidden_activation != ours.hidden_activation ||
+      r.narx->options.input_delays != ours.input_delays ||
+      r.narx->options.feedback_delays != ours.feedback_delays) {
+    throw ConfigError("init_from: " + init->result_file.string() +
+                      " holds no narx network of this model's hidden size, activation and delays");
+  }
+  return init;
+}
+
+}  // namespace
+
+RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOptions& options) {
+  const ExperimentSpec& spec = experiment.spec;
+  const auto wall_start = std::chrono::steady_clock::now();
+  RunRecord rec;
+  rec.experiment = spec.name;
+  rec.resolved_yaml = experiment.resolved_yaml;
+  rec.config_hash = hash_hex(experiment.resolved_yaml);
+  rec.provenance = make_provenance(spec.seed);
+  rec.provenance.derived_seeds["generator"] = generator_seed(spec);
+  const std::optional<UpstreamResult> init = upstream_results(spec, options, rec);
+
+  const CachedDataset cached =
+      obtain_run_dataset(spec, rec.provenance.derived_seeds["generator"], options);
+  const Dataset& d = cached.dataset;
+  rec.dataset_file = cached.path.string();
+  rec.dataset_hash = cached.content_hash;
+  const std::vector<Eigen::Index> rows = target_rows(d, spec.dataset.targets);
+  Rng split_rng(spec.seed, "split");  // not drawn from: the halves are fixed
+  rec.split = make_split(d.num_samples(), spec.split, split_rng);
+  const auto n = static_cast<Eigen::Index>(d.num_samples());
+  const auto half = static_cast<Eigen::Index>(rec.split.train.size());
+
+  NarxRecord narx_rec;
+  narx_rec.options = spec.narx->options();
+  const Narx narx(narx_rec.options);
+  narx_rec.first_step = static_cast<std::size_t>(narx.first_step());
+  narx_rec.predictions.resize(static_cast<Eigen::Index>(rows.size()), n - half);
+  narx_rec.targets.resize(static_cast<Eigen::Index>(rows.size()), n - half);
+  rec.trainer = stages_text(spec.stages);
+  std::string message;
+  bool ok = true;
+  for (std::size_t a = 0; a < rows.size(); ++a) {
+    const Eigen::Index k = rows[a];
+    NarxNetworkRecord net;
+    net.target = d.target_names[static_cast<std::size_t>(k)];
+    net.input = d.input_names[static_cast<std::size_t>(k)];
+    net.axis = axis_of(net.target);
+    rec.input_names.push_back(net.input);
+    rec.input_units.push_back(d.input_units[static_cast<std::size_t>(k)]);
+    rec.target_names.push_back(net.target);
+    rec.target_units.push_back(d.target_units[static_cast<std::size_t>(k)]);
+    const Eigen::VectorXd v = d.inputs.row(k).transpose(), e = d.targets.row(k).transpose();
+    const Eigen::VectorXd v_train = v.head(half), e_train = e.head(half);
+    const Eigen::VectorXd v_val = v.tail(n - half), e_val = e.tail(n - half);
+    Eigen::VectorXd params(static_cast<Eigen::Index>(narx.num_parameters()));
+    const std::string stream = "narx/init/" + net.axis;
+    rec.provenance.derived_seeds[stream] = derive_seed(spec.seed, stream);
+    if (const NarxNetworkRecord* from = upstream_network(init, net.axis)) {
+      params = from->parameters;
+    } else {
+      Rng rng(spec.seed, stream);
+      narx.initialise(params, rng);
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    message += (message.empty() ? "" : "; ") + net.axis + ":";
+    for (const auto& stage : spec.stages) {
+      Summary s = train_stage(narx, stage, v_train, e_train, params);
+      message += " " + to_string(stage.mode) + " " + std::to_string(s.history.size()) +
+                 " epochs (" + to_string(s.termination) + ")";
+      ok = ok && s.termination != Termination::diverged;
+      rec.training.termination = s.termination;
+      net.stages.push_back({to_string(stage.mode), trainer_name(stage.trainer), std::move(s)});
+    }
+    net.seconds = seconds_since(t0);
+    // Closed loop over the whole validation part from measured initial states.
+    const Eigen::VectorXd e_hat = narx.simulate_closed_loop(params, v_val, e_val);
+    const Eigen::Index first = narx.first_step();
+    auto pred = narx_rec.predictions.row(static_cast<Eigen::Index>(a));
+    pred.head(first) = e_val.head(first).transpose();
+    pred.tail(n - half - first) = e_hat.transpose();
+    narx_rec.targets.row(static_cast<Eigen::Index>(a)) = e_val.transpose();
+    net.parameters = std::move(params);
+    if (options.log) {
+      *options.log << "  " << spec.name << " " << net.axis << ": " << rec.trainer << ", "
+                   << net.stages.size() << " stage(s) in " << net.seconds << " s\n";
+    }
+    narx_rec.networks.push_back(std::move(net));
+  }
+  rec.training.message = message;
+
+  if (ok) {
+    SequencePrediction p;
+    p.data = &d;
+    p.first_validation = static_cast<std::size_t>(half);
+    p.first_step = narx.first_step();
+    for (std::size_t a = 0; a < rows.size(); ++a) {
+      p.axes.push_back(narx_rec.networks[a].axis);
+      p.target_rows.push_back(rows[a]);
+      p.predicted.push_back(narx_rec.predictions.row(static_cast<Eigen::Index>(a)).transpose());
+    }
+    rec.metrics = sequence_metrics(p, spec.metrics);
+  }
+  rec.narx = std::move(narx_rec);
+  rec.provenance.end_utc = utc_now_iso8601();
+  rec.provenance.wall_seconds = seconds_since(wall_start);
+  rec.provenance.status = ok ? "complete" : "failed";
+  rec.provenance.failure_reason = ok ? "" : message;
+
+  RunOutcome outcome;
+  outcome.result_file = options.result_file.empty() ? result_path(experiment, options.results_dir)
+                                                    : options.result_file;
+  write_result(outcome.result_file, rec);
+  outcome.ok = ok;
+  outcome.message = message;
+  outcome.metrics = rec.metrics;
+  return outcome;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,140 @@
+#include "cnclab/experiment/narx_spec.hpp"
+
+#include <algorithm>
+
+#include "cnclab/core/fields.hpp"
+#include "cnclab/core/suggest.hpp"
+#include "cnclab/experiment/spec_text.hpp"
+
+namespace cnclab {
+
+const FieldList<NarxModelSpec>& narx_model_fields() {
+  using M = NarxModelSpec;
+  static const auto fields =
+      FieldList<M>()
+          .field("hidden", &M::hidden, "H, hidden units of each axis network (seed 002: 12)",
+                 Rule::at_least(1))
+          .field("activation", &M::activation, "hidden activation; the output is linear",
+                 Rule::one_of({"tanh", "sigmoid", "relu", "linear"}))
+          .field("input_delays", &M::input_delays, "D_V, velocity inputs (seed 002: 4)",
+                 Rule::at_least(1))
+          .field("feedback_delays", &M::feedback_delays,
+                 "D_E, fed-back errors e(t-1..t-D_E) (seed 002: 4)", Rule::at_least(1))
+          .field("first_input_delay", &M::first_input_delay,
+                 "0: v(t) (Eq. 1); 1: MATLAB narxnet(1:D_V, ...)", Rule::in(0, true, 1, true));
+  return fields;
+}
+
+NarxOptions NarxModelSpec::options() const {
+  NarxOptions o;
+  o.hidden = hidden;
+  o.hidden_activation = parse_activation(activation);
+  o.input_delays = input_delays;
+  o.feedback_delays = feedback_delays;
+  o.first_input_delay = first_input_delay;
+  return o;
+}
+
+const FieldList<StageHead>& stage_fields() {
+  static const auto fields = FieldList<StageHead>().field(
+      "mode", &StageHead::mode,
+      "open_loop: measured errors fed back (series-parallel); closed_loop: the network's own "
+      "predictions fed back (parallel, RTRL Jacobian)",
+      Rule::one_of({"open_loop", "closed_loop"}));
+  return fields;
+}
+
+std::string to_string(StageMode mode) {
+  return mode == StageMode::open_loop ? "open_loop" : "closed_loop";
+}
+
+std::string read_model_type(const ConfigReader& model) {
+  return choice(model, "type", "mlp", {"mlp", "narx"});
+}
+
+NarxModelSpec read_narx_model(const ConfigReader& model) {
+  NarxModelSpec m;
+  narx_model_fields().read(model, m);
+  model.validate([&] {
+    narx_model_fields().check(m);
+    m.options().validate();
+  });
+  return m;
+}
+
+void emit_narx_model(YAML::Emitter& out, const NarxModelSpec& model) {
+  out << YAML::BeginMap << YAML::Key << "type" << YAML::Value << "narx";
+  narx_model_fields().emit(out, model);
+  out << YAML::EndMap;
+}
+
+namespace {
+
+TrainingStage read_stage(const ConfigReader& s) {
+  std::vector<std::string> allowed = stage_fields().keys();
+  allowed.push_back("type");
+  for (const auto& k : lm_fields().keys()) allowed.push_back(k);
+  for (const auto& key : s.keys()) {
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      std::string list;
+      for (const auto& a : allowed) {
+        if (!list.empty()) list += ", ";
+        list += a;
+      }
+      s.fail(key, "unknown key" + did_you_mean(key, allowed) + "; allowed here: " + list);
+    }
+  }
+  StageHead head;
+  stage_fields().read(s, head);
+  s.validate([&] { stage_fields().check(head); });
+  if (!s.has("type")) s.fail("type", "is required (lm or trainbr)");
+  choice(s, "type", "trainbr", {"lm", "trainbr"});
+  TrainingStage stage;
+  stage.mode = head.mode == "closed_loop" ? StageMode::closed_loop : StageMode::open_loop;
+  stage.trainer = read_trainer(s);
+  return stage;
+}
+
+}  // namespace
+
+std::vector<TrainingStage> read_stages(const ConfigReader& trainer) {
+  const YAML::Node list = trainer.raw("stages");
+  if (!list.IsSequence() || list.size() == 0) {
+    trainer.fail("stages",
+                 "must be a non-empty list of stages, e.g. [{mode: open_loop, type: trainbr}, "
+                 "{mode: closed_loop, type: trainbr}]");
+  }
+  std::vector<TrainingStage> stages;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node item = list[i];
+    if (!item.IsMap()) {
+      trainer.fail("stages", "entry " + std::to_string(i) + " must be a map {mode, type, ...}");
+    }
+    stages.push_back(read_stage(trainer.element("stages", i)));
+  }
+  return stages;
+}
+
+void emit_stages(YAML::Emitter& out, const std::vector<TrainingStage>& stages) {
+  out << YAML::BeginMap << YAML::Key << "stages" << YAML::Value << YAML::BeginSeq;
+  for (const auto& stage : stages) {
+    YAML::Emitter one;
+    emit_trainer(one, stage.trainer);
+    YAML::Node node(YAML::NodeType::Map);
+    node["mode"] = to_string(stage.mode);
+    for (const auto& kv : YAML::Load(one.c_str())) node[kv.first.Scalar()] = kv.second;
+    out << YAML::Flow << node;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+}
+
+std::string stages_text(const std::vector<TrainingStage>& stages) {
+  std::string s;
+  for (const auto& stage : stages) {
+    if (!s.empty()) s += "+";
+    s += to_string(stage.mode) + ":" + trainer_name(stage.trainer);
+  }
+  return s;
+}
+
+}  // namespace cnclab

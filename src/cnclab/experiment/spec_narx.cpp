@@ -1,0 +1,29 @@
+#include "cnclab/experiment/spec_narx.hpp"
+
+namespace cnclab {
+
+void read_narx_experiment(const ConfigReader& root, ExperimentSpec& spec) {
+  if (spec.split.mode != SplitMode::sequential_halves) {
+    root.section("split").fail(
+        "mode",
+        "must be sequential_halves for model.type narx (a time series is not shuffled: "
+        "the first half trains, the second validates)");
+  }
+  if (spec.normalisation.inputs != Scaling::none || spec.normalisation.targets != Scaling::none) {
+    root.section("normalisation")
+        .fail("inputs",
+              "must be none (inputs and targets) for model.type narx: the trial uses "
+              "the dataset's own scaling (following_error: mapminmax by its generator)");
+  }
+  spec.narx = read_narx_model(root.section("model"));
+  const ConfigReader trainer = root.section("trainer");
+  if (trainer.has("type") || !trainer.has("stages")) {
+    trainer.fail("stages",
+                 "model.type narx trains in stages: give trainer.stages, e.g. [{mode: open_loop, "
+                 "type: trainbr, epochs: 150}, {mode: closed_loop, type: trainbr, epochs: 40}], "
+                 "and no trainer.type");
+  }
+  spec.stages = read_stages(trainer);
+}
+
+}  // namespace cnclab

@@ -1,0 +1,104 @@
+// A narx experiment (model.type narx) through the ordinary commands: a
+// sharded sweep merges to the summary of the unsharded one, `compare` shows
+// the differing keys and metric deltas of two narx results, `show` prints one.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
+#include "cnclab/experiment/result_file.hpp"
+#include "common/process.hpp"
+#include "common/temp_dir.hpp"
+
+namespace cnclab {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::slurp;
+using testing::TempDir;
+
+const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+Result sh(const fs::path& dir, const std::string& command) {
+  const std::string line = "cd '" + dir.string() + "' && " + command + " >'" +
+                           (dir / ".out").string() + "' 2>'" + (dir / ".err").string() + "'";
+  const int status = std::system(line.c_str());
+  Result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(dir / ".out");
+  r.err = slurp(dir / ".err");
+  return r;
+}
+
+// Seed 002's experiment shrunk to a short path, 1200 samples, a 3-unit
+// network and 2 + 1 epochs: about a second per trial.
+const std::string kTiny =
+    std::string(CNCLAB_SOURCE_DIR "/experiments/contour_error/narx.yaml") +
+    " dataset.options.path.control_points=12 dataset.options.runs=2 "
+    "dataset.options.samples=1200 model.hidden=3 model.input_delays=2 model.feedback_delays=2 "
+    "'trainer.stages=[{mode: open_loop, type: trainbr, epochs: 2}, "
+    "{mode: closed_loop, type: trainbr, epochs: 1}]' --quiet --data-dir data ";
+
+TEST(NarxCli, ShardedSweepMergesToTheUnshardedSummary) {
+  TempDir dir;
+  const std::string sweep = kCnclab + " sweep " + kTiny + "seed=1,2,3 ";
+  ASSERT_EQ(sh(dir.path(), sweep + "--dir whole").code, 0);
+  for (const char* shard : {"1/2", "2/2"}) {
+    const Result r = sh(dir.path(), sweep + "--dir sharded --shard " + shard);
+    ASSERT_EQ(r.code, 0) << shard << r.err << r.out;
+  }
+  const Result merge = sh(dir.path(), kCnclab + " sweep merge sharded");
+  ASSERT_EQ(merge.code, 0) << merge.err << merge.out;
+  const Result d = sh(dir.path(), "h5diff whole/summary.h5 sharded/summary.h5");
+  EXPECT_EQ(d.code, 0) << d.out << d.err;
+  EXPECT_NE(merge.out.find("3 complete"), std::string::npos) << merge.out;
+}
+
+TEST(NarxCli, CompareShowsDifferingKeysAndMetricDeltasAndShowPrintsOne) {
+  TempDir dir;
+  const Result a = sh(dir.path(), kCnclab + " run " + kTiny + "--out a");
+  const Result b = sh(dir.path(), kCnclab + " run " + kTiny + "--seed 2 --out b");
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  const std::string fa = a.out.substr(0, a.out.find('\n'));
+  const std::string fb = b.out.substr(0, b.out.find('\n'));
+  const RunRecord ra = read_result(dir / fa), rb = read_result(dir / fb);
+  ASSERT_TRUE(ra.narx && rb.narx);
+  const Result csv = sh(dir.path(), kCnclab + " compare " + fa + " " + fb + " --format csv");
+  ASSERT_EQ(csv.code, 0) << csv.err;
+  std::istringstream lines(csv.out);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "kind,key,[1],[2],delta [2]-[1]");
+  std::getline(lines, line);
+  EXPECT_EQ(line, "config,seed,1,2,");  // the only differing key
+  std::size_t metric_rows = 0;
+  while (std::getline(lines, line)) {
+    ASSERT_EQ(line.rfind("metric,", 0), 0u) << line;
+    const std::string name = line.substr(7, line.find(',', 7) - 7);
+    std::vector<double> cells;
+    std::istringstream cs(line.substr(line.find(',', 7) + 1));
+    for (std::string cell; std::getline(cs, cell, ',');) cells.push_back(std::stod(cell));
+    ASSERT_EQ(cells.size(), 3u) << line;
+    EXPECT_EQ(cells[0], ra.metrics.at(name)) << name;
+    EXPECT_EQ(cells[2], rb.metrics.at(name) - ra.metrics.at(name)) << name;
+    ++metric_rows;
+  }
+  EXPECT_EQ(metric_rows, ra.metrics.size());
+  const Result show = sh(dir.path(), kCnclab + " show " + fa);
+  ASSERT_EQ(show.code, 0) << show.err;
+  for (const char* needle : {"model        narx", "open_loop trainbr 2 epochs", "contour_rms",
+                             "closed_loop_rms_x", "mode: sequential_halves"}) {
+    EXPECT_NE(show.out.find(needle), std::string::npos) << needle << "\n" << show.out;
+  }
+}
+
+}  // namespace
+}  // namespace cnclab
