@@ -223,29 +223,6 @@ namespace {
 
 RunRecord read_result_in_process(const std::filesystem::path& path);
 
-std::map<std::string, double> read_metrics(const H5File& f) {
-  std::map<std::string, double> metrics;
-  for (const auto& name : f.attribute_names("/metrics")) {
-    if (name != "units") metrics[name] = f.attribute_double("/metrics", name);
-  }
-  return metrics;
-}
-
-std::vector<UpstreamRef> read_upstream(const H5File& f) {
-  std::vector<UpstreamRef> out;
-  if (!f.exists("/upstream")) return out;
-  const auto experiments = f.read_strings("/upstream/experiments");
-  const auto files = f.read_strings("/upstream/result_files");
-  const auto identities = f.read_strings("/upstream/identities");
-  if (files.size() != experiments.size() || identities.size() != experiments.size()) {
-    throw IoError(f.path().string() + ": /upstream: lists of different lengths");
-  }
-  for (std::size_t i = 0; i < experiments.size(); ++i) {
-    out.push_back({experiments[i], files[i], identities[i]});
-  }
-  return out;
-}
-
 ResultStatus read_status_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
   require_format(f, kResultFormat, kResultFormatVersion);

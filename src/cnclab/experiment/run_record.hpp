@@ -82,11 +82,10 @@ struct RunRecord {
   // Job results only.
   std::vector<OutputRef> outputs;
   std::map<std::string, std::string> facts;  // named text a job reports (selected trial, ...)
-};
 
-// model.type narx: the networks (model, parameters, training and test_*
-// above are then unused).
-std::optional<NarxRecord> narx;
+  // model.type narx: the networks (model, parameters, training and test_*
+  // above are then unused).
+  std::optional<NarxRecord> narx;
 };
 
 }  // namespace cnclab
