@@ -17,8 +17,8 @@ namespace {
 using testing::error_message;
 
 // A short path (12 control points, 1.49 s), 3 runs, 1200 samples kept.
-std::shared_ptr<const DatasetGenerator> small(const std::string& extra = "",
-                                              const std::string& samples = "1200") {
+std::shared_ptr<const DatasetGenerator> small_generator(const std::string& extra = "",
+                                                        const std::string& samples = "1200") {
   const std::string yaml =
       "dataset:\n  generator: following_error\n  options:\n"
       "    path: {control_points: 12}\n    runs: 3\n    samples: " +
@@ -32,7 +32,7 @@ std::shared_ptr<const DatasetGenerator> small(const std::string& extra = "",
 const Dataset& small_dataset() {
   static const Dataset d = [] {
     Rng rng(7);
-    return small()->generate(rng);
+    return small_generator()->generate(rng);
   }();
   return d;
 }
@@ -109,9 +109,9 @@ TEST(FollowingErrorDataset, ColumnsAreConsistent) {
 
 TEST(FollowingErrorDataset, DeterministicWithTheSeed) {
   Rng a(7), b(8);
-  const Dataset again = small()->generate(a);
+  const Dataset again = small_generator()->generate(a);
   EXPECT_EQ(again.content_hash(), small_dataset().content_hash());
-  const Dataset other = small()->generate(b);
+  const Dataset other = small_generator()->generate(b);
   EXPECT_NE(other.content_hash(), small_dataset().content_hash());
 }
 
@@ -136,7 +136,7 @@ TEST(FollowingErrorDataset, NormaliseRejectsNanAndConstantColumns) {
 
 TEST(FollowingErrorDataset, BadOptionsAreConfigErrorsNamingTheKey) {
   auto message = [](const std::string& extra) {
-    return error_message<ConfigError>([&] { small(extra); });
+    return error_message<ConfigError>([&] { small_generator(extra); });
   };
   EXPECT_NE(message("    limits: {velocity: 0}\n").find("limits.velocity"), std::string::npos);
   EXPECT_NE(message("    limits: {jerk: -5}\n").find("jerk"), std::string::npos);
@@ -149,7 +149,8 @@ TEST(FollowingErrorDataset, BadOptionsAreConfigErrorsNamingTheKey) {
 
 TEST(FollowingErrorDataset, TooShortARunSaysWhatToChange) {
   Rng rng(7);
-  const std::string m = error_message<Error>([&] { small("", "100000000")->generate(rng); });
+  const std::string m =
+      error_message<Error>([&] { small_generator("", "100000000")->generate(rng); });
   EXPECT_NE(m.find("raise path.control_points"), std::string::npos) << m;
 }
 

@@ -14,7 +14,7 @@
 namespace cnclab {
 namespace {
 
-const char* kYaml = R"(name: ik_tiny
+const char* kIkYaml = R"(name: ik_tiny
 seed: 8
 dataset: {generator: ik_samples, targets: [C], options: {values_per_input: 3}}
 split: {train_count: 120, test_count: 60}
@@ -29,7 +29,7 @@ TEST(IkRun, OneAxisWithCountSplitAndMinMaxTargets) {
   RunOptions o;
   o.results_dir = dir / "results";
   o.datasets_dir = dir / "datasets";
-  const RunOutcome outcome = run_experiment(parse_experiment(kYaml, "ik_tiny.yaml"), o);
+  const RunOutcome outcome = run_experiment(parse_experiment(kIkYaml, "ik_tiny.yaml"), o);
   ASSERT_TRUE(outcome.ok) << outcome.message;
   const RunRecord r = read_result(outcome.result_file);
   EXPECT_EQ(r.target_names, std::vector<std::string>{"C"});
@@ -94,7 +94,7 @@ TEST(IkRun, UnknownTargetIsAConfigError) {
   RunOptions o;
   o.results_dir = dir / "results";
   o.datasets_dir = dir / "datasets";
-  const auto loaded = parse_experiment(kYaml, "ik_tiny.yaml", {"dataset.targets=[B]"});
+  const auto loaded = parse_experiment(kIkYaml, "ik_tiny.yaml", {"dataset.targets=[B]"});
   EXPECT_THROW(run_experiment(loaded, o), ConfigError);
   EXPECT_FALSE(std::filesystem::exists(dir / "results"));
 }

@@ -17,7 +17,7 @@ namespace {
 
 using testing::TempDir;
 
-const char* kYaml = R"(name: tiny_trainbr
+const char* kLmYaml = R"(name: tiny_trainbr
 seed: 9
 dataset: {generator: friedman1, options: {samples: 150, inputs: 6, noise_std: 1.0}}
 normalisation: {inputs: minmax, targets: minmax}
@@ -45,7 +45,7 @@ TEST(LmRun, TrainbrHistorySatisfiesTheUpdateRulesAndShowSummarisesIt) {
   RunOptions o;
   o.results_dir = dir / "results";
   o.datasets_dir = dir / "datasets";
-  const RunOutcome outcome = run_experiment(parse_experiment(kYaml, "tiny.yaml"), o);
+  const RunOutcome outcome = run_experiment(parse_experiment(kLmYaml, "tiny.yaml"), o);
   ASSERT_TRUE(outcome.ok) << outcome.message;
 
   const hid_t file = H5Fopen(outcome.result_file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);

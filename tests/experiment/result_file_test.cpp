@@ -18,7 +18,7 @@ namespace {
 
 using testing::TempDir;
 
-const char* kYaml = R"(name: tiny
+const char* kResultFileYaml = R"(name: tiny
 seed: 5
 dataset: {generator: friedman1, options: {samples: 120, inputs: 6, noise_std: 0.5}}
 model: {hidden: [8], hidden_activation: tanh, init: {weights: {type: xavier}}}
@@ -54,7 +54,7 @@ class ResultFile : public ::testing::Test {
     RunOptions o;
     o.results_dir = dir_ / "results";
     o.datasets_dir = dir_ / "datasets";
-    outcome_ = run_experiment(parse_experiment(kYaml, "tiny.yaml"), o);
+    outcome_ = run_experiment(parse_experiment(kResultFileYaml, "tiny.yaml"), o);
     ASSERT_TRUE(outcome_.ok) << outcome_.message;
   }
   TempDir dir_;

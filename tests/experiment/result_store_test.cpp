@@ -23,7 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::TempDir;
 
-const char* kYaml = R"(name: tiny
+const char* kStoreYaml = R"(name: tiny
 seed: 5
 dataset: {generator: friedman1, options: {samples: 60, inputs: 5, noise_std: 0.5}}
 model: {hidden: [4], hidden_activation: tanh}
@@ -33,7 +33,7 @@ trainer: {type: sgdm, learning_rate: 0.01, momentum: 0.9, batch_size: 8, epochs:
 class Store : public ::testing::Test {
  protected:
   void SetUp() override {
-    std::ofstream(dir_ / "a.yaml") << kYaml;
+    std::ofstream(dir_ / "a.yaml") << kStoreYaml;
     // The same name and seed, another config: the same folder, another file.
     std::ofstream(dir_ / "b.yaml") << "include: a.yaml\ntrainer: {epochs: 3}\n";
   }

@@ -15,7 +15,6 @@
 namespace cnclab {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kTol = 1e-12;
 
 Eigen::Matrix4d rot(const Eigen::Vector3d& axis, double angle) {
@@ -49,8 +48,12 @@ TEST(DhChain, MultipliesInOrderAndEmptyIsIdentity) {
 
 // Seed 004 Table 1, rows pT1 .. 5Tt: (theta, a, b, alpha) as printed.
 std::vector<DhLink> table1(double x, double y, double z, double a, double c, double d) {
-  return {{kPi / 2, 0, 0, kPi},      {c, d, 0, kPi},           {a, 0, 0, 0},
-          {-kPi / 2, x, 0, kPi / 2}, {kPi / 2, y, 0, kPi / 2}, {kPi, z + d, 0, 0}};
+  return {{std::numbers::pi / 2, 0, 0, std::numbers::pi},
+          {c, d, 0, std::numbers::pi},
+          {a, 0, 0, 0},
+          {-std::numbers::pi / 2, x, 0, std::numbers::pi / 2},
+          {std::numbers::pi / 2, y, 0, std::numbers::pi / 2},
+          {std::numbers::pi, z + d, 0, 0}};
 }
 
 // Multiplied out, Table 1's A and C enter only as (A - C): shifting both by

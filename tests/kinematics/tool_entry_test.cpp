@@ -20,8 +20,6 @@
 namespace cnclab {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 struct Move {
   bool rapid = false;
   Eigen::Vector3d from, to;
@@ -67,7 +65,7 @@ void check_program(const TrochoidGrooveOptions& g, const EntryOptions& e) {
   const ToolEntry entry = trochoid_entry(groove, e, o.cut_z);
   const GcodeProgram program = write_gcode(groove.points, o, entry.points);
   const std::vector<Move> moves = read_moves(program.text);
-  const double tan_ramp = std::tan(e.ramp_angle * kPi / 180);
+  const double tan_ramp = std::tan(e.ramp_angle * std::numbers::pi / 180);
   const double rounding = 1e-3;  // 3 decimals
   int descents = 0;
   for (const Move& m : moves) {
@@ -105,10 +103,10 @@ void check_program(const TrochoidGrooveOptions& g, const EntryOptions& e) {
 
 TEST(ToolEntry, HelicalRampIsTheClosedForm) {
   const Eigen::Vector2d centre(14, 0), start(18, 0);
-  const double alpha = 3 * kPi / 180;
+  const double alpha = 3 * std::numbers::pi / 180;
   const ToolEntry e = helical_entry(centre, start, 1.0, -5.0, alpha, 0.1);
   const double rho = 4.0;
-  EXPECT_NEAR(e.depth_per_revolution, 2 * kPi * rho * std::tan(alpha), 1e-12);
+  EXPECT_NEAR(e.depth_per_revolution, 2 * std::numbers::pi * rho * std::tan(alpha), 1e-12);
   EXPECT_NEAR(e.revolutions, 6.0 / e.depth_per_revolution, 1e-12);
   EXPECT_EQ(e.points.front().z(), 1.0);
   EXPECT_EQ(e.points.back(), Eigen::Vector3d(18, 0, -5));

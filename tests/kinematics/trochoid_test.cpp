@@ -19,15 +19,13 @@
 namespace cnclab {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 TEST(TrochoidGroove, Table2GeometryDerived) {
   const TrochoidGroove g = make_trochoid_groove({});  // Table 2: D 20, W 28, L 120, step 1.5
   EXPECT_DOUBLE_EQ(g.radius, 4.0);                    // (28 - 20) / 2
   EXPECT_DOUBLE_EQ(g.centre_travel, 92.0);            // 120 - 28
   EXPECT_EQ(g.loops, 62u);                            // ceil(92 / 1.5) = ceil(61.33)
   EXPECT_NEAR(g.advance, 92.0 / 62.0, 1e-15);         // 1.4839 mm <= 1.5
-  EXPECT_NEAR(g.speed, g.advance / (2 * kPi), 1e-15);
+  EXPECT_NEAR(g.speed, g.advance / (2 * std::numbers::pi), 1e-15);
   ASSERT_EQ(g.points.size(), (g.loops + 2) * g.samples_per_loop + 1);
   // Starts and ends at angle 0 of the start / end circles.
   EXPECT_NEAR(g.points.front().x(), 14.0 + 4.0, 1e-12);
@@ -60,17 +58,18 @@ TEST(TrochoidGroove, ChordDeviationWithinTolerance) {
   TrochoidGrooveOptions o;
   o.chord_tolerance = 0.01;
   const TrochoidGroove g = make_trochoid_groove(o);
-  const double t_loops = 2 * kPi * static_cast<double>(g.loops);
+  const double t_loops = 2 * std::numbers::pi * static_cast<double>(g.loops);
   for (std::size_t k = 1; k < g.points.size(); ++k) {
     const double tm = 0.5 * (g.t[k - 1] + g.t[k]);
-    const double centre = g.centre_start + g.speed * std::clamp(tm - 2 * kPi, 0.0, t_loops);
+    const double centre =
+        g.centre_start + g.speed * std::clamp(tm - 2 * std::numbers::pi, 0.0, t_loops);
     const Eigen::Vector2d curve(centre + g.radius * std::cos(tm), g.radius * std::sin(tm));
     const Eigen::Vector2d mid = 0.5 * (g.points[k - 1] + g.points[k]);
     ASSERT_LE((curve - mid).norm(), o.chord_tolerance * 1.0001) << k;
   }
   // Within the loops the path is Eq. 6 shifted to the start centre.
   for (std::size_t k = g.samples_per_loop; k < 3 * g.samples_per_loop; ++k) {
-    const Eigen::Vector2d eq6 = trochoid_point(g.radius, g.speed, g.t[k] - 2 * kPi);
+    const Eigen::Vector2d eq6 = trochoid_point(g.radius, g.speed, g.t[k] - 2 * std::numbers::pi);
     ASSERT_NEAR(g.points[k].x(), g.centre_start + eq6.x(), 1e-9);
     ASSERT_NEAR(g.points[k].y(), eq6.y(), 1e-12);
   }
@@ -119,9 +118,9 @@ TEST(Engagement, StraightSlottingIsHalfTheCircle) {
   const auto path = line({0, 0}, {40, 0}, s);
   const auto e = engagement_angles(path, r);
   ASSERT_EQ(e.size(), path.size());
-  EXPECT_NEAR(e[0].angle, 2 * kPi, 1e-12);  // plunge
+  EXPECT_NEAR(e[0].angle, 2 * std::numbers::pi, 1e-12);  // plunge
   for (std::size_t k = 1; k < e.size(); ++k) {
-    ASSERT_NEAR(e[k].angle, kPi + 2 * std::asin(s / (2 * r)), 1e-9) << k;
+    ASSERT_NEAR(e[k].angle, std::numbers::pi + 2 * std::asin(s / (2 * r)), 1e-9) << k;
   }
 }
 
@@ -172,7 +171,7 @@ TEST(Engagement, TrochoidSteadyStateIsBelowSlotting) {
     }
   }
   EXPECT_GT(steady, 0.2);
-  EXPECT_LT(steady, kPi / 2);
+  EXPECT_LT(steady, std::numbers::pi / 2);
 }
 
 // The fit recovers known parameters from points rounded to 4 decimals (as in
@@ -192,7 +191,7 @@ TEST(TrochoidFit, RecoversKnownParametersFromRoundedPoints) {
   EXPECT_NEAR(fit.parameters.omega, truth.omega, 2e-3);
   EXPECT_NEAR(fit.parameters.vx, truth.vx, 2e-2);
   EXPECT_NEAR(fit.parameters.vy, truth.vy, 2e-2);
-  EXPECT_NEAR(advance_per_turn(truth), 2 * kPi * std::hypot(0.25, 0.1) / 1.07, 1e-12);
+  EXPECT_NEAR(advance_per_turn(truth), 2 * std::numbers::pi * std::hypot(0.25, 0.1) / 1.07, 1e-12);
   EXPECT_THROW(fit_trochoid(std::vector<double>{1, 2}, std::vector<Eigen::Vector2d>(2)), Error);
 }
 
@@ -219,7 +218,8 @@ TEST(TrochoidFit, Seed004Table3IsEq6AdvancingAlongY) {
   ASSERT_EQ(t.size(), 12u);
   for (std::size_t i = 0; i < t.size(); ++i) {
     EXPECT_NEAR(pts[i].x(), -4 * std::cos(t[i]), 5.01e-5) << t[i];
-    EXPECT_NEAR(pts[i].y(), -14.75 + t[i] / (2 * kPi) - 4 * std::sin(t[i]), 5.01e-5) << t[i];
+    EXPECT_NEAR(pts[i].y(), -14.75 + t[i] / (2 * std::numbers::pi) - 4 * std::sin(t[i]), 5.01e-5)
+        << t[i];
   }
   const TrochoidFit fit = fit_trochoid(t, pts);
   EXPECT_LT(fit.rms, 1e-4);

@@ -20,7 +20,6 @@
 namespace cnclab {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kPositionTol = 1e-9;      // mm
 constexpr double kOrientationTol = 1e-12;  // rad (unit-vector components)
 
@@ -30,8 +29,8 @@ TttrrOptions test_machine() {
   m.x = {-1000, 1000};
   m.y = {-1000, 1000};
   m.z = {-1000, 1000};
-  m.a = {-kPi / 2, kPi / 2};
-  m.c = {-kPi, kPi};
+  m.a = {-std::numbers::pi / 2, std::numbers::pi / 2};
+  m.c = {-std::numbers::pi, std::numbers::pi};
   return m;
 }
 
@@ -101,9 +100,9 @@ TEST(TttrrInverse, RoundTripOnRandomPosesBothBranches) {
   for (int i = 0; i < kPoses; ++i) {
     ToolPose pose;
     pose.position = {rng.uniform(-150, 150), rng.uniform(-150, 150), rng.uniform(-80, 120)};
-    const double cos_tilt = rng.uniform(std::cos(80.0 * kPi / 180.0), std::cos(1e-6));
+    const double cos_tilt = rng.uniform(std::cos(80.0 * std::numbers::pi / 180.0), std::cos(1e-6));
     const double sin_tilt = std::sqrt(1 - cos_tilt * cos_tilt);
-    const double azimuth = rng.uniform(-kPi, kPi);
+    const double azimuth = rng.uniform(-std::numbers::pi, std::numbers::pi);
     pose.orientation = {sin_tilt * std::cos(azimuth), sin_tilt * std::sin(azimuth), cos_tilt};
     const auto both = m.inverse_both(pose);
     ASSERT_TRUE(both[0] && both[1]);
@@ -136,7 +135,7 @@ TEST(TttrrInverse, RecoversTheJointsThatMadeThePose) {
     // The other branch: A negated, C half a turn away.
     const Joints n = m.inverse(m.forward(q), ABranch::negative);
     ASSERT_NEAR(n.a, -q.a, 1e-12);
-    ASSERT_NEAR(std::remainder(n.c - q.c - kPi, 2 * kPi), 0.0, 1e-12);
+    ASSERT_NEAR(std::remainder(n.c - q.c - std::numbers::pi, 2 * std::numbers::pi), 0.0, 1e-12);
   }
 }
 
@@ -145,11 +144,11 @@ TEST(TttrrInverse, CQuadrantsFollowAtan2) {
   const double s = std::sin(0.5), c = std::cos(0.5);
   // O = (sA sC, sA cC, cA): C = 135 deg has sC > 0, cC < 0 (second quadrant).
   for (double deg : {30.0, 135.0, -45.0, -150.0, 180.0}) {
-    const double cc = deg * kPi / 180;
+    const double cc = deg * std::numbers::pi / 180;
     ToolPose p;
     p.orientation = {s * std::sin(cc), s * std::cos(cc), c};
     const Joints q = m.inverse(p, ABranch::positive);
-    EXPECT_NEAR(std::remainder(q.c - cc, 2 * kPi), 0.0, 1e-12) << deg;
+    EXPECT_NEAR(std::remainder(q.c - cc, 2 * std::numbers::pi), 0.0, 1e-12) << deg;
   }
 }
 
@@ -172,13 +171,14 @@ TEST(TttrrInverse, SingularityKeepsThePreviousOrConfiguredC) {
 
 TEST(TttrrInverse, ChoosesTheTurnOfCClosestToThePrevious) {
   TttrrOptions o = test_machine();
-  o.c = {-4 * kPi, 4 * kPi};
+  o.c = {-4 * std::numbers::pi, 4 * std::numbers::pi};
   const TttrrMachine m(o);
   const Joints q{1, 2, 3, 0.3, 0.2};
   const ToolPose p = m.forward(q);
   EXPECT_NEAR(m.inverse(p, ABranch::positive, 0.0).c, 0.2, 1e-12);
-  EXPECT_NEAR(m.inverse(p, ABranch::positive, 2 * kPi + 0.1).c, 0.2 + 2 * kPi, 1e-12);
-  EXPECT_NEAR(m.inverse(p, ABranch::positive, -5.0).c, 0.2 - 2 * kPi, 1e-12);
+  EXPECT_NEAR(m.inverse(p, ABranch::positive, 2 * std::numbers::pi + 0.1).c,
+              0.2 + 2 * std::numbers::pi, 1e-12);
+  EXPECT_NEAR(m.inverse(p, ABranch::positive, -5.0).c, 0.2 - 2 * std::numbers::pi, 1e-12);
 }
 
 template <class F>
@@ -188,7 +188,7 @@ std::string kinematics_error(F&& f) {
 
 TEST(TttrrInverse, JointLimitsAndBadPosesAreClearErrors) {
   TttrrOptions o = test_machine();
-  o.a = {-kPi / 6, kPi / 2};  // -30 .. 90 deg
+  o.a = {-std::numbers::pi / 6, std::numbers::pi / 2};  // -30 .. 90 deg
   o.x = {-100, 100};
   const TttrrMachine m(o);
   ToolPose tilted;
@@ -255,9 +255,9 @@ TEST(TttrrOptions, ValidateAndReadFromYamlInDegrees) {
       "test.yaml");
   const TttrrOptions o = read_tttrr_options(doc.root().section("machine"));
   EXPECT_EQ(o.offset_d, 42.0);
-  EXPECT_NEAR(o.a.min, -kPi / 6, 1e-15);
-  EXPECT_NEAR(o.c.max, 2 * kPi, 1e-15);
-  EXPECT_NEAR(o.c_at_singularity, kPi / 2, 1e-15);
+  EXPECT_NEAR(o.a.min, -std::numbers::pi / 6, 1e-15);
+  EXPECT_NEAR(o.c.max, 2 * std::numbers::pi, 1e-15);
+  EXPECT_NEAR(o.c_at_singularity, std::numbers::pi / 2, 1e-15);
   EXPECT_EQ(o.x.max, 10.0);
   // The YAML form reads back to the same options.
   const ConfigDocument again = ConfigDocument::parse(tttrr_options_yaml(o), "again.yaml");

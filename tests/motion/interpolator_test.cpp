@@ -19,7 +19,7 @@ namespace {
 
 // Issue 17: the limits hold within 0.5 % on the 1 ms reference (the planner
 // refines its grid where they would not, feedrate_planner.hpp).
-constexpr double kLimitTolerance = 0.005;
+constexpr double kInterpolatorLimitTolerance = 0.005;
 
 using testing::difference_peaks;
 using testing::DifferencePeaks;
@@ -35,9 +35,9 @@ TEST(Interpolator, NumericalDerivativesRespectEveryLimit) {
                 name, peaks.v[0], peaks.v[1], peaks.a[0], peaks.a[1], peaks.j[0], peaks.j[1],
                 static_cast<long>(r.samples()));
     for (int i = 0; i < 2; ++i) {
-      EXPECT_LE(peaks.v[i], limits.axes[i].velocity * (1 + kLimitTolerance));
-      EXPECT_LE(peaks.a[i], limits.axes[i].acceleration * (1 + kLimitTolerance));
-      EXPECT_LE(peaks.j[i], limits.axes[i].jerk * (1 + kLimitTolerance));
+      EXPECT_LE(peaks.v[i], limits.axes[i].velocity * (1 + kInterpolatorLimitTolerance));
+      EXPECT_LE(peaks.a[i], limits.axes[i].acceleration * (1 + kInterpolatorLimitTolerance));
+      EXPECT_LE(peaks.j[i], limits.axes[i].jerk * (1 + kInterpolatorLimitTolerance));
     }
     // Ends: starts and stops at the path's ends.
     EXPECT_LT((r.position.row(0).transpose() - path->evaluate(path->u_begin()).position).norm(),
@@ -77,9 +77,9 @@ TEST(Interpolator, DifferentLimitsPerAxis) {
               peaks.v[1], peaks.a[0], peaks.a[1], peaks.j[0], peaks.j[1]);
   for (int i = 0; i < 2; ++i) {
     const AxisLimits& L = options.limits.axes[i];
-    EXPECT_LE(peaks.v[i], L.velocity * (1 + kLimitTolerance));
-    EXPECT_LE(peaks.a[i], L.acceleration * (1 + kLimitTolerance));
-    EXPECT_LE(peaks.j[i], L.jerk * (1 + kLimitTolerance));
+    EXPECT_LE(peaks.v[i], L.velocity * (1 + kInterpolatorLimitTolerance));
+    EXPECT_LE(peaks.a[i], L.acceleration * (1 + kInterpolatorLimitTolerance));
+    EXPECT_LE(peaks.j[i], L.jerk * (1 + kInterpolatorLimitTolerance));
   }
   // The y limits bind somewhere (within 5 %), so the test is not vacuous.
   EXPECT_GT(std::max({peaks.v[1] / 150.0, peaks.a[1] / 1000.0, peaks.j[1] / 25000.0}), 0.95);

@@ -11,7 +11,7 @@ namespace cnclab {
 namespace {
 
 // Central differences, h = 1e-6 on O(1) values: error ~1e-10 (see mlp_test).
-constexpr double kFdStep = 1e-6;
+constexpr double kJacobianFdStep = 1e-6;
 constexpr double kJacTol = 1e-6;
 
 struct Case {
@@ -41,9 +41,10 @@ void check_jacobian(const Case& c, std::uint64_t seed) {
   EXPECT_TRUE(y.isApprox(mlp.predict(p, x), 1e-14));
   for (Eigen::Index k = 0; k < p.size(); ++k) {
     Eigen::VectorXd plus = p, minus = p;
-    plus[k] += kFdStep;
-    minus[k] -= kFdStep;
-    const Eigen::MatrixXd fd = (mlp.predict(plus, x) - mlp.predict(minus, x)) / (2 * kFdStep);
+    plus[k] += kJacobianFdStep;
+    minus[k] -= kJacobianFdStep;
+    const Eigen::MatrixXd fd =
+        (mlp.predict(plus, x) - mlp.predict(minus, x)) / (2 * kJacobianFdStep);
     for (Eigen::Index s = 0; s < batch; ++s) {
       for (Eigen::Index j = 0; j < n_out; ++j) {
         ASSERT_NEAR(jac(s * n_out + j, k), fd(j, s), kJacTol * std::max(1.0, std::abs(fd(j, s))))

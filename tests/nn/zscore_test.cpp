@@ -7,7 +7,7 @@
 namespace cnclab {
 namespace {
 
-constexpr double kTol = 1e-12;
+constexpr double kZscoreTol = 1e-12;
 
 TEST(ZScore, TrainingDataGetsMeanZeroAndSampleStdOne) {
   Eigen::MatrixXd x(2, 5);
@@ -15,14 +15,14 @@ TEST(ZScore, TrainingDataGetsMeanZeroAndSampleStdOne) {
   ZScoreNormaliser z;
   z.fit(x);
   // Hand values: feature 0 mean 4, sample variance (9+4+1+0+36)/4 = 12.5.
-  EXPECT_NEAR(z.mean()(0), 4.0, kTol);
-  EXPECT_NEAR(z.std()(0), std::sqrt(12.5), kTol);
+  EXPECT_NEAR(z.mean()(0), 4.0, kZscoreTol);
+  EXPECT_NEAR(z.std()(0), std::sqrt(12.5), kZscoreTol);
   const Eigen::MatrixXd t = z.transform(x);
   for (Eigen::Index i = 0; i < 2; ++i) {
-    EXPECT_NEAR(t.row(i).mean(), 0.0, kTol);
-    EXPECT_NEAR(std::sqrt(t.row(i).array().square().sum() / 4.0), 1.0, kTol);
+    EXPECT_NEAR(t.row(i).mean(), 0.0, kZscoreTol);
+    EXPECT_NEAR(std::sqrt(t.row(i).array().square().sum() / 4.0), 1.0, kZscoreTol);
   }
-  EXPECT_TRUE(z.inverse_transform(t).isApprox(x, kTol));
+  EXPECT_TRUE(z.inverse_transform(t).isApprox(x, kZscoreTol));
 }
 
 TEST(ZScore, ConstantFeatureMapsToZeroAndIsReported) {

@@ -25,7 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kExperiment = R"(name: ik_tiny
+const char* kIkExperiment = R"(name: ik_tiny
 seed: 8
 dataset: {generator: ik_samples, targets: [X], options: {values_per_input: 3}}
 split: {train_count: 120, test_count: 60}
@@ -54,7 +54,7 @@ sweep:
 class SweepJobTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    write("ik_tiny.yaml", kExperiment);
+    write("ik_tiny.yaml", kIkExperiment);
     write("search.yaml", kJob);
     options_.results_dir = dir_ / "results";
     options_.datasets_dir = dir_ / "datasets";

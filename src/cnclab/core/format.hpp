@@ -1,6 +1,8 @@
 #pragma once
 // Text forms of numbers that configs, dataset files and messages share.
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace cnclab {
 
@@ -11,5 +13,8 @@ std::string shortest_double(double x);
 
 // printf's %.<decimals>f: fixed_decimals(-4.00004, 3) -> "-4.000".
 std::string fixed_decimals(double x, int decimals);
+
+// The items separated by `sep`: join({"a", "b"}, ", ") -> "a, b".
+std::string join(const std::vector<std::string>& items, std::string_view sep);
 
 }  // namespace cnclab

@@ -6,6 +6,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/resources.hpp"
+#include "cnclab/core/units.hpp"
 #include "cnclab/motion/contour_error.hpp"
 #include "cnclab/motion/interpolator.hpp"
 #include "cnclab/motion/smoothing_spline.hpp"
@@ -13,7 +14,6 @@
 namespace cnclab {
 namespace {
 
-constexpr double kUmPerMm = 1000.0;
 constexpr const char* kAxis[2] = {"x", "y"};
 
 const std::vector<std::string> kMetadata = {"time",

@@ -72,6 +72,11 @@ struct FollowingErrorRanges {
 Eigen::VectorXd normalise_minmax(const Eigen::VectorXd& x, const std::string& what,
                                  ColumnRange* range = nullptr);
 
+// physical = min + (y + 1) (max - min) / 2, the inverse of normalise_minmax.
+inline double to_physical(double y, const ColumnRange& r) {
+  return r.min + (y + 1.0) * 0.5 * (r.max - r.min);
+}
+
 // `progress` (optional) hears of the planning windows, the simulated runs
 // and the contour errors.
 Dataset generate_following_error_dataset(const FollowingErrorOptions& options, Rng& rng,

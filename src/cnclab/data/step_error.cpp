@@ -3,13 +3,13 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/resources.hpp"
+#include "cnclab/core/units.hpp"
 #include "cnclab/geometry/surface_config.hpp"
 
 namespace cnclab {
 
 namespace {
 // Micrometres per millimetre: targets are reported in µm (DESIGN.md "Units").
-constexpr double kUmPerMm = 1000.0;
 }  // namespace
 
 void StepErrorDatasetOptions::validate() const {

@@ -10,14 +10,14 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-std::vector<JobKind>& registry() {
+std::vector<JobKind>& job_kind_registry() {
   static std::vector<JobKind> kinds;
   return kinds;
 }
 
 std::string known_kinds() {
   std::string s = "train";
-  for (const auto& k : registry()) s += ", " + k.kind;
+  for (const auto& k : job_kind_registry()) s += ", " + k.kind;
   return s;
 }
 
@@ -27,15 +27,15 @@ void register_job_kind(JobKind kind) {
   if (kind.kind == "train" || find_job_kind(kind.kind)) {
     throw std::logic_error("job kind '" + kind.kind + "' registered twice");
   }
-  registry().push_back(std::move(kind));
+  job_kind_registry().push_back(std::move(kind));
 }
 
 const std::vector<JobKind>& registered_job_kinds() {
-  return registry();
+  return job_kind_registry();
 }
 
 std::optional<JobKind> find_job_kind(const std::string& kind) {
-  for (const auto& k : registry()) {
+  for (const auto& k : job_kind_registry()) {
     if (k.kind == kind) return k;
   }
   return std::nullopt;

@@ -6,10 +6,12 @@
 #include <iomanip>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
 #include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_narx.hpp"
 #include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/eigen_std.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
 #include "cnclab/io/isolated_read.hpp"
@@ -18,19 +20,6 @@
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
-
-std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
-  return s;
-}
-
-std::vector<double> to_std(const Eigen::VectorXd& v) {
-  return {v.data(), v.data() + v.size()};
-}
-Eigen::VectorXd to_eigen(const std::vector<double>& v) {
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
-}
 
 void write_scaling(H5File& f, const std::string& g, const ScalingRecord& s,
                    const std::string& units) {
@@ -408,7 +397,7 @@ void print_result(const RunRecord& r, std::ostream& out) {
   }
   out << "metrics      ("
       << (r.narx ? "validation part, closed loop; units: the metric's own (sequence_metrics.hpp)"
-                 : "test split, " + join(r.target_units))
+                 : "test split, " + join(r.target_units, ", "))
       << (normalised ? "; normalised_*: the network's scaled units" : "") << ")\n";
   for (const auto& [name, value] : r.metrics) {
     out << "  " << std::left << std::setw(static_cast<int>(width)) << name << format_metric(value)

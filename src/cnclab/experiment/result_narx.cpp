@@ -5,20 +5,11 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/io/eigen_std.hpp"
 #include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace {
-
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
-  return s;
-}
-
-std::vector<double> to_std(const Eigen::VectorXd& v) {
-  return {v.data(), v.data() + v.size()};
-}
 
 void write_stage(H5File& f, const std::string& g, const NarxStageRecord& st) {
   const Summary& s = st.summary;
@@ -117,8 +108,8 @@ void write_narx_sections(H5File& f, const RunRecord& r) {
       write_stage(f, g + "/stage" + std::to_string(k), net.stages[k]);
     }
   }
-  f.write_matrix("/validation/predictions", n.predictions, join(r.target_units));
-  f.write_matrix("/validation/targets", n.targets, join(r.target_units));
+  f.write_matrix("/validation/predictions", n.predictions, join(r.target_units, ","));
+  f.write_matrix("/validation/targets", n.targets, join(r.target_units, ","));
   f.set_attribute("/validation", "first_step", static_cast<std::int64_t>(n.first_step));
 }
 

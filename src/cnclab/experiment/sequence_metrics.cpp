@@ -6,7 +6,7 @@
 namespace cnclab {
 namespace {
 
-std::vector<SequenceMetricGroup>& registry() {
+std::vector<SequenceMetricGroup>& sequence_metric_groups() {
   static std::vector<SequenceMetricGroup> groups;
   return groups;
 }
@@ -20,19 +20,20 @@ void register_sequence_metrics(SequenceMetricGroup group) {
       throw std::logic_error("sequence metric '" + name + "' registered twice");
     }
   }
-  registry().push_back(std::move(group));
+  sequence_metric_groups().push_back(std::move(group));
 }
 
 std::vector<std::string> sequence_metric_names() {
   std::vector<std::string> names;
-  for (const auto& g : registry()) names.insert(names.end(), g.metrics.begin(), g.metrics.end());
+  for (const auto& g : sequence_metric_groups())
+    names.insert(names.end(), g.metrics.begin(), g.metrics.end());
   return names;
 }
 
 std::map<std::string, double> sequence_metrics(const SequencePrediction& prediction,
                                                const std::vector<std::string>& wanted) {
   std::map<std::string, double> out;
-  for (const auto& g : registry()) {
+  for (const auto& g : sequence_metric_groups()) {
     const bool used = std::any_of(g.metrics.begin(), g.metrics.end(), [&](const std::string& m) {
       return std::find(wanted.begin(), wanted.end(), m) != wanted.end();
     });

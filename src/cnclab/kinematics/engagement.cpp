@@ -12,16 +12,16 @@
 namespace cnclab {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr double kFullCircle = 2.0 * std::numbers::pi;
 constexpr double kSamePosition = 1e-12;  // mm: closer centres count as the same position
 
 // Measure of the union of arcs [a, b] given with a in [0, 2 pi), b - a <= 2 pi.
 double union_measure(std::vector<std::pair<double, double>>& arcs) {
   std::vector<std::pair<double, double>> flat;
   for (const auto& [a, b] : arcs) {
-    if (b > kTwoPi) {
-      flat.emplace_back(a, kTwoPi);
-      flat.emplace_back(0.0, b - kTwoPi);
+    if (b > kFullCircle) {
+      flat.emplace_back(a, kFullCircle);
+      flat.emplace_back(0.0, b - kFullCircle);
     } else {
       flat.emplace_back(a, b);
     }
@@ -38,7 +38,7 @@ double union_measure(std::vector<std::pair<double, double>>& arcs) {
     }
   }
   if (hi > lo) total += hi - lo;
-  return std::min(total, kTwoPi);
+  return std::min(total, kFullCircle);
 }
 
 }  // namespace
@@ -81,12 +81,12 @@ std::vector<EngagementSample> engagement_angles(std::span<const Eigen::Vector2d>
             if (d >= 2 * radius) continue;
             const double h = std::acos(d / (2 * radius));
             double a = std::atan2(v.y(), v.x()) - h;
-            while (a < 0) a += kTwoPi;
+            while (a < 0) a += kFullCircle;
             arcs.emplace_back(a, a + 2 * h);
           }
         }
       }
-      out.push_back({k, repeated ? 0.0 : kTwoPi - union_measure(arcs)});
+      out.push_back({k, repeated ? 0.0 : kFullCircle - union_measure(arcs)});
     }
     cells[{cx, cy}].push_back(k);
   }

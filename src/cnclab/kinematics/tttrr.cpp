@@ -6,12 +6,10 @@
 #include <numbers>
 
 #include "cnclab/core/format.hpp"
+#include "cnclab/core/units.hpp"
 
 namespace cnclab {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = 180.0 / kPi;
 
 void check_range(const JointRange& r, const char* name) {
   if (!std::isfinite(r.min) || !std::isfinite(r.max) || !(r.min < r.max)) {
@@ -29,7 +27,7 @@ std::string num(double v) {
 }
 
 std::string range_text(const JointRange& r, bool angle) {
-  const double f = angle ? kDeg : 1.0;
+  const double f = angle ? kDegPerRad : 1.0;
   std::string text = "[";
   text += num(r.min * f);
   text += ", ";
@@ -48,7 +46,7 @@ void TttrrOptions::validate() const {
   check_range(z, "z");
   check_range(a, "a");
   check_range(c, "c");
-  if (a.min < -kPi || a.max > kPi) {
+  if (a.min < -std::numbers::pi || a.max > std::numbers::pi) {
     throw OptionError("limits.a", range_text(a, true), "must lie inside [-180, 180] deg");
   }
   if (!(singular_tolerance > 0 && singular_tolerance < 1e-3)) {
@@ -85,7 +83,7 @@ ToolPose TttrrMachine::forward(const Joints& q) const {
 void TttrrMachine::check_limits(const Joints& q) const {
   const auto check = [](double v, const JointRange& r, const char* axis, bool angle) {
     if (!r.contains(v)) {
-      const double f = angle ? kDeg : 1.0;
+      const double f = angle ? kDegPerRad : 1.0;
       throw KinematicsError(std::string("joint limit: ") + axis + " = " + num(v * f) +
                             (angle ? " deg" : " mm") + " is outside its travel " +
                             range_text(r, angle));
@@ -125,7 +123,7 @@ Joints TttrrMachine::inverse(const ToolPose& pose, ABranch branch,
   double best = c;
   bool found = false;
   for (int k = -3; k <= 3; ++k) {
-    const double candidate = c + 2.0 * kPi * k;
+    const double candidate = c + 2.0 * std::numbers::pi * k;
     if (!options_.c.contains(candidate)) continue;
     if (!found || std::abs(candidate - reference) < std::abs(best - reference)) best = candidate;
     found = true;
@@ -166,8 +164,8 @@ std::vector<DhLink> TttrrMachine::dh_links(const Joints& q) const {
   const double d = options_.offset_d;
   return {{-q.c, -d, 0.0, -q.a},
           {0.0, 0.0, q.x, 0.0},
-          {kPi / 2, 0.0, q.y, 0.0},
-          {-kPi / 2, q.z + d, 0.0, 0.0}};
+          {std::numbers::pi / 2, 0.0, q.y, 0.0},
+          {-std::numbers::pi / 2, q.z + d, 0.0, 0.0}};
 }
 
 Eigen::Matrix<double, 6, 5> TttrrMachine::jacobian(const Joints& q) const {

@@ -33,21 +33,21 @@ void print_table_sources(std::ostream& out, TableFormat format,
 }
 
 namespace {
-std::vector<TableEntry>& registry() {
+std::vector<TableEntry>& table_registry() {
   static std::vector<TableEntry> tables;
   return tables;
 }
 }  // namespace
 
 void register_table(TableEntry entry) {
-  for (const auto& t : registry()) {
+  for (const auto& t : table_registry()) {
     if (t.name == entry.name) throw std::logic_error("table '" + entry.name + "' registered twice");
   }
-  registry().push_back(std::move(entry));
+  table_registry().push_back(std::move(entry));
 }
 
 const std::vector<TableEntry>& registered_tables() {
-  return registry();
+  return table_registry();
 }
 
 int tables_command(const std::string& name, const TablesOptions& options, std::ostream& out) {

@@ -16,7 +16,7 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMissingCell = std::numeric_limits<double>::quiet_NaN();
 
 // The result of experiments/contour_error/<file>: the one of the file's
 // resolved config, else (a profile such as quick changes the config) the
@@ -48,7 +48,7 @@ NarxStudyResult load_study(const TablesOptions& o, const std::string& file) {
 }
 
 struct Stats {
-  double mean = kNaN, std = kNaN, max = kNaN;
+  double mean = kMissingCell, std = kMissingCell, max = kMissingCell;
   std::size_t n = 0;
 };
 Stats stats(const std::vector<double>& v) {
@@ -235,7 +235,7 @@ void print_predictor(const NarxStudyResult& r, const ConfigReader& ref, TableFor
       s.n ? *std::min_element(
                 rms.begin(), rms.end(),
                 [](double a, double b) { return std::isfinite(a) && (!std::isfinite(b) || a < b); })
-          : kNaN;
+          : kMissingCell;
   // Predicting zero following error predicts zero contour error: its RMS is
   // the exact contour error's RMS.
   t.rows.push_back({"two_stage, " + std::to_string(s.n) + " stable", mean_std(s),

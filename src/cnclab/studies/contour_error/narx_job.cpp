@@ -85,11 +85,6 @@ std::string resolved_yaml(const NarxJob& job, std::uint64_t dataset_seed) {
   return std::string(out.c_str()) + "\n";
 }
 
-// physical = min + (y + 1) (max - min) / 2, the inverse of mapminmax.
-double to_physical(double y, const ColumnRange& r) {
-  return r.min + (y + 1.0) * 0.5 * (r.max - r.min);
-}
-
 struct Prepared {
   Dataset data;
   FollowingErrorRanges ranges;

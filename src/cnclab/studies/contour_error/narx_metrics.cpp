@@ -14,14 +14,9 @@
 namespace cnclab {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 const char* const kAxes[] = {"x", "y"};
 const char* const kEstimates[] = {"taylor", "tangent", "osculating"};
-
-// physical = min + (y + 1) (max - min) / 2, the inverse of mapminmax.
-double to_physical(double y, const ColumnRange& r) {
-  return r.min + (y + 1.0) * 0.5 * (r.max - r.min);
-}
 
 int axis_index(const std::string& axis) {
   return axis == "x" ? 0 : axis == "y" ? 1 : -1;
@@ -91,8 +86,8 @@ bool axis_metrics(const SequencePrediction& p, std::size_t a, const ColumnRange&
     mx = std::max(mx, std::abs(diff));
   }
   out["closed_loop_rms_" + p.axes[a]] =
-      stable ? std::sqrt(sq / static_cast<double>(m - first)) : kNaN;
-  out["closed_loop_max_" + p.axes[a]] = stable ? mx : kNaN;
+      stable ? std::sqrt(sq / static_cast<double>(m - first)) : kNoValue;
+  out["closed_loop_max_" + p.axes[a]] = stable ? mx : kNoValue;
   return stable;
 }
 
@@ -128,7 +123,7 @@ std::map<std::string, double> compute(const SequencePrediction& p) {
     throw Error("contour_error metrics need a following_error dataset");
   }
   std::map<std::string, double> out;
-  for (const auto& name : metric_names()) out[name] = kNaN;
+  for (const auto& name : metric_names()) out[name] = kNoValue;
   dataset_metrics(p, out);
   const FollowingErrorRanges ranges = following_error_ranges(*p.data);
   std::vector<Eigen::VectorXd> um(2);

@@ -11,6 +11,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/core/units.hpp"
 #include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
@@ -22,9 +23,6 @@
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = 180.0 / kPi;
 
 EntryOptions read_entry(const ConfigReader& r) {
   EntryOptions e;
@@ -41,7 +39,7 @@ std::string entry_report(const TrochoidJob& job, const TrochoidOutcome& res) {
   std::ostringstream out;
   const ToolEntry& e = res.entry;
   const std::string depth = shortest_double(job.program.cut_z);
-  const std::string engaged = fixed_decimals(res.ramp_engagement_rad * kDeg, 1) + " deg";
+  const std::string engaged = fixed_decimals(res.ramp_engagement_rad * kDegPerRad, 1) + " deg";
   if (e.mode == EntryMode::helix) {
     out << "  entry: helical ramp at " << shortest_double(job.entry.ramp_angle)
         << " deg about the start circle (R " << shortest_double(res.groove.radius) << " mm), "
@@ -203,7 +201,7 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
       std::max(1.0, std::round(job.report.engagement_every / job.report.engagement_spacing)));
   const double tool_radius = job.groove.cutter_diameter / 2;
   const auto engagement = engagement_angles(dense, tool_radius, stride);
-  const double t_loops_end = 2 * kPi * static_cast<double>(g.loops + 1);
+  const double t_loops_end = 2 * std::numbers::pi * static_cast<double>(g.loops + 1);
   double steady_sum = 0;
   std::size_t steady_n = 0;
   for (const auto& e : engagement) {
@@ -214,7 +212,7 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
       continue;
     }
     const double t = g.t[i - entry_n];
-    if (t <= 2 * kPi + 1e-12) {
+    if (t <= 2 * std::numbers::pi + 1e-12) {
       res.entry_engagement_rad = std::max(res.entry_engagement_rad, e.angle);
     } else if (t <= t_loops_end + 1e-12) {
       res.max_engagement_rad = std::max(res.max_engagement_rad, e.angle);
@@ -251,17 +249,18 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
       << shortest_double(job.report.engagement_spacing) << " mm, evaluated every "
       << shortest_double(job.report.engagement_every) << " mm)\n"
       << entry_report(job, res) << "  start circle (after the entry):  max "
-      << fixed_decimals(res.entry_engagement_rad * kDeg, 1) << " deg\n"
+      << fixed_decimals(res.entry_engagement_rad * kDegPerRad, 1) << " deg\n"
       << "  trochoidal loops:                max "
-      << fixed_decimals(res.max_engagement_rad * kDeg, 1) << " deg, mean "
-      << fixed_decimals(steady_n ? steady_sum / static_cast<double>(steady_n) * kDeg : 0, 1)
+      << fixed_decimals(res.max_engagement_rad * kDegPerRad, 1) << " deg, mean "
+      << fixed_decimals(steady_n ? steady_sum / static_cast<double>(steady_n) * kDegPerRad : 0, 1)
       << " deg\n"
       << "  end circle:                      max "
-      << fixed_decimals(res.exit_engagement_rad * kDeg, 1) << " deg\n"
+      << fixed_decimals(res.exit_engagement_rad * kDegPerRad, 1) << " deg\n"
       << "  plain slotting, same cutter:     180 deg (pi + 2 asin(s / D) -> 180 deg as the "
          "resampling s -> 0)\n"
       << "  (resampling overestimates by at most 2 asin(s / D) = "
-      << fixed_decimals(2 * std::asin(job.report.engagement_spacing / o.cutter_diameter) * kDeg, 2)
+      << fixed_decimals(
+             2 * std::asin(job.report.engagement_spacing / o.cutter_diameter) * kDegPerRad, 2)
       << " deg)\n";
   if (job.report.compare_with) compare_with_table3(*job.report.compare_with, g.radius, out);
   res.report = out.str();
@@ -292,10 +291,10 @@ TrochoidFiles write_trochoid_outputs(const TrochoidJob& job, const fs::path& res
                  {"loops", static_cast<double>(o.groove.loops)},
                  {"radius_mm", o.groove.radius},
                  {"advance_mm", o.groove.advance},
-                 {"max_engagement_deg", o.max_engagement_rad * kDeg},
-                 {"ramp_engagement_deg", o.ramp_engagement_rad * kDeg},
-                 {"start_circle_engagement_deg", o.entry_engagement_rad * kDeg},
-                 {"exit_engagement_deg", o.exit_engagement_rad * kDeg}};
+                 {"max_engagement_deg", o.max_engagement_rad * kDegPerRad},
+                 {"ramp_engagement_deg", o.ramp_engagement_rad * kDegPerRad},
+                 {"start_circle_engagement_deg", o.entry_engagement_rad * kDegPerRad},
+                 {"exit_engagement_deg", o.exit_engagement_rad * kDegPerRad}};
   rec.provenance.end_utc = utc_now_iso8601();
   rec.provenance.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -10,15 +10,13 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/core/units.hpp"
 #include "cnclab/kinematics/gcode.hpp"
 #include "cnclab/kinematics/trochoid_fit.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = 180.0 / kPi;
 
 // RMS of the rounding error of a point given to 4 decimals in x and y:
 // sqrt(2) * 1e-4 / sqrt(12) (uniform rounding error per coordinate).
@@ -72,7 +70,7 @@ std::vector<Table3Row> read_table3(const fs::path& file) {
 std::string parameters_text(const TrochoidParameters& p) {
   // Shown in (-180, 180].
   const double phase_deg =
-      p.phase * kDeg <= -180.0 + 1e-9 ? p.phase * kDeg + 360.0 : p.phase * kDeg;
+      p.phase * kDegPerRad <= -180.0 + 1e-9 ? p.phase * kDegPerRad + 360.0 : p.phase * kDegPerRad;
   return "x0 " + fixed_decimals(p.x0, 4) + " mm, y0 " + fixed_decimals(p.y0, 4) + " mm, V (" +
          fixed_decimals(p.vx, 5) + ", " + fixed_decimals(p.vy, 5) + ") mm/unit t, R " +
          fixed_decimals(p.radius, 4) + " mm, w " + fixed_decimals(p.omega, 5) +
@@ -101,12 +99,13 @@ void compare_with_table3(const fs::path& file, double our_radius, std::ostream& 
   round.y0 = std::round(free_fit.parameters.y0 * 100) / 100;
   round.radius = std::round(free_fit.parameters.radius * 100) / 100;
   round.omega = std::round(free_fit.parameters.omega * 100) / 100;
-  round.phase = std::round(free_fit.parameters.phase / (kPi / 4)) * (kPi / 4);
+  round.phase =
+      std::round(free_fit.parameters.phase / (std::numbers::pi / 4)) * (std::numbers::pi / 4);
   const double advance = std::round(advance_per_turn(free_fit.parameters) * 100) / 100;
   const double direction = std::atan2(free_fit.parameters.vy, free_fit.parameters.vx);
-  const double quarter = std::round(direction / (kPi / 2)) * (kPi / 2);
-  round.vx = advance * round.omega / (2 * kPi) * std::cos(quarter);
-  round.vy = advance * round.omega / (2 * kPi) * std::sin(quarter);
+  const double quarter = std::round(direction / (std::numbers::pi / 2)) * (std::numbers::pi / 2);
+  round.vx = advance * round.omega / (2 * std::numbers::pi) * std::cos(quarter);
+  round.vy = advance * round.omega / (2 * std::numbers::pi) * std::sin(quarter);
   double round_max = 0;
   for (std::size_t i = 0; i < t.size(); ++i) {
     const Eigen::Vector2d m = trochoid_model(round, t[i]);

@@ -8,14 +8,6 @@
 
 namespace cnclab {
 namespace fs = std::filesystem;
-namespace {
-
-std::string um(double v) {
-  return table_number(v, 3);
-}
-
-}  // namespace
-
 void print_step_error_table8(const StepErrorStudy& s, const TablesOptions& o, std::ostream& out) {
   const fs::path job_file = o.experiments_dir / "step_error" / "table8_timing.yaml";
   StepErrorTimingResult timing;
@@ -95,10 +87,11 @@ void print_step_error_table8(const StepErrorStudy& s, const TablesOptions& o, st
            table_number(s.ref.table8_proposed.at("surface3")) +
            " s; 'network total' adds computing the 73 inputs from the tool path, the same start "
            "as the geometric methods.",
-       "Accuracy against the exact value: iterative max |e| " + um(t2.iterative_max_error_um) +
-           " / " + um(t3.iterative_max_error_um) + " µm, network max |e| " +
-           um(t2.network_max_error_um) + " / " + um(t3.network_max_error_um) +
-           " µm (surface 2 / 3)."});
+       "Accuracy against the exact value: iterative max |e| " +
+           table_number(t2.iterative_max_error_um, 3) + " / " +
+           table_number(t3.iterative_max_error_um, 3) + " µm, network max |e| " +
+           table_number(t2.network_max_error_um, 3) + " / " +
+           table_number(t3.network_max_error_um, 3) + " µm (surface 2 / 3)."});
   print_table_sources(out, format, {s.reference_file, timing_file});
 }
 

@@ -11,6 +11,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/core/units.hpp"
 #include "cnclab/data/step_error.hpp"
 #include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -23,7 +24,6 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kUmPerMm = 1000.0;
 // The exact method must reproduce the dataset's targets (it made them; only
 // summation order could differ) and the network the result's predictions.
 constexpr double kReproduceTolUm = 1e-6;
