@@ -2,11 +2,20 @@
 """Figures like seed 002's Figs. 4, 5, 8-11, 13 and 14 from the NARX study.
 
 Usage: /usr/bin/python3 scripts/figures/contour_error.py [RESULTS_DIR]
+(scripts/figures/run calls it from the repository root, against which a
+relative dataset path in a result file is resolved).
 
-Reads the newest complete result of experiments/contour_error/training_methods.yaml
-(RESULTS_DIR/contour_error_training_methods/*.h5, written by `cnclab reproduce`),
-its validation series (first run: two-stage, seed 1) and the dataset it names,
-and writes PNGs to RESULTS_DIR/figures/contour_error/ (each written to a
+Reads the sweep of experiments/contour_error/training_methods.yaml
+(RESULTS_DIR/contour_error_training_methods/sweep-<plan hash>/, written by
+`cnclab reproduce`): of the sweep folders whose planned trials (sweep.yaml)
+have all finished (a result file, or an .error note for a trial that stopped
+on an error), the one finished last; in it the complete trial trained
+in two stages (trainer.stages: open_loop, then closed_loop) with seed 1 (else
+the first complete two-stage trial), its closed-loop validation prediction
+and the dataset file it names. The contour error is predicted from that with
+the Taylor estimate the C++ metric uses (studies/contour_error/narx_metrics.cpp),
+and its RMS against the exact one is checked against the trial's contour_rms
+metric. Writes PNGs to RESULTS_DIR/figures/contour_error/ (each written to a
 temporary name, then renamed).
 """
 import argparse
@@ -16,23 +25,243 @@ import sys
 
 import h5py
 import matplotlib
+import yaml
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+STUDY = "contour_error_training_methods"
+MAKE = "cnclab reproduce experiments/contour_error/training_methods.yaml"
+# The trial drawn: two-stage training with this weight-initialisation seed.
+PREFERRED_SEED = 1
+# Our contour RMS against the trial's contour_rms metric, relative.
+CONTOUR_RMS_RTOL = 1e-9
+# |prediction| above this (normalised units) counts as unstable, as the C++
+# metrics' kStableBound (studies/contour_error/narx_metrics.hpp).
+STABLE_BOUND = 10.0
 
-def newest_result(results):
-    files = [f for f in glob.glob(os.path.join(results, "contour_error_training_methods", "*.h5"))
-             if not os.path.basename(f).startswith(".")]
-    for f in sorted(files, key=os.path.getmtime, reverse=True):
-        with h5py.File(f, "r") as h:
-            if h.attrs.get("complete", 0) == 1:
-                return f
-    # Exit 3: inputs missing (scripts/figures/run skips the figure with this note).
-    print(f"contour_error.py: no complete result under {results}/contour_error_training_methods;"
-          " run `cnclab reproduce experiments/contour_error` first", file=sys.stderr)
-    sys.exit(3)
+
+class Missing(Exception):
+    """Inputs not there (yet): exit 3, scripts/figures/run skips the figures."""
+
+
+def text(value):
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def finished(path):
+    """A trial's result file is finished when its root attribute complete is 1
+    (written last, result_file.hpp); its status is then complete or failed."""
+    try:
+        with h5py.File(path, "r") as h:
+            return int(h.attrs.get("complete", 0)) == 1
+    except OSError:
+        return False
+
+
+def sweep_trials(sweep_dir):
+    """The trial result files sweep.yaml plans, and how many of them are still
+    open: neither a finished result file nor an .error note (a trial that
+    stopped on an error, sweep_plan.hpp's trial_error_path)."""
+    with open(os.path.join(sweep_dir, "sweep.yaml")) as f:
+        plan = yaml.safe_load(f) or {}
+    paths = [os.path.join(sweep_dir, "trials", f"{t['id']}.h5") for t in plan.get("trials") or []]
+    open_trials = sum(1 for p in paths
+                      if not finished(p) and not os.path.exists(p[:-len(".h5")] + ".error"))
+    return paths, open_trials
+
+
+def newest_sweep(results):
+    """The study's sweep-* folder whose planned trials all finished, the most
+    recently finished one (newest trial file) when there are several, and
+    its finished trial files."""
+    root = os.path.join(results, STUDY)
+    done, notes = [], []
+    for d in glob.glob(os.path.join(root, "sweep-*")):
+        if not os.path.exists(os.path.join(d, "sweep.yaml")):
+            continue
+        paths, open_trials = sweep_trials(d)
+        if open_trials or not paths:
+            notes.append(f"{os.path.basename(d)}: {open_trials} of {len(paths)} trials unfinished")
+            continue
+        finished_paths = [p for p in paths if os.path.exists(p)]
+        done.append((max(os.path.getmtime(p) for p in finished_paths or [d]), d, finished_paths))
+    if not done:
+        raise Missing(f"no finished sweep under {root}/sweep-*"
+                      + (f" ({'; '.join(sorted(notes))})" if notes else ""))
+    _, d, paths = max(done)
+    return d, paths
+
+
+def two_stage_seed(path):
+    """(is two-stage, seed) of a complete trial, from its resolved config."""
+    with h5py.File(path, "r") as h:
+        if text(h.attrs.get("status", "")) != "complete":
+            return False, None
+        config = yaml.safe_load(resolved_yaml(h)) or {}
+    modes = [s.get("mode") for s in (config.get("trainer") or {}).get("stages") or []]
+    return modes == ["open_loop", "closed_loop"], config.get("seed")
+
+
+def resolved_yaml(h):
+    """The trial's resolved config: the string dataset /config."""
+    if "config" not in h:
+        raise Missing(f"{h.filename}: no /config (not a cnclab result file?)")
+    return text(h["config"][()])
+
+
+def pick_trial(trials):
+    """Two-stage with seed PREFERRED_SEED, else the first two-stage trial."""
+    two_stage = []
+    for path in trials:
+        is_two_stage, seed = two_stage_seed(path)
+        if is_two_stage:
+            if seed == PREFERRED_SEED:
+                return path
+            two_stage.append(path)
+    if not two_stage:
+        raise Missing("no complete two-stage trial (trainer.stages open_loop, closed_loop)")
+    return two_stage[0]
+
+
+def read_trial(path):
+    """A narx result's validation part (result_narx.hpp): predictions and
+    targets (steps x networks, the dataset's normalised target units), the
+    number of leading measured steps, the network axes, the split and metrics."""
+    with h5py.File(path, "r") as h:
+        trial = {
+            "file": path,
+            "axes": [text(a) for a in h["model/networks"][()]],
+            "predictions": h["validation/predictions"][()],
+            "targets": h["validation/targets"][()],
+            "first_step": int(h["validation"].attrs["first_step"]),
+            "train": h["split/train"][()],
+            "validation": h["split/validation"][()],
+            "dataset": text(h["dataset"].attrs["file"]),
+            "metrics": {k: float(v) for k, v in h["metrics"].attrs.items() if k != "units"},
+        }
+    # The runner predicts the tail after the training half (sequential halves).
+    half, steps = len(trial["train"]), trial["predictions"].shape[0]
+    if not np.array_equal(trial["validation"], np.arange(half, half + steps)):
+        sys.exit(f"contour_error.py: {path}: /split/validation is not the {steps} samples "
+                 f"after the {half} training samples (split.mode sequential_halves expected)")
+    trial["half"] = half
+    return trial
+
+
+def read_metadata(dataset_file, trial_file):
+    """The dataset's metadata columns (physical units, data/following_error.hpp)."""
+    if not os.path.exists(dataset_file):
+        raise Missing(f"{trial_file} names the dataset {dataset_file}, which is not there "
+                      f"(relative paths are taken from {os.getcwd()})")
+    with h5py.File(dataset_file, "r") as d:
+        names = [text(n) for n in d["metadata_names"][()]]
+        return {n: d["metadata"][:, i] for i, n in enumerate(names)}
+
+
+def to_physical(y, column):
+    """Inverse mapminmax (following_error.hpp): min + (y + 1) (max - min) / 2,
+    the range being [min, max] of the physical column over the whole run."""
+    lo, hi = float(np.min(column)), float(np.max(column))
+    return lo + (y + 1.0) * 0.5 * (hi - lo)
+
+
+def taylor_contour_error(ref, d1, d2, actual):
+    """Signed eps_c of seed 002's Taylor estimate (Eqs. 3-6: Eq. 3 with c and
+    c^ of Eq. 4), per row, as motion/contour_error.cpp's taylor_contour_error
+    computes it (motion/contour_error.hpp says why Eq. 4's denominator is |c|
+    and Eq. 3's is 1 + kappa (c.n), not the printed forms):
+      t = C'/|C'|, kappa = |C' x C''| / |C'|^3, n = +-left normal of t
+      towards the turn (the sign of C' x C''), e = R - P, c = e - (e.t) t,
+      c^ = c/|c| (n where c = 0),
+      eps_c = -c^.e - (1/2) kappa (c^.n) (e.t)^2 / (1 + kappa (c.n)).
+    ref, d1, d2, actual: (steps, 2) arrays in mm."""
+    speed = np.linalg.norm(d1, axis=1)
+    tangent = d1 / speed[:, None]
+    z = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    kappa = np.abs(z) / speed**3
+    left = np.stack([-tangent[:, 1], tangent[:, 0]], axis=1)
+    normal = np.where((z < 0)[:, None], -left, left)
+    e = ref - actual
+    et = np.sum(e * tangent, axis=1)
+    c = e - et[:, None] * tangent
+    c_norm = np.linalg.norm(c, axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        c_hat = np.where((c_norm > 0)[:, None], c / c_norm[:, None], normal)
+    c_hat_n = np.sum(c_hat * normal, axis=1)
+    c_n = np.sum(c * normal, axis=1)
+    return -np.sum(c_hat * e, axis=1) - 0.5 * kappa * c_hat_n * et**2 / (1.0 + kappa * c_n)
+
+
+def validation_series(trial, meta):
+    """The validation half as the figures draw it, in µm: time, e_<axis>
+    (measured), e_hat_<axis> (closed-loop prediction), contour_exact and
+    contour_hat (Taylor estimate from the predictions; NaN on the leading
+    measured steps and when a network's closed loop is unstable), plus the
+    contour RMS of contour_hat - contour_exact over the predicted steps as
+    narx_metrics.cpp's contour_rms (NaN when unstable)."""
+    half, first = trial["half"], trial["first_step"]
+    steps = trial["predictions"].shape[0]
+    k = slice(half, half + steps)
+    series = {"time": meta["time"][k], "contour_exact": meta["contour_exact"][k]}
+    stable = True
+    for a, axis in enumerate(trial["axes"]):
+        y = trial["predictions"][:, a]
+        tail = y[first:]
+        stable = stable and bool(np.all(np.isfinite(tail)) and np.all(np.abs(tail) <= STABLE_BOUND))
+        series["e_" + axis] = to_physical(trial["targets"][:, a], meta["e_ref_" + axis])
+        series["e_hat_" + axis] = to_physical(y, meta["e_ref_" + axis])
+    contour_hat = np.full(steps, np.nan)
+    rms = float("nan")
+    if stable and {"x", "y"} <= set(trial["axes"]):
+        def xy(prefix):
+            return np.stack([meta[prefix + "x"][k], meta[prefix + "y"][k]], axis=1)
+
+        ref = xy("ref_")
+        e_mm = np.stack([series["e_hat_x"], series["e_hat_y"]], axis=1) / 1000.0
+        # P = R - e as the C++ metric forms it (then e = R - P again inside).
+        eps = taylor_contour_error(ref, xy("d1_"), xy("d2_"), ref - e_mm)
+        contour_hat[first:] = np.abs(eps[first:]) * 1000.0
+        diff = contour_hat[first:] - series["contour_exact"][first:]
+        rms = float(np.sqrt(np.mean(diff**2)))
+    series["contour_hat"] = contour_hat
+    return series, rms
+
+
+def check_contour_rms(trial, rms):
+    """Our contour RMS against the trial's own metric: the two computations
+    of one formula must agree, else the figures would not show the trial."""
+    theirs = trial["metrics"].get("contour_rms", float("nan"))
+    if np.isnan(rms) and np.isnan(theirs):
+        print("contour_rms check: both NaN (a closed loop was unstable)")
+        return
+    rel = abs(rms - theirs) / abs(theirs) if theirs else abs(rms - theirs)
+    print(f"contour_rms check: computed {rms:.12g} µm, trial {theirs:.12g} µm, "
+          f"relative difference {rel:.3g} (tolerance {CONTOUR_RMS_RTOL:g})")
+    if not rel <= CONTOUR_RMS_RTOL:
+        sys.exit(f"contour_error.py: {trial['file']}: predicted contour RMS {rms!r} µm differs "
+                 f"from the trial's contour_rms {theirs!r} µm by {rel:.3g} relative; the Taylor "
+                 "estimate here no longer matches studies/contour_error/narx_metrics.cpp")
+
+
+def load(results):
+    """The trial to draw, its series and the dataset metadata; exit 3 with a
+    note naming the command that makes them when they are missing."""
+    try:
+        sweep_dir, trials = newest_sweep(results)
+        trial = read_trial(pick_trial(trials))
+        meta = read_metadata(trial["dataset"], trial["file"])
+    except Missing as e:
+        # Exit 3: inputs missing (scripts/figures/run skips the figure with this note).
+        print(f"contour_error.py: {e}; run `{MAKE}` (with --out {results}) first",
+              file=sys.stderr)
+        sys.exit(3)
+    print(f"contour_error.py: sweep {sweep_dir}, trial {trial['file']}, "
+          f"dataset {trial['dataset']}")
+    series, rms = validation_series(trial, meta)
+    check_contour_rms(trial, rms)
+    return series, meta
 
 
 def save(fig, out_dir, name):
@@ -49,18 +278,9 @@ def main():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("results", nargs="?", default="results", help="results folder")
     results = parser.parse_args().results
+    series, meta = load(results)
     out_dir = os.path.join(results, "figures", "contour_error")
     os.makedirs(out_dir, exist_ok=True)
-    result = newest_result(results)
-    with h5py.File(result, "r") as h:
-        names = [n.decode() for n in h["series_names"][()]]
-        series = {n: h["series"][:, i] for i, n in enumerate(names)}
-        dataset_file = h["dataset"].attrs["file"]
-        if isinstance(dataset_file, bytes):
-            dataset_file = dataset_file.decode()
-    with h5py.File(dataset_file, "r") as d:
-        meta_names = [n.decode() for n in d["metadata_names"][()]]
-        meta = {n: d["metadata"][:, i] for i, n in enumerate(meta_names)}
 
     # Fig. 4: the random NURBS tool path (reference positions).
     fig, ax = plt.subplots(figsize=(6, 6))

@@ -13,7 +13,7 @@ namespace cnclab {
 void register_builtins() {
   register_five_axis_study();           // kind gcode, table ik
   register_job_kind(sweep_job_kind());  // kind sweep
-  register_contour_error_study();       // kind narx, table contour-error
+  register_contour_error_study();       // narx sequence metrics, table contour-error
   register_step_error_study();          // kind step_error_timing, table step-error
 }
 

@@ -123,10 +123,15 @@ int main(int argc, char** argv) {
   std::vector<std::string> sweep_words;
   auto* sweep = app.add_subcommand(
       "sweep", "Run many trials of an experiment (grid or random search, repeats), in parallel");
-  sweep->add_option("experiment", experiment, "Experiment YAML file")->check(CLI::ExistingFile);
+  sweep
+      ->add_option("experiment", experiment,
+                   "Experiment YAML file, or a kind: sweep file (its experiment, overrides and "
+                   "sweep block; trials go to <out>/<its name>/sweep-<plan hash>)")
+      ->check(CLI::ExistingFile);
   sweep->add_option("parameters", sweep_words,
                     "key=value overrides and swept keys: key=v1,v2,...  key=choice(a,b)  "
-                    "key=int_range(lo,hi[,step])  key=uniform(lo,hi)  key=log_uniform(lo,hi)");
+                    "key=int_range(lo,hi[,step])  key=uniform(lo,hi)  key=log_uniform(lo,hi); "
+                    "k1+k2=v1,v2 sets both keys to each value");
   sweep
       ->add_option("--jobs,-j", sweep_options.jobs,
                    "Trials at once (default: the number of cores this process may use)")
@@ -170,6 +175,8 @@ int main(int argc, char** argv) {
       "model.dropout.keep_probability=0.8,0.9,1.0 trainer.epochs=50 --repeats 3\n"
       "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
       "'trainer.learning_rate=log_uniform(1e-4,1e-1)' --trials 20 --objective rmse:min\n"
+      "  cnclab sweep experiments/contour_error/architecture.yaml --shard 1/2   # a kind: sweep "
+      "file\n"
       "Re-running the same command resumes: trials with a result are skipped.\n"
       "Exit codes: 0 all trials complete, 1 some failed, 2 bad sweep, 128+N interrupted by "
       "signal N.");

@@ -6,10 +6,12 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/report/sweep_report.hpp"
+#include "cnclab/sweep/sweep_job.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 #include "cnclab/sweep/sweep_summary.hpp"
 #include "cnclab/sweep/trial_pool.hpp"
@@ -18,9 +20,37 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-SweepSpec resolve_spec(const fs::path& experiment, const SweepArguments& args,
-                       const SweepCommandOptions& o) {
-  SweepSpec spec = read_sweep_block(experiment, args.overrides, o.common.profile);
+// What `cnclab sweep FILE` sweeps: FILE (a training experiment and its
+// optional `sweep:` block), or for a `kind: sweep` job file the experiment it
+// names, with the job's overrides and sweep block, into the job's folder
+// results/<job name>/sweep-<plan hash> (so `reproduce` finds the trials).
+struct SweepTarget {
+  fs::path experiment;
+  std::vector<std::string> overrides;  // the job's, then the command line's
+  SweepSpec spec;                      // before the command line's changes
+  std::string folder;                  // results/<folder>/; empty: the plan's experiment
+  std::size_t jobs = 0;
+};
+
+SweepTarget sweep_target(const fs::path& file, const SweepArguments& args,
+                         const SweepCommandOptions& o) {
+  SweepTarget t;
+  if (experiment_kind(file) == "sweep") {
+    const SweepJob job = load_sweep_job(file, {}, o.common.profile);
+    t.experiment = job.experiment;
+    t.overrides = job.overrides;
+    t.spec = job.sweep;
+    t.folder = job.name;
+    t.jobs = job.jobs;
+  } else {
+    t.experiment = file;
+    t.spec = read_sweep_block(file, args.overrides, o.common.profile);
+  }
+  t.overrides.insert(t.overrides.end(), args.overrides.begin(), args.overrides.end());
+  return t;
+}
+
+SweepSpec resolve_spec(SweepSpec spec, const SweepArguments& args, const SweepCommandOptions& o) {
   // A plain command-line value fixes a key the block sweeps.
   for (const auto& text : args.overrides) {
     const std::string key = parse_override(text).dotted_key();
@@ -50,18 +80,19 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
                   std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
                   std::ostream& out, std::ostream& log) {
   const SweepArguments args = split_sweep_arguments(words);
-  const SweepSpec spec = resolve_spec(experiment, args, o);
+  const SweepTarget target = sweep_target(experiment, args, o);
+  const SweepSpec spec = resolve_spec(target.spec, args, o);
   SweepExecuteOptions exec;
   exec.common = o.common;
-  exec.jobs = o.jobs;
+  exec.jobs = o.jobs != 0 ? o.jobs : target.jobs;
   exec.trial_timeout = o.trial_timeout;
   exec.retry_failed = o.retry_failed;
   if (!o.shard.empty()) std::tie(exec.shard, exec.shards) = parse_shard(o.shard);
   const std::size_t shard = exec.shard, shards = exec.shards;
-  SweepPlan plan = plan_sweep(experiment, args.overrides, seed, spec, o.common.profile);
+  SweepPlan plan = plan_sweep(target.experiment, target.overrides, seed, spec, o.common.profile);
+  const std::string folder = target.folder.empty() ? plan.experiment : target.folder;
   const fs::path dir =
-      o.dir.empty() ? o.common.results_dir / plan.experiment / ("sweep-" + plan.hash().substr(0, 8))
-                    : o.dir;
+      o.dir.empty() ? o.common.results_dir / folder / ("sweep-" + plan.hash().substr(0, 8)) : o.dir;
   store_plan(dir, plan);
   clean_stale_partials({o.common.results_dir, dir, o.common.datasets_dir}, log);
 

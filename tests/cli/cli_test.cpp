@@ -14,23 +14,16 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/process.hpp"
+
 namespace {
 namespace fs = std::filesystem;
 
 const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
 const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using Result = cnclab::testing::ShellResult;
+using cnclab::testing::slurp;
 
 class Cli : public ::testing::Test {
  protected:
@@ -45,18 +38,7 @@ class Cli : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // Runs a shell command line in dir_ with stdout/stderr captured.
-  Result sh(const std::string& command) const {
-    const std::string line = "cd '" + dir_.string() + "' && " + command + " >'" +
-                             (dir_ / ".out").string() + "' 2>'" + (dir_ / ".err").string() + "'";
-    const int status = std::system(line.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir_ / ".out");
-    r.err = slurp(dir_ / ".err");
-    fs::remove(dir_ / ".out");
-    fs::remove(dir_ / ".err");
-    return r;
-  }
+  Result sh(const std::string& command) const { return cnclab::testing::run_shell(dir_, command); }
   Result cnclab(const std::string& args) const { return sh(kCnclab + " " + args); }
   fs::path write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;

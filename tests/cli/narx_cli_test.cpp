@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -16,25 +17,14 @@ namespace cnclab {
 namespace {
 
 namespace fs = std::filesystem;
-using testing::slurp;
 using testing::TempDir;
 
 const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
+using Result = testing::ShellResult;
 
 Result sh(const fs::path& dir, const std::string& command) {
-  const std::string line = "cd '" + dir.string() + "' && " + command + " >'" +
-                           (dir / ".out").string() + "' 2>'" + (dir / ".err").string() + "'";
-  const int status = std::system(line.c_str());
-  Result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(dir / ".out");
-  r.err = slurp(dir / ".err");
-  return r;
+  return testing::run_shell(dir, command);
 }
 
 // Seed 002's experiment shrunk to a short path, 1200 samples, a 3-unit
@@ -59,6 +49,29 @@ TEST(NarxCli, ShardedSweepMergesToTheUnshardedSummary) {
   const Result d = sh(dir.path(), "h5diff whole/summary.h5 sharded/summary.h5");
   EXPECT_EQ(d.code, 0) << d.out << d.err;
   EXPECT_NE(merge.out.find("3 complete"), std::string::npos) << merge.out;
+}
+
+// A `kind: sweep` file (the form of experiments/contour_error/architecture.yaml,
+// with a linked key) through `cnclab sweep`: its grid, in the job's folder,
+// where `reproduce` of the same file then finds every trial done.
+TEST(NarxCli, SweepOfAKindSweepFileFillsTheJobsFolder) {
+  TempDir dir;
+  std::ofstream(dir.path() / "arch.yaml")
+      << "kind: sweep\nname: arch\nexperiment: " CNCLAB_SOURCE_DIR
+         "/experiments/contour_error/narx.yaml\n"
+         "overrides: [dataset.options.path.control_points=12, dataset.options.runs=2,\n"
+         "            dataset.options.samples=1200, model.hidden=3,\n"
+         "            'trainer.stages=[{mode: open_loop, type: trainbr, epochs: 2}]']\n"
+         "sweep:\n  method: grid\n  objective: {metric: contour_rms, mode: min}\n"
+         "  parameters:\n    model.input_delays+model.feedback_delays: [1, 2]\n";
+  const Result r = sh(dir.path(), kCnclab + " sweep arch.yaml --quiet --data-dir data --shard 1/1");
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("2 complete"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("results/arch/sweep-"), std::string::npos) << r.out;
+  const Result again = sh(dir.path(), kCnclab + " reproduce arch.yaml --data-dir data");
+  ASSERT_EQ(again.code, 0) << again.err << again.out;
+  EXPECT_NE(again.out.find("every trial has a result"), std::string::npos) << again.out;
+  EXPECT_NE(again.out.find("results/arch/sweep-"), std::string::npos) << again.out;
 }
 
 TEST(NarxCli, CompareShowsDifferingKeysAndMetricDeltasAndShowPrintsOne) {

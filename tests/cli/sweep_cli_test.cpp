@@ -33,21 +33,10 @@ using testing::TempDir;
 const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
 const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
+using Result = testing::ShellResult;
 
-// Runs a shell command line in `dir`, capturing stdout and stderr.
 Result sh(const fs::path& dir, const std::string& command) {
-  const std::string line = "cd '" + dir.string() + "' && " + command + " >'" +
-                           (dir / ".out").string() + "' 2>'" + (dir / ".err").string() + "'";
-  const int status = std::system(line.c_str());
-  Result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(dir / ".out");
-  r.err = slurp(dir / ".err");
-  return r;
+  return testing::run_shell(dir, command);
 }
 
 // Small, fast trials: 3 keep probabilities x 2 learning rates.

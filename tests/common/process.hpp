@@ -1,12 +1,14 @@
 #pragma once
 // Child processes for end-to-end tests: spawn a program with its output
-// discarded, wait for it, read a file whole.
+// discarded, wait for it, read a file whole, run a shell command line with
+// its output captured.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -49,6 +51,27 @@ inline std::string slurp(const std::filesystem::path& p) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+struct ShellResult {
+  int code = -1;  // exit code; -1 when the shell did not exit normally
+  std::string out, err;
+};
+
+// Runs `command` with /bin/sh in `dir`, stdout and stderr captured (through
+// dir/.out and dir/.err, removed afterwards).
+inline ShellResult run_shell(const std::filesystem::path& dir, const std::string& command) {
+  const std::filesystem::path out = dir / ".out", err = dir / ".err";
+  const std::string line = "cd '" + dir.string() + "' && " + command + " >'" + out.string() +
+                           "' 2>'" + err.string() + "'";
+  const int status = std::system(line.c_str());
+  ShellResult r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
 }
 
 }  // namespace cnclab::testing

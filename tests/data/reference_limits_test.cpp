@@ -41,7 +41,7 @@ void expect_within_limits(const DifferencePeaks& p, const PlanarLimits& limits, 
 }
 
 // The generator's path construction and planner options (the study's:
-// configs/studies/contour_error.yaml uses the defaults), a shorter walk. The
+// configs/datasets/following_error_seed002.yaml uses the defaults), a shorter walk. The
 // seed is one whose unrefined plan exceeds the jerk limit between nodes
 // (the assertion on the summary below keeps the test from going vacuous).
 TEST(ReferenceLimits, RandomNurbsPathHoldsEveryLimitByDifferences) {
@@ -66,7 +66,7 @@ TEST(ReferenceLimits, RandomNurbsPathHoldsEveryLimitByDifferences) {
 
 // The generator's own output: its ref_x, ref_y columns (the 1 ms reference
 // positions), with the study's quick profile path (40 control points,
-// experiments/contour_error/architecture.yaml) and seed, the whole run kept.
+// experiments/contour_error/narx.yaml) and seed, the whole run kept.
 TEST(ReferenceLimits, FollowingErrorDatasetReferenceHoldsEveryLimit) {
   const ConfigDocument doc = ConfigDocument::parse(
       "dataset:\n  generator: following_error\n  options:\n"

@@ -90,6 +90,28 @@ SweepSpec spec_of(std::initializer_list<std::pair<std::string, std::string>> par
 
 const std::vector<std::string> kFast = {"trainer.epochs=2", "dataset.options.samples=50"};
 
+// Linked keys (k1+k2): one parameter, each value set on every key; a plain
+// value on the command line is an override of each key.
+TEST(SweepPlan, LinkedKeysSetEveryKeyToTheSameValue) {
+  const SweepSpec s = spec_of({{"trainer.learning_rate+trainer.momentum", "0.1,0.2,0.3"}});
+  const SweepPlan plan = plan_sweep(kExperiment, kFast, std::nullopt, s);
+  ASSERT_EQ(plan.trials.size(), 3u);  // a grid of 3 points, not 9
+  EXPECT_EQ(plan.keys, std::vector<std::string>{"trainer.learning_rate+trainer.momentum"});
+  for (const auto& t : plan.trials) {
+    const auto& sgdm = std::get<SgdmOptions>(t.experiment->spec.trainer);
+    EXPECT_EQ(sgdm.learning_rate, std::stod(t.values[0]));
+    EXPECT_EQ(sgdm.momentum, std::stod(t.values[0]));
+  }
+  EXPECT_EQ(linked_keys("a.b+c.d+e"), (std::vector<std::string>{"a.b", "c.d", "e"}));
+  const SweepArguments one = split_sweep_arguments({"trainer.learning_rate+trainer.momentum=0.5"});
+  EXPECT_TRUE(one.parameters.empty());
+  EXPECT_EQ(one.overrides,
+            (std::vector<std::string>{"trainer.learning_rate=0.5", "trainer.momentum=0.5"}));
+  EXPECT_NE(
+      config_error([&] { parse_sweep_values("trainer.learning_rate+", "1,2"); }).find("empty"),
+      std::string::npos);
+}
+
 TEST(SweepPlan, GridIsTheCartesianProductTimesRepeats) {
   SweepSpec s = spec_of(
       {{"model.dropout.keep_probability", "0.5,0.75,1.0"}, {"trainer.learning_rate", "1e-3,1e-2"}});

@@ -1,6 +1,6 @@
 #pragma once
 // Experiment files that are not training runs: `kind: <name>` jobs (G-code,
-// timing studies, NARX studies, searches...). Each kind is one entry here;
+// timing studies, sweeps, searches...). Each kind is one entry here;
 // `cnclab run` and `cnclab validate` dispatch on it, and `cnclab reproduce`
 // runs every job after the training graph (so the training results a job
 // reads exist by then), in file order. Adding a kind: write its loader and

@@ -4,7 +4,6 @@
 #include <ostream>
 
 #include "cnclab/core/error.hpp"
-#include "cnclab/core/hash.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -103,12 +102,7 @@ std::optional<UpstreamResult> upstream_results(const ExperimentSpec& spec, const
 RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOptions& options) {
   const ExperimentSpec& spec = experiment.spec;
   const auto wall_start = std::chrono::steady_clock::now();
-  RunRecord rec;
-  rec.experiment = spec.name;
-  rec.resolved_yaml = experiment.resolved_yaml;
-  rec.config_hash = hash_hex(experiment.resolved_yaml);
-  rec.provenance = make_provenance(spec.seed);
-  rec.provenance.derived_seeds["generator"] = generator_seed(spec);
+  RunRecord rec = start_run_record(experiment);
   const std::optional<UpstreamResult> init = upstream_results(spec, options, rec);
 
   const CachedDataset cached =

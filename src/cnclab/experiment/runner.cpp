@@ -69,18 +69,23 @@ CachedDataset obtain_run_dataset(const ExperimentSpec& spec, std::uint64_t seed,
                         options.regenerate_dataset, generation.callback());
 }
 
+RunRecord start_run_record(const LoadedExperiment& experiment) {
+  RunRecord rec;
+  rec.experiment = experiment.spec.name;
+  rec.resolved_yaml = experiment.resolved_yaml;
+  rec.config_hash = hash_hex(experiment.resolved_yaml);
+  rec.provenance = make_provenance(experiment.spec.seed);
+  rec.provenance.derived_seeds["generator"] = generator_seed(experiment.spec);
+  return rec;
+}
+
 RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& options) {
   if (experiment.spec.narx) return run_narx_experiment(experiment, options);
   const ExperimentSpec& spec = experiment.spec;
   const auto wall_start = std::chrono::steady_clock::now();
-  RunRecord rec;
-  rec.experiment = spec.name;
-  rec.resolved_yaml = experiment.resolved_yaml;
-  rec.config_hash = hash_hex(experiment.resolved_yaml);
-  rec.provenance = make_provenance(spec.seed);
+  RunRecord rec = start_run_record(experiment);
   for (const char* stream : kStreams)
     rec.provenance.derived_seeds[stream] = derive_seed(spec.seed, stream);
-  rec.provenance.derived_seeds["generator"] = generator_seed(spec);
 
   check_run_memory(spec);
 

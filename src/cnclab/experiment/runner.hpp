@@ -9,6 +9,7 @@
 #include "cnclab/core/progress.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/result_store.hpp"  // result_path: where a run writes
+#include "cnclab/experiment/run_record.hpp"
 #include "cnclab/experiment/spec.hpp"
 
 namespace cnclab {
@@ -35,6 +36,10 @@ struct RunOutcome {
 // Runs one experiment. Bad configuration or I/O problems throw; a run whose
 // training diverges is a failed result (written, ok = false), not an error.
 RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& options);
+
+// A new run's record: name, resolved config and its hash, provenance with
+// the master seed and the dataset generator's derived seed.
+RunRecord start_run_record(const LoadedExperiment& experiment);
 
 // The run's dataset with generator seed `seed`, generated (with progress on
 // options.log) or read from the cache (data/dataset_cache.hpp).

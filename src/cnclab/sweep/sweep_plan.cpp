@@ -136,7 +136,9 @@ SweepPlan plan_sweep(const fs::path& file, const std::vector<std::string>& overr
     std::vector<Override> trial_overrides = base_overrides;
     std::vector<std::string> values;
     for (std::size_t k = 0; k < point.size(); ++k) {
-      trial_overrides.push_back(override_of(plan.keys[k], point[k]));
+      for (const auto& key : linked_keys(plan.keys[k])) {
+        trial_overrides.push_back(override_of(key, point[k]));
+      }
       values.push_back(node_text(point[k]));
     }
     const auto load = [&](std::optional<std::uint64_t> trial_seed) {

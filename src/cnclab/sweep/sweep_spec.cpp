@@ -141,8 +141,9 @@ std::optional<SweepParameter> parse_values(const std::string& key, const std::st
   return p;
 }
 
+// Each linked key follows the override key grammar.
 void check_key(const std::string& key) {
-  parse_override(key + "=0");  // the override key grammar
+  for (const auto& k : linked_keys(key)) parse_override(k + "=0");
 }
 
 YAML::Node scalar(const std::string& text) {
@@ -150,6 +151,17 @@ YAML::Node scalar(const std::string& text) {
 }
 
 }  // namespace
+
+std::vector<std::string> linked_keys(const std::string& key) {
+  std::vector<std::string> keys;
+  std::size_t start = 0;
+  for (std::size_t plus = key.find('+'); plus != std::string::npos; plus = key.find('+', start)) {
+    keys.push_back(key.substr(start, plus - start));
+    start = plus + 1;
+  }
+  keys.push_back(key.substr(start));
+  return keys;
+}
 
 std::vector<YAML::Node> SweepParameter::enumerate() const {
   if (kind == Kind::values) return values;
@@ -253,11 +265,12 @@ SweepArguments split_sweep_arguments(const std::vector<std::string>& words) {
     if (eq == std::string::npos) {
       throw ConfigError("sweep argument '" + word + "': expected key=value or key=v1,v2,...");
     }
-    auto p = parse_sweep_values(word.substr(0, eq), word.substr(eq + 1));
+    const std::string key = word.substr(0, eq);
+    auto p = parse_sweep_values(key, word.substr(eq + 1));
     if (p) {
       out.parameters.push_back(std::move(*p));
-    } else {
-      out.overrides.push_back(word);
+    } else {  // one value: a plain override of each linked key
+      for (const auto& k : linked_keys(key)) out.overrides.push_back(k + word.substr(eq));
     }
   }
   return out;

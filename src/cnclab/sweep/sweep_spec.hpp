@@ -15,6 +15,10 @@
 // (a plain override). Quote a string that holds a top-level comma:
 // `description='a, b'`. In the YAML block a YAML list gives the values
 // directly: `model.hidden: [[28, 20], [32, 16]]`.
+//
+// Linked keys: `model.input_delays+model.feedback_delays=2,4,6` is one
+// parameter whose value sets every key joined by '+' (seed 002 varies "input
+// and feedback delays" together), so a grid has 3 points, not 9.
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
@@ -27,9 +31,12 @@
 
 namespace cnclab {
 
+// "a.b+c.d" -> {"a.b", "c.d"}; a plain key -> {key}.
+std::vector<std::string> linked_keys(const std::string& key);
+
 struct SweepParameter {
   enum class Kind { values, int_range, uniform, log_uniform };
-  std::string key;   // dotted config key, e.g. trainer.learning_rate
+  std::string key;   // dotted config key, e.g. trainer.learning_rate; k1+k2 links keys
   std::string text;  // the values as written, for messages
   Kind kind = Kind::values;
   std::vector<YAML::Node> values;              // Kind::values

@@ -9,7 +9,9 @@
 #include <sstream>
 
 #include "cnclab/studies/contour_error/contour_error_tables.hpp"
-#include "cnclab/studies/contour_error/narx_job.hpp"
+#include "cnclab/studies/contour_error/narx_metrics.hpp"
+#include "cnclab/studies/contour_error/narx_study_runs.hpp"
+#include "cnclab/sweep/sweep_job.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
@@ -21,32 +23,41 @@ TEST(ContourErrorQuick, ReproduceAndTables) {
   testing::TempDir dir;
   const fs::path experiments = CNCLAB_SOURCE_DIR "/experiments";
   const fs::path results = dir.path() / "results" / "quick";
-  for (const char* file : {"training_methods.yaml", "architecture.yaml"}) {
-    const NarxJob job = load_narx_job(experiments / "contour_error" / file, {}, "quick");
-    const NarxJobOutcome o = run_narx_job(job, results, dir.path() / "datasets", false, nullptr);
-    ASSERT_TRUE(fs::exists(o.file)) << file;
-    for (const auto& run : o.result.runs) {
-      // Only two-stage training is claimed to work every time (seed 002 Sec.
-      // II); either stage alone may fail, which the tables show.
-      if (run.method != NarxMethod::two_stage) continue;
-      for (std::size_t a = 0; a < run.axes.size(); ++a) {
-        EXPECT_TRUE(run.axes[a].stable) << file;
-        EXPECT_LT(run.axes[a].rms_um, 0.5 * o.result.zero_rms_um[a])
-            << file << " " << to_string(run.method) << " axis " << o.result.axes[a];
-      }
-    }
-  }
+  register_contour_error_metrics();
+  CommandOptions options;
+  options.results_dir = results;
+  options.datasets_dir = dir.path() / "datasets";
+  options.profile = "quick";
   TablesOptions t;
   t.results_dir = results;
   t.experiments_dir = experiments;
   t.reference_dir = CNCLAB_SOURCE_DIR "/results/reference";
+  t.profile = "quick";
+  for (const char* file : {"training_methods.yaml", "architecture.yaml"}) {
+    const SweepJob job = load_sweep_job(experiments / "contour_error" / file, {}, "quick");
+    const SweepJobOutcome o = run_sweep_job(job, options, nullptr);
+    ASSERT_TRUE(fs::exists(o.result_file)) << file;
+    const NarxStudyRuns study = load_narx_study(t, file);
+    EXPECT_EQ(study.runs.size(), study.trials) << file;
+    for (const auto& run : study.runs) {
+      // Only two-stage training is claimed to work every time (seed 002 Sec.
+      // II); either stage alone may fail, which the tables show.
+      if (run.method != "two_stage") continue;
+      EXPECT_TRUE(run.stable()) << file;
+      for (const std::string a : {"x", "y"}) {
+        EXPECT_LT(run.metrics.at("closed_loop_rms_" + a), 0.5 * run.metrics.at("zero_rms_" + a))
+            << file << " seed " << run.seed << " axis " << a;
+      }
+    }
+  }
   std::ostringstream out;
   print_contour_error_tables(t, out);
   const std::string text = out.str();
   std::cout << text;  // the quick tables, for the test log
-  for (const char* needle : {"training methods", "two_stage", "open_loop_only", "closed_loop_only",
-                             "zero predictor", "architecture sweep", "<- paper's choice", "taylor",
-                             "tangent", "osculating", "Contour error predictor", "Paper:"}) {
+  for (const char* needle :
+       {"training methods", "two_stage", "open_loop_only", "closed_loop_only", "zero predictor",
+        "architecture sweep", "<- paper's choice", "taylor", "tangent", "osculating",
+        "Contour error predictor", "Paper:", "sources:"}) {
     EXPECT_NE(text.find(needle), std::string::npos) << needle << "\n" << text;
   }
   // The figures script draws from these results (Figs. 4, 5, 8-11, 13, 14).

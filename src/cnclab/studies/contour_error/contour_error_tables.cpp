@@ -8,44 +8,14 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
-#include "cnclab/io/atomic_file.hpp"
 #include "cnclab/report/text_table.hpp"
-#include "cnclab/studies/contour_error/narx_job.hpp"
+#include "cnclab/studies/contour_error/narx_study_runs.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
 constexpr double kMissingCell = std::numeric_limits<double>::quiet_NaN();
-
-// The result of experiments/contour_error/<file>: the one of the file's
-// resolved config, else (a profile such as quick changes the config) the
-// newest complete result under <results>/<name>/.
-NarxStudyResult load_study(const TablesOptions& o, const std::string& file) {
-  const fs::path experiment = o.experiments_dir / "contour_error" / file;
-  if (!fs::exists(experiment)) throw MissingResults(experiment.string() + ": not found");
-  const NarxJob job = load_narx_job(experiment, {}, o.profile);
-  const fs::path exact = narx_result_path(job, o.results_dir);
-  if (fs::exists(exact)) return read_narx_result(exact);
-  const fs::path dir = o.results_dir / job.name;
-  std::error_code ec;
-  std::vector<fs::path> found;
-  for (const auto& e : fs::directory_iterator(dir, ec)) {
-    if (e.path().extension() == ".h5" && !is_partial_path(e.path())) found.push_back(e.path());
-  }
-  std::sort(found.begin(), found.end(), [](const fs::path& a, const fs::path& b) {
-    return fs::last_write_time(a) > fs::last_write_time(b);
-  });
-  for (const auto& f : found) {
-    try {
-      return read_narx_result(f);
-    } catch (const IoError&) {
-    }
-  }
-  throw MissingResults("no result for " + experiment.string() + " under " + dir.string() +
-                       "; run `cnclab reproduce " + (o.experiments_dir / "contour_error").string() +
-                       "` first");
-}
 
 struct Stats {
   double mean = kMissingCell, std = kMissingCell, max = kMissingCell;
@@ -73,8 +43,18 @@ std::string mean_std(const Stats& s) {
   return table_number(s.mean, 3) + " ± " + table_number(s.std, 2);
 }
 
-bool run_stable(const NarxRun& r) {
-  return std::all_of(r.axes.begin(), r.axes.end(), [](const NarxAxisScore& s) { return s.stable; });
+// The metric `name` of each run.
+std::vector<double> metric_of(const std::vector<const NarxStudyRun*>& runs,
+                              const std::string& name) {
+  std::vector<double> v;
+  for (const auto* run : runs) v.push_back(run->metrics.at(name));
+  return v;
+}
+
+std::string stable_count(const std::vector<const NarxStudyRun*>& runs) {
+  const auto stable =
+      std::count_if(runs.begin(), runs.end(), [](const NarxStudyRun* r) { return r->stable(); });
+  return std::to_string(stable) + "/" + std::to_string(runs.size());
 }
 
 std::string reference_text(const ConfigReader& root, const std::string& section,
@@ -83,7 +63,7 @@ std::string reference_text(const ConfigReader& root, const std::string& section,
   return s.require<std::string>("text") + " (" + s.require<std::string>("source") + ")";
 }
 
-void print_training_methods(const NarxStudyResult& r, const ConfigReader& ref, TableFormat f,
+void print_training_methods(const NarxStudyRuns& r, const ConfigReader& ref, TableFormat f,
                             std::ostream& out) {
   print_table_title(out, f,
                     "Contour error (seed 002 Sec. II): NARX training methods, " +
@@ -102,34 +82,25 @@ void print_training_methods(const NarxStudyResult& r, const ConfigReader& ref, T
   t.header.push_back("contour RMS");
   t.header.push_back("epochs open+closed");
   for (const char* m : {"two_stage", "open_loop_only", "closed_loop_only"}) {
-    std::vector<const NarxRun*> runs;
+    std::vector<const NarxStudyRun*> runs;
     for (const auto& run : r.runs) {
-      if (to_string(run.method) == m) runs.push_back(&run);
+      if (run.method == m) runs.push_back(&run);
     }
     if (runs.empty()) continue;
-    std::size_t stable = 0;
-    for (const auto* run : runs) stable += run_stable(*run) ? 1 : 0;
-    std::vector<std::string> row = {m, std::to_string(stable) + "/" + std::to_string(runs.size())};
-    for (std::size_t a = 0; a < r.axes.size(); ++a) {
-      std::vector<double> rms, mx;
-      for (const auto* run : runs) {
-        rms.push_back(run->axes[a].rms_um);
-        mx.push_back(run->axes[a].max_um);
-      }
-      row.push_back(mean_std(stats(rms)));
-      row.push_back(mean_std(stats(mx)));
+    std::vector<std::string> row = {m, stable_count(runs)};
+    for (const auto& a : r.axes) {
+      row.push_back(mean_std(stats(metric_of(runs, "closed_loop_rms_" + a))));
+      row.push_back(mean_std(stats(metric_of(runs, "closed_loop_max_" + a))));
     }
-    std::vector<double> c;
-    for (const auto* run : runs) c.push_back(run->contour_rms_um);
-    row.push_back(mean_std(stats(c)));
-    row.push_back(std::to_string(runs[0]->axes[0].open_epochs) + "+" +
-                  std::to_string(runs[0]->axes[0].closed_epochs));
+    row.push_back(mean_std(stats(metric_of(runs, "contour_rms"))));
+    row.push_back(std::to_string(runs[0]->open_epochs) + "+" +
+                  std::to_string(runs[0]->closed_epochs));
     t.rows.push_back(row);
   }
   std::vector<std::string> zero = {"zero predictor (e = 0)", "-"};
-  for (std::size_t a = 0; a < r.axes.size(); ++a) {
-    zero.push_back(table_number(r.zero_rms_um[a], 3));
-    zero.push_back(table_number(r.zero_max_um[a], 3));
+  for (const auto& a : r.axes) {
+    zero.push_back(table_number(r.metric("zero_rms_" + a), 3));
+    zero.push_back(table_number(r.metric("zero_max_" + a), 3));
   }
   zero.push_back("-");
   zero.push_back("-");
@@ -140,9 +111,10 @@ void print_training_methods(const NarxStudyResult& r, const ConfigReader& ref, T
       {"Paper, two_stage: " + reference_text(ref, "training_methods", "two_stage"),
        "Paper, closed_loop_only: " + reference_text(ref, "training_methods", "closed_loop_only"),
        "Paper, open_loop_only: " + reference_text(ref, "training_methods", "open_loop_only")});
+  print_table_sources(out, f, r.sources);
 }
 
-void print_architecture(const NarxStudyResult& r, const ConfigReader& ref, TableFormat f,
+void print_architecture(const NarxStudyRuns& r, const ConfigReader& ref, TableFormat f,
                         std::ostream& out) {
   print_table_title(out, f,
                     "Contour error: NARX architecture sweep (two-stage trainbr), mean over seeds, "
@@ -152,44 +124,35 @@ void print_architecture(const NarxStudyResult& r, const ConfigReader& ref, Table
   for (const auto& a : r.axes) t.header.push_back("RMS " + a);
   t.header.push_back("contour RMS");
   t.header.push_back("");
-  struct Key {
-    std::size_t h, di, df;
+  const auto same_architecture = [](const NarxStudyRun& a, const NarxStudyRun& b) {
+    return a.hidden == b.hidden && a.input_delays == b.input_delays &&
+           a.feedback_delays == b.feedback_delays;
   };
-  std::vector<Key> keys;
-  for (const auto& run : r.runs) {
-    const Key k{run.architecture.hidden, run.architecture.input_delays,
-                run.architecture.feedback_delays};
-    if (std::none_of(keys.begin(), keys.end(),
-                     [&](const Key& o) { return o.h == k.h && o.di == k.di && o.df == k.df; })) {
-      keys.push_back(k);
-    }
-  }
   const auto paper_h = ref.section("architecture").section("hidden").require<std::size_t>("value");
   const auto paper_d =
       ref.section("architecture").section("input_delays").require<std::size_t>("value");
-  for (const Key& k : keys) {
-    std::vector<const NarxRun*> runs;
+  std::vector<const NarxStudyRun*> shown;  // one run per architecture, in plan order
+  for (const auto& run : r.runs) {
+    if (std::none_of(shown.begin(), shown.end(),
+                     [&](const NarxStudyRun* k) { return same_architecture(*k, run); })) {
+      shown.push_back(&run);
+    }
+  }
+  for (const NarxStudyRun* k : shown) {
+    std::vector<const NarxStudyRun*> runs;
     for (const auto& run : r.runs) {
-      if (run.architecture.hidden == k.h && run.architecture.input_delays == k.di &&
-          run.architecture.feedback_delays == k.df) {
-        runs.push_back(&run);
-      }
+      if (same_architecture(*k, run)) runs.push_back(&run);
     }
-    std::size_t stable = 0;
-    for (const auto* run : runs) stable += run_stable(*run) ? 1 : 0;
-    const std::size_t params = k.h * (k.di + k.df) + 2 * k.h + 1;
-    std::vector<std::string> row = {
-        std::to_string(k.h), std::to_string(k.di) + "/" + std::to_string(k.df),
-        std::to_string(params), std::to_string(stable) + "/" + std::to_string(runs.size())};
-    for (std::size_t a = 0; a < r.axes.size(); ++a) {
-      std::vector<double> rms;
-      for (const auto* run : runs) rms.push_back(run->axes[a].rms_um);
-      row.push_back(mean_std(stats(rms)));
+    const std::size_t h = k->hidden, di = k->input_delays, df = k->feedback_delays;
+    const std::size_t params = h * (di + df) + 2 * h + 1;
+    std::vector<std::string> row = {std::to_string(h),
+                                    std::to_string(di) + "/" + std::to_string(df),
+                                    std::to_string(params), stable_count(runs)};
+    for (const auto& a : r.axes) {
+      row.push_back(mean_std(stats(metric_of(runs, "closed_loop_rms_" + a))));
     }
-    std::vector<double> c;
-    for (const auto* run : runs) c.push_back(run->contour_rms_um);
-    row.push_back(mean_std(stats(c)));
-    row.push_back(k.h == paper_h && k.di == paper_d && k.df == paper_d ? "<- paper's choice" : "");
+    row.push_back(mean_std(stats(metric_of(runs, "contour_rms"))));
+    row.push_back(h == paper_h && di == paper_d && df == paper_d ? "<- paper's choice" : "");
     t.rows.push_back(row);
   }
   t.print(out, f);
@@ -197,26 +160,28 @@ void print_architecture(const NarxStudyResult& r, const ConfigReader& ref, Table
       out, f,
       {"Paper: " + std::to_string(paper_h) + " tanh neurons, " + std::to_string(paper_d) +
        " input and feedback delays: " + reference_text(ref, "architecture", "claim")});
+  print_table_sources(out, f, r.sources);
 }
 
-void print_estimates(const NarxStudyResult& r, const ConfigReader& ref, TableFormat f,
+void print_estimates(const NarxStudyRuns& r, const ConfigReader& ref, TableFormat f,
                      std::ostream& out) {
   print_table_title(out, f,
                     "Contour error estimates vs the exact contour error (Newton projection) on the "
                     "simulated data, validation half, µm");
   TextTable t;
   t.header = {"estimate", "mean |est - exact|", "max |est - exact|"};
-  for (const auto& e : r.estimates) {
-    t.rows.push_back({e.method, table_number(e.mean_um, 3), table_number(e.max_um, 3)});
+  for (const std::string e : {"taylor", "tangent", "osculating"}) {
+    t.rows.push_back({e, table_number(r.metric(e + "_mean_abs_diff"), 3),
+                      table_number(r.metric(e + "_max_abs_diff"), 3)});
   }
   t.rows.push_back({"(exact contour error itself)",
-                    table_number(r.exact_contour_mean_um, 3) + " (mean)",
-                    table_number(r.exact_contour_max_um, 3) + " (max)"});
+                    table_number(r.metric("exact_contour_mean"), 3) + " (mean)",
+                    table_number(r.metric("exact_contour_max"), 3) + " (max)"});
   t.print(out, f);
   print_table_notes(out, f, {"Paper: " + reference_text(ref, "contour", "estimate")});
 }
 
-void print_predictor(const NarxStudyResult& r, const ConfigReader& ref, TableFormat f,
+void print_predictor(const NarxStudyRuns& r, const ConfigReader& ref, TableFormat f,
                      std::ostream& out) {
   print_table_title(out, f,
                     "Contour error predictor (Taylor estimate from the NARX-predicted following "
@@ -224,12 +189,12 @@ void print_predictor(const NarxStudyResult& r, const ConfigReader& ref, TableFor
                     "µm");
   TextTable t;
   t.header = {"runs", "RMS (mean ± std)", "RMS best", "max (mean ± std)", "zero predictor RMS"};
-  std::vector<double> rms, mx;
+  std::vector<const NarxStudyRun*> two_stage;
   for (const auto& run : r.runs) {
-    if (run.method != NarxMethod::two_stage) continue;
-    rms.push_back(run.contour_rms_um);
-    mx.push_back(run.contour_max_um);
+    if (run.method == "two_stage") two_stage.push_back(&run);
   }
+  const std::vector<double> rms = metric_of(two_stage, "contour_rms");
+  const std::vector<double> mx = metric_of(two_stage, "contour_max");
   const Stats s = stats(rms);
   const double best =
       s.n ? *std::min_element(
@@ -243,8 +208,8 @@ void print_predictor(const NarxStudyResult& r, const ConfigReader& ref, TableFor
   t.print(out, f);
   print_table_notes(out, f,
                     {"zero predictor: contour RMS = RMS of the exact contour error; its mean is " +
-                         table_number(r.exact_contour_mean_um, 3) + " µm, max " +
-                         table_number(r.exact_contour_max_um, 3) + " µm",
+                         table_number(r.metric("exact_contour_mean"), 3) + " µm, max " +
+                         table_number(r.metric("exact_contour_max"), 3) + " µm",
                      "Paper: " + reference_text(ref, "contour", "accuracy")});
 }
 
@@ -255,10 +220,10 @@ void print_contour_error_tables(const TablesOptions& o, std::ostream& out) {
   if (!fs::exists(ref_file)) throw MissingResults(ref_file.string() + ": not found");
   const ConfigDocument ref_doc = ConfigDocument::load(ref_file);
   const ConfigReader ref = ref_doc.root();
-  const NarxStudyResult methods = load_study(o, "training_methods.yaml");
+  const NarxStudyRuns methods = load_narx_study(o, "training_methods.yaml");
   print_training_methods(methods, ref, o.format, out);
   try {
-    print_architecture(load_study(o, "architecture.yaml"), ref, o.format, out);
+    print_architecture(load_narx_study(o, "architecture.yaml"), ref, o.format, out);
   } catch (const MissingResults& e) {
     print_table_notes(out, o.format, {"architecture table not printed: " + std::string(e.what())});
   }

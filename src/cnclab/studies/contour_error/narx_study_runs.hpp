@@ -1,0 +1,45 @@
+#pragma once
+// The runs of one of seed 002's NARX studies, as the contour-error tables
+// read them: the complete trials of a `kind: sweep` file over
+// experiments/contour_error/narx.yaml (training_methods.yaml,
+// architecture.yaml), each a standard result file with the sequence metrics
+// of studies/contour_error/narx_metrics.hpp.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cnclab/report/tables.hpp"
+
+namespace cnclab {
+
+// One trial: what it trained and its metrics.
+struct NarxStudyRun {
+  // From trainer.stages: two_stage (open_loop then closed_loop),
+  // open_loop_only, closed_loop_only, else the modes joined by '+'.
+  std::string method;
+  std::size_t hidden = 0, input_delays = 0, feedback_delays = 0;
+  std::uint64_t seed = 0;
+  std::size_t open_epochs = 0, closed_epochs = 0;  // the first network's, per mode
+  std::map<std::string, double> metrics;           // narx_metrics.hpp names, µm
+  bool stable() const;                             // metric "stable" is 1
+};
+
+struct NarxStudyRuns {
+  std::vector<std::string> axes;  // network axes of the first run (x, y)
+  std::size_t train_samples = 0, validation_samples = 0;
+  std::vector<NarxStudyRun> runs;                // plan order
+  std::vector<std::filesystem::path> sources;    // the result files read
+  std::size_t trials = 0;                        // planned; runs.size() completed
+  double metric(const std::string& name) const;  // of the first run (dataset-level numbers)
+};
+
+// The complete trials of experiments/contour_error/<file> under the tables'
+// results folder and profile. MissingResults naming the command that makes
+// them while any trial has not run; trials that ran and failed are left out
+// (trials - runs.size() says how many).
+NarxStudyRuns load_narx_study(const TablesOptions& options, const std::string& file);
+
+}  // namespace cnclab
