@@ -1,0 +1,38 @@
+#pragma once
+// CLI11 wiring of the subcommands, one function per group. Each add_*
+// function declares a subcommand's options and, once that subcommand is
+// parsed, sets `action` to the call of its command body (src/cli/*.hpp);
+// main() runs the action and maps exceptions to exit codes.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace cnclab {
+
+using CommandAction = std::function<int()>;
+
+// run, validate, show, reproduce, compare (wire_experiment_commands.cpp).
+void add_experiment_commands(CLI::App& app, CommandAction& action);
+// sweep and sweep merge (wire_sweep_commands.cpp).
+void add_sweep_commands(CLI::App& app, CommandAction& action);
+// dataset generate/show, gcode, tables, version (wire_tool_commands.cpp).
+void add_tool_commands(CLI::App& app, CommandAction& action);
+
+// Shared by the wiring files (cli_wiring.cpp).
+extern const char* const kProfileHelp;
+// Counts (--jobs, --repeats, --trials): digits only. CLI11 alone reads "-1"
+// for an unsigned option as 2^64 - 1 (a sweep then plans forever).
+const CLI::Validator& count_validator();
+// A seed option read as text (CLI11 would turn "-1" into 2^64 - 1, and its
+// own errors do not take our error form): ConfigError naming `option`.
+std::optional<std::uint64_t> seed_option(const std::optional<std::string>& text,
+                                         const char* option);
+// With a profile, results go to <dir>/<profile> unless `option` (--out,
+// --results) was given: quick results never mix with the full ones.
+void apply_profile_dir(const CLI::App& sub, const char* option, const std::string& profile,
+                       std::filesystem::path& dir);
+
+}  // namespace cnclab

@@ -1,0 +1,155 @@
+// CLI11 wiring of run, validate, show, reproduce and compare (cli_wiring.hpp).
+#include <iostream>
+#include <memory>
+#include <vector>
+
+#include "cli/cli_wiring.hpp"
+#include "cli/commands.hpp"
+#include "cnclab/core/error.hpp"
+#include "cnclab/report/compare.hpp"
+
+namespace cnclab {
+namespace {
+
+// What `run` and `validate` read.
+struct ExperimentArgs {
+  CommandOptions common;
+  std::string experiment;
+  std::vector<std::string> overrides;
+  std::optional<std::string> seed_text;
+};
+
+void add_run(CLI::App& app, CommandAction& action) {
+  auto a = std::make_shared<ExperimentArgs>();
+  auto* run = app.add_subcommand("run", "Run one experiment and write its HDF5 result");
+  run->add_option("experiment", a->experiment, "Experiment YAML file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  run->add_option("overrides", a->overrides,
+                  "Config overrides key=value, values typed as YAML (1e-4, true, [28, 20])");
+  run->add_option("--seed", a->seed_text, "Master seed (overrides the YAML's seed)")
+      ->type_name("UINT");
+  run->add_option("--out", a->common.results_dir, "Results folder")->capture_default_str();
+  run->add_option("--data-dir", a->common.datasets_dir, "Dataset cache folder")
+      ->capture_default_str();
+  run->add_flag("--quiet,-q", a->common.quiet, "No progress output");
+  run->add_flag("--regenerate", a->common.regenerate, "Regenerate the dataset even when cached");
+  run->add_option("--profile", a->common.profile, kProfileHelp);
+  run->footer(
+      "Example:\n  cnclab run experiments/friedman/friedman1_mlp.yaml trainer.learning_rate=1e-3 "
+      "model.hidden=[32,16] --seed 7\nWrites results/<name>/<name>-seed<N>-<hash>.h5 atomically.");
+  run->callback([run, a, &action] {
+    apply_profile_dir(*run, "--out", a->common.profile, a->common.results_dir);
+    action = [a] {
+      return run_command(a->experiment, a->overrides, seed_option(a->seed_text, "--seed"),
+                         a->common, std::cout, std::cerr);
+    };
+  });
+}
+
+void add_validate(CLI::App& app, CommandAction& action) {
+  auto a = std::make_shared<ExperimentArgs>();
+  auto* validate = app.add_subcommand(
+      "validate", "Check an experiment config and print it resolved; writes nothing");
+  validate->add_option("experiment", a->experiment, "Experiment YAML file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  validate->add_option("overrides", a->overrides, "Config overrides key=value");
+  validate->add_option("--seed", a->seed_text, "Master seed (overrides the YAML's seed)")
+      ->type_name("UINT");
+  validate->add_option("--profile", a->common.profile, kProfileHelp);
+  validate->footer(
+      "Example:\n  cnclab validate experiments/friedman/friedman1_mlp.yaml trainer.momentum=0.9");
+  validate->callback([a, &action] {
+    action = [a] {
+      return validate_command(a->experiment, a->overrides, seed_option(a->seed_text, "--seed"),
+                              a->common, std::cout);
+    };
+  });
+}
+
+void add_show(CLI::App& app, CommandAction& action) {
+  auto paths = std::make_shared<std::vector<std::string>>();
+  auto* show =
+      app.add_subcommand("show", "Print a result file: config, provenance, metrics, training");
+  show->add_option("result", *paths, "Result HDF5 file(s)")->required();
+  show->footer("Example:\n  cnclab show results/friedman1_mlp/friedman1_mlp-seed42-*.h5");
+  show->callback(
+      [paths, &action] { action = [paths] { return show_command(*paths, std::cout); }; });
+}
+
+struct ReproduceArgs {
+  CommandOptions common;
+  std::vector<std::string> paths;
+  bool quick = false;
+};
+
+void add_reproduce(CLI::App& app, CommandAction& action) {
+  auto a = std::make_shared<ReproduceArgs>();
+  auto* reproduce = app.add_subcommand(
+      "reproduce", "Run experiments (default: all under experiments/) and print their metrics");
+  reproduce->add_option("paths", a->paths, "Experiment files or folders (default: experiments)");
+  reproduce->add_option("--out", a->common.results_dir, "Results folder")->capture_default_str();
+  reproduce->add_option("--data-dir", a->common.datasets_dir, "Dataset cache folder")
+      ->capture_default_str();
+  reproduce->add_flag("--quiet,-q", a->common.quiet, "No progress output");
+  reproduce->add_flag("--force", a->common.force,
+                      "Run every experiment even if its result is current");
+  reproduce->add_flag("--regenerate", a->common.regenerate, "Regenerate datasets even when cached");
+  reproduce->add_option("--profile", a->common.profile, kProfileHelp);
+  reproduce
+      ->add_option("--jobs,-j", a->common.jobs,
+                   "Experiments trained at once, each in its own process, once their "
+                   "upstream results are ready (default: the number of cores this process "
+                   "may use; 1 shows each run's progress)")
+      ->check(count_validator());
+  reproduce->add_flag("--quick", a->quick,
+                      "Same as --profile quick: fewer epochs and samples, same code paths "
+                      "(about a minute per study; results/quick)");
+  reproduce->footer(
+      "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
+      "experiments/friedman\n"
+      "Experiments run upstream first (needs:, init_from:); a result whose resolved config and "
+      "upstream results are unchanged is reused. Each line says ran/reused and why.\n"
+      "  cnclab reproduce --quick experiments/step_error   # the quick profile");
+  reproduce->callback([reproduce, a, &action] {
+    if (a->quick) {
+      if (!a->common.profile.empty() && a->common.profile != "quick") {
+        throw CLI::ValidationError("--quick and --profile " + a->common.profile + " contradict");
+      }
+      a->common.profile = "quick";
+    }
+    apply_profile_dir(*reproduce, "--out", a->common.profile, a->common.results_dir);
+    action = [a] { return reproduce_command(a->paths, a->common, std::cout, std::cerr); };
+  });
+}
+
+struct CompareArgs {
+  std::vector<std::string> runs;
+  std::string format = "table";
+};
+
+void add_compare(CLI::App& app, CommandAction& action) {
+  auto a = std::make_shared<CompareArgs>();
+  auto* compare = app.add_subcommand(
+      "compare", "Runs side by side: the config keys that differ and the metrics with deltas");
+  compare->add_option("runs", a->runs, "Result files, run folders or sweep folders")->required();
+  compare->add_option("--format", a->format, "table, md, csv or json")->capture_default_str();
+  compare->footer(
+      "Examples:\n  cnclab compare results/friedman1_mlp/a.h5 results/friedman1_mlp/b.h5\n"
+      "  cnclab compare results/friedman1_mlp/sweep-1a2b3c4d --format md");
+  compare->callback(
+      [a, &action] { action = [a] { return compare_command(a->runs, a->format, std::cout); }; });
+}
+
+}  // namespace
+
+void add_experiment_commands(CLI::App& app, CommandAction& action) {
+  add_run(app, action);
+  add_validate(app, action);
+  add_show(app, action);
+  add_reproduce(app, action);
+  add_compare(app, action);
+}
+
+}  // namespace cnclab
