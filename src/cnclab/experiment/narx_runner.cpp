@@ -1,9 +1,12 @@
 #include "cnclab/experiment/narx_runner.hpp"
 
 #include <chrono>
+#include <iostream>
 #include <ostream>
+#include <sstream>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/progress.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -46,13 +49,21 @@ std::vector<Eigen::Index> target_rows(const Dataset& d, const std::vector<std::s
 
 // One stage from `params` in place: series-parallel or parallel residuals
 // over the training series, trained by the stage's lm or trainbr.
+// One stage of one network, with its progress (epochs, SSE, mu) on `progress`.
 Summary train_stage(const Narx& narx, const TrainingStage& stage, const Eigen::VectorXd& v,
-                    const Eigen::VectorXd& e, Eigen::VectorXd& params) {
+                    const Eigen::VectorXd& e, Eigen::VectorXd& params, Progress& progress) {
+  LmHooks hooks;
+  hooks.on_epoch = [&](const EpochRecord& r, const LmEpochRecord& lm, const Eigen::VectorXd&) {
+    std::ostringstream status;
+    status << "SSE " << lm.sse << "  mu " << lm.mu;
+    progress.update(r.epoch, status.str());
+    return true;
+  };
   const auto train = [&](ResidualObjective& objective) {
     if (const auto* br = std::get_if<TrainbrOptions>(&stage.trainer)) {
-      return train_trainbr(objective, params, *br);
+      return train_trainbr(objective, params, *br, hooks);
     }
-    return train_lm(objective, params, std::get<LmOptions>(stage.trainer));
+    return train_lm(objective, params, std::get<LmOptions>(stage.trainer), hooks);
   };
   if (stage.mode == StageMode::open_loop) {
     NarxOpenLoopObjective open(narx, v, e);
@@ -150,7 +161,11 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
     const auto t0 = std::chrono::steady_clock::now();
     message += (message.empty() ? "" : "; ") + net.axis + ":";
     for (const auto& stage : spec.stages) {
-      Summary s = train_stage(narx, stage, v_train, e_train, params);
+      Progress progress(spec.name + " " + net.axis + " " + to_string(stage.mode),
+                        trainer_epochs(stage.trainer), options.log ? *options.log : std::cerr,
+                        {options.log ? options.progress : ProgressMode::quiet, 10.0, 0.1});
+      Summary s = train_stage(narx, stage, v_train, e_train, params, progress);
+      progress.finish(to_string(s.termination));
       message += " " + to_string(stage.mode) + " " + std::to_string(s.history.size()) +
                  " epochs (" + to_string(s.termination) + ")";
       ok = ok && s.termination != Termination::diverged;
