@@ -1,18 +1,29 @@
+// ConfigDocument: loading a config file with its includes, profiles,
+// overrides, key locations and the check that every key was read. Where
+// named files are searched: config_lookup.cpp; typed reading:
+// config_reader.cpp.
 #include "cnclab/core/config.hpp"
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <sstream>
 
+#include "cnclab/core/config_detail.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/suggest.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
+
+namespace config_detail {
+
+std::string join(const std::string& prefix, const std::string& key) {
+  return prefix.empty() ? key : prefix + "." + key;
+}
+
+}  // namespace config_detail
+
 namespace {
 
 // Include nesting and tree size limits: a config is hand-written and small;
@@ -22,10 +33,6 @@ constexpr std::size_t kMaxNodes = 200000;
 // Nesting limit: bounds the recursion of every tree walk (a self-referencing
 // alias such as `&a [*a]` is infinitely deep). Found by fuzzing.
 constexpr int kMaxDepth = 64;
-
-std::string join(const std::string& prefix, const std::string& key) {
-  return prefix.empty() ? key : prefix + "." + key;
-}
 
 SourceLocation mark_location(const std::string& file, const YAML::Mark& mark) {
   if (mark.is_null()) return {file, 0, 0};
@@ -68,7 +75,7 @@ void index_tree(const YAML::Node& node, const std::string& prefix, const std::st
                         (prefix.empty() ? std::string("top level") : prefix) +
                         ": map keys must be plain names");
     }
-    const std::string dotted = join(prefix, key.Scalar());
+    const std::string dotted = config_detail::join(prefix, key.Scalar());
     if (!seen.insert(key.Scalar()).second) {
       throw ConfigError(mark_location(file, key.Mark()).str() + ": " + dotted + ": duplicate key");
     }
@@ -102,7 +109,7 @@ void merge_locations(std::map<std::string, SourceLocation>& dst, const YAML::Nod
                      const std::string& prefix) {
   for (auto it = src_tree.begin(); it != src_tree.end(); ++it) {
     const std::string key = it->first.Scalar();
-    const std::string dotted = join(prefix, key);
+    const std::string dotted = config_detail::join(prefix, key);
     const YAML::Node existing = dst_tree[key];
     if (!(is_map(existing) && it->second.IsMap())) erase_below(dst, dotted);
     if (auto loc = src.find(dotted); loc != src.end()) dst[dotted] = loc->second;
@@ -213,94 +220,7 @@ Loaded load_recursive(const fs::path& file, const ConfigSearch& search,
   return result;
 }
 
-bool parse_int_text(const std::string& s, std::int64_t& out) {
-  const char* begin = s.data();
-  const char* end = s.data() + s.size();
-  if (begin != end && *begin == '+') ++begin;
-  auto [ptr, ec] = std::from_chars(begin, end, out);
-  return ec == std::errc() && ptr == end && begin != end;
-}
-
-bool is_plain_scalar(const YAML::Node& n) {
-  return n.IsScalar() && n.Tag() != "!";
-}
-
 }  // namespace
-
-ConfigSearch ConfigSearch::from_environment() {
-  ConfigSearch search;
-  if (const char* value = std::getenv("CNCLAB_CONFIG_PATH")) {
-    std::istringstream entries{std::string(value)};
-    for (std::string entry; std::getline(entries, entry, ':');) {
-      if (!entry.empty()) search.config_path.emplace_back(entry);
-    }
-  }
-  std::error_code ec;
-  search.current_dir = fs::current_path(ec);  // "" (none) if it was removed
-  return search;
-}
-
-ConfigLookup lookup_config_path(const fs::path& naming_file, const std::string& name,
-                                const ConfigSearch& search) {
-  ConfigLookup out;
-  std::error_code ec;
-  std::vector<fs::path> seen;  // absolute, normalised: each candidate once
-  const auto consider = [&](const fs::path& candidate, const std::string& why) {
-    fs::path key = fs::weakly_canonical(candidate, ec);
-    if (ec) key = fs::absolute(candidate, ec).lexically_normal();
-    if (std::find(seen.begin(), seen.end(), key) != seen.end()) return false;
-    seen.push_back(key);
-    out.tried.emplace_back(candidate, why);
-    if (fs::exists(candidate, ec)) out.found = candidate;
-    return out.found.has_value();
-  };
-  if (consider(naming_file.parent_path() / name, "relative to the naming file")) return out;
-
-  // Only "configs/REST" names a file in a configs folder.
-  const fs::path relative(name), configs("configs");
-  if (relative.is_absolute() || relative.empty() || *relative.begin() != configs) return out;
-  const fs::path rest = relative.lexically_relative(configs);
-  if (rest.empty() || rest == ".") return out;
-
-  bool any_ancestor = false;
-  const fs::path start = fs::absolute(naming_file, ec).parent_path();
-  for (fs::path dir = start; !dir.empty(); dir = dir.parent_path()) {
-    if (fs::is_directory(dir / configs, ec)) {
-      any_ancestor = true;
-      if (consider(dir / configs / rest, "configs/ of an enclosing folder")) return out;
-    }
-    if (dir == dir.parent_path()) break;
-  }
-  if (!any_ancestor) out.notes.push_back("no folder from " + start.string() + " up has configs/");
-
-  for (const auto& entry : search.config_path) {
-    if (consider(entry / rest, "CNCLAB_CONFIG_PATH")) return out;
-  }
-  if (search.config_path.empty()) {
-    out.notes.push_back(
-        "CNCLAB_CONFIG_PATH (':'-separated folders laid out like configs/) is not set");
-  }
-  if (!search.current_dir.empty() &&
-      consider(search.current_dir / configs / rest, "configs/ of the current directory")) {
-    return out;
-  }
-  return out;
-}
-
-std::string ConfigLookup::not_found_message() const {
-  std::string text = "not found; looked in:";
-  for (std::size_t i = 0; i < tried.size(); ++i) {
-    text += (i == 0 ? " " : ", ") + tried[i].first.string() + " (" + tried[i].second + ")";
-  }
-  for (const auto& note : notes) text += "; " + note;
-  return text;
-}
-
-fs::path resolve_config_path(const fs::path& naming_file, const std::string& name,
-                             const ConfigSearch& search) {
-  ConfigLookup lookup = lookup_config_path(naming_file, name, search);
-  return lookup.found ? *lookup.found : lookup.tried.front().first;
-}
 
 std::string node_text(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "null";
@@ -375,7 +295,7 @@ void ConfigDocument::apply(const Override& override) {
   std::function<void(YAML::Node, std::size_t, const std::string&)> set =
       [&](YAML::Node node, std::size_t i, const std::string& prefix) {
         const std::string& part = override.path[i];
-        const std::string dotted = join(prefix, part);
+        const std::string dotted = config_detail::join(prefix, part);
         if (i + 1 == override.path.size()) {
           node[part] = YAML::Clone(override.value);
           return;
@@ -426,7 +346,7 @@ void ConfigDocument::check_all_consumed() const {
                                                                         const std::string& prefix) {
     if (!node.IsMap()) return;
     for (auto it = node.begin(); it != node.end(); ++it) {
-      const std::string dotted = join(prefix, it->first.Scalar());
+      const std::string dotted = config_detail::join(prefix, it->first.Scalar());
       if (known.count(dotted + "/*")) continue;  // consumed whole (raw)
       if (!known.count(dotted)) {
         // Suggest the closest key the readers asked for at this level.
@@ -454,165 +374,4 @@ void ConfigDocument::check_all_consumed() const {
   walk(tree_, "");
 }
 
-// ---------------------------------------------------------------- reader
-
-ConfigReader::ConfigReader(const ConfigDocument& doc, YAML::Node node, std::string path)
-    : doc_(&doc), node_(std::move(node)), path_(std::move(path)) {}
-
-YAML::Node ConfigReader::child(const std::string& key) const {
-  if (!node_.IsMap()) return YAML::Node();
-  for (auto it = node_.begin(); it != node_.end(); ++it) {
-    if (it->first.Scalar() == key) return it->second;
-  }
-  return YAML::Node();
-}
-
-void ConfigReader::mark(const std::string& key) const {
-  doc_->state_->consumed.insert(dotted(key));
-}
-
-bool ConfigReader::has(const std::string& key) const {
-  mark(key);
-  const YAML::Node n = child(key);
-  return n.IsDefined() && !n.IsNull();
-}
-
-ConfigReader ConfigReader::section(const std::string& key) const {
-  mark(key);
-  YAML::Node n = child(key);
-  if (!n.IsDefined() || n.IsNull())
-    return ConfigReader(*doc_, YAML::Node(YAML::NodeType::Map), dotted(key));
-  if (!n.IsMap()) fail(key, "expected a section (a map of keys)");
-  return ConfigReader(*doc_, n, dotted(key));
-}
-
-YAML::Node ConfigReader::raw(const std::string& key) const {
-  mark(key);
-  doc_->state_->consumed.insert(dotted(key) + "/*");
-  return child(key);
-}
-
-ConfigReader ConfigReader::element(const std::string& key, std::size_t index) const {
-  const YAML::Node list = child(key);
-  if (!list.IsSequence() || index >= list.size() || !list[index].IsMap()) {
-    fail(key, "entry " + std::to_string(index) + " must be a map");
-  }
-  return ConfigReader(*doc_, list[index], dotted(key) + "[" + std::to_string(index) + "]");
-}
-
-std::vector<std::string> ConfigReader::keys() const {
-  std::vector<std::string> out;
-  if (!node_.IsMap()) return out;
-  for (auto it = node_.begin(); it != node_.end(); ++it) out.push_back(it->first.Scalar());
-  return out;
-}
-
-std::string ConfigReader::dotted(const std::string& key) const {
-  return join(path_, key);
-}
-
-SourceLocation ConfigReader::location(const std::string& key) const {
-  return doc_->location(dotted(key));
-}
-
-void ConfigReader::fail(const std::string& key, const std::string& rule) const {
-  const YAML::Node n = child(key);
-  std::string msg = location(key).str() + ": " + dotted(key);
-  if (n.IsDefined() && !n.IsNull()) msg += " = " + node_text(n);
-  throw ConfigError(msg + ": " + rule);
-}
-
-void ConfigReader::rethrow_option_error(const OptionError& e) const {
-  const std::string key = dotted(e.field());
-  // Quote the value as the user wrote it when the field is a key of this
-  // section ("1.5", not the options struct's "1.500000").
-  std::string value = e.value();
-  YAML::Node n = node_;
-  std::size_t start = 0;
-  const std::string& field = e.field();
-  bool found = true;
-  while (found) {
-    const auto dot = field.find('.', start);
-    const std::string part = field.substr(start, dot == std::string::npos ? dot : dot - start);
-    YAML::Node next;
-    found = false;
-    if (n.IsMap()) {
-      for (auto it = n.begin(); it != n.end(); ++it) {
-        if (it->first.Scalar() == part) {
-          next.reset(it->second);
-          found = true;
-          break;
-        }
-      }
-    }
-    if (!found) break;
-    n.reset(next);
-    if (dot == std::string::npos) {
-      value = node_text(n);
-      break;
-    }
-    start = dot + 1;
-  }
-  throw ConfigError(doc_->location(key).str() + ": " + key + " = " + value + ": " + e.rule());
-}
-
-// ---------------------------------------------------------------- decoding
-
-namespace config_detail {
-
-double decode_double(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
-  if (!is_plain_scalar(n)) r.fail(key, "expected a number");
-  const std::string& s = n.Scalar();
-  double value = 0;
-  const char* begin = s.data();
-  const char* end = s.data() + s.size();
-  if (begin != end && *begin == '+') ++begin;
-  auto [ptr, ec] = std::from_chars(begin, end, value);
-  if (ec == std::errc::result_out_of_range) r.fail(key, "number out of the range of a double");
-  if (ec != std::errc() || ptr != end || begin == end) r.fail(key, "expected a number");
-  if (!std::isfinite(value)) r.fail(key, "must be a finite number");
-  return value;
-}
-
-bool decode_bool(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
-  if (is_plain_scalar(n)) {
-    const std::string& s = n.Scalar();
-    if (s == "true" || s == "True" || s == "TRUE") return true;
-    if (s == "false" || s == "False" || s == "FALSE") return false;
-  }
-  r.fail(key, "expected true or false");
-}
-
-std::string decode_string(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
-  if (!n.IsScalar()) r.fail(key, "expected a string");
-  return n.Scalar();
-}
-
-std::int64_t decode_int(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
-  std::int64_t value = 0;
-  if (!is_plain_scalar(n) || !parse_int_text(n.Scalar(), value)) {
-    r.fail(key, "expected an integer");
-  }
-  return value;
-}
-
-std::uint64_t decode_uint(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
-  if (!is_plain_scalar(n)) r.fail(key, "expected a non-negative integer");
-  const std::string& s = n.Scalar();
-  std::uint64_t value = 0;
-  const char* begin = s.data();
-  const char* end = s.data() + s.size();
-  if (begin != end && *begin == '+') ++begin;
-  auto [ptr, ec] = std::from_chars(begin, end, value);
-  if (ec == std::errc::result_out_of_range) r.fail(key, "integer too large");
-  if (ec != std::errc() || ptr != end || begin == end)
-    r.fail(key, "expected a non-negative integer");
-  return value;
-}
-
-void require_sequence(const ConfigReader& r, const std::string& key, const YAML::Node& n) {
-  if (!n.IsSequence()) r.fail(key, "expected a list, e.g. [28, 20]");
-}
-
-}  // namespace config_detail
 }  // namespace cnclab
