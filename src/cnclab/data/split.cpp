@@ -9,6 +9,26 @@
 
 namespace cnclab {
 
+const FieldList<SplitOptions>& split_fields() {
+  using O = SplitOptions;
+  const std::string both = "give either fractions (train, validation) or counts, not both";
+  static const auto fields =
+      FieldList<O>()
+          .field("train_count", &O::train_count,
+                 "training samples: counts instead of shares (seed 004: 1042)")
+          .field("validation_count", &O::validation_count,
+                 "validation samples; absent: the rest after test_count (or none)")
+          .field("test_count", &O::test_count, "test samples; absent: the rest")
+          .field("train", &O::train_fraction, "share of the samples for training (seed 000: 0.7)",
+                 Rule::in(0, true, 1, true))
+          .unless_set("train_count", both)
+          .field("validation", &O::validation_fraction,
+                 "share held out of training for early stopping; train + validation <= 1",
+                 Rule::in(0, true, 1, false))
+          .unless_set("train_count", both);
+  return fields;
+}
+
 void SplitOptions::validate() const {
   if (uses_counts()) return;
   if (validation_count || test_count) {
