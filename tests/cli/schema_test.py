@@ -1,0 +1,140 @@
+#!/usr/bin/env python3
+"""`cnclab schema` checked by an independent validator (python3-jsonschema,
+Draft 2020-12; issue 16 item 7).
+
+The schema describes one experiment file as the reader sees it after
+`include:` is merged (src/cnclab/experiment/experiment_schema.hpp). So every
+file under experiments/ is validated in its resolved form (`cnclab validate
+FILE`, with and without --profile quick: the config a result stores), and as
+written when it is self-contained (no `include:`). Misspelt keys, at the top
+and in nested sections, must fail.
+
+usage: schema_test.py CNCLAB SOURCE_DIR
+"""
+import copy
+import json
+import pathlib
+import re
+import subprocess
+import sys
+
+import jsonschema
+import yaml
+
+CNCLAB, SOURCE = sys.argv[1], pathlib.Path(sys.argv[2])
+# kind: narx files are being converted to kind train / sweep by issue 16
+# items 1-3; the integrator removes this skip with them.
+SKIPPED_KINDS = {"narx"}
+
+failures = []
+
+
+class Yaml12Loader(yaml.SafeLoader):
+    """YAML 1.2 floats (PyYAML's 1.1 rules read 1e-05 as a string)."""
+
+
+Yaml12Loader.yaml_implicit_resolvers = {
+    k: [r for r in v if r[0] != "tag:yaml.org,2002:float"]
+    for k, v in yaml.SafeLoader.yaml_implicit_resolvers.items()}
+Yaml12Loader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(r"^(?:[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?"
+               r"|[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN))$"),
+    list("-+0123456789."))
+
+
+def load(text):
+    return yaml.load(text, Loader=Yaml12Loader)
+
+
+def run(*args):
+    return subprocess.run([CNCLAB, *args], cwd=SOURCE, capture_output=True, text=True)
+
+
+def schema_of(*args):
+    r = run("schema", *args)
+    assert r.returncode == 0, r.stderr
+    s = json.loads(r.stdout)
+    jsonschema.Draft202012Validator.check_schema(s)
+    return jsonschema.Draft202012Validator(s)
+
+
+def errors(validator, document):
+    return [f"{'/'.join(map(str, e.absolute_path)) or '<root>'}: {e.message}"
+            for e in validator.iter_errors(document)]
+
+
+def check(validator, document, what):
+    found = errors(validator, document)
+    if found:
+        failures.append(f"{what}:\n  " + "\n  ".join(found[:5]))
+
+
+def resolved(path, profile):
+    args = ["validate", str(path)] + (["--profile", profile] if profile else [])
+    r = run(*args)
+    if r.returncode != 0:
+        failures.append(f"cnclab {' '.join(args)} failed: {r.stderr.strip()}")
+        return None
+    return load(r.stdout)
+
+
+validator = schema_of()
+checked = 0
+train_example = None
+for path in sorted((SOURCE / "experiments").rglob("*.yaml")):
+    rel = path.relative_to(SOURCE)
+    raw = load(path.read_text())
+    if raw.get("kind", "train") in SKIPPED_KINDS:
+        continue
+    for profile in ("", "quick"):
+        doc = resolved(rel, profile)
+        if doc is not None:
+            check(validator, doc, f"{rel} resolved{' --profile ' + profile if profile else ''}")
+            checked += 1
+    if "include" not in raw:
+        check(validator, raw, f"{rel} as written")
+        checked += 1
+    if raw.get("kind", "train") == "train" and train_example is None:
+        train_example = resolved(rel, "")
+
+assert checked > 40, f"only {checked} documents checked"
+assert train_example is not None
+
+# Misspelt keys fail, wherever they are.
+for where, mutate in [
+    ("top level", lambda d: d.__setitem__("trainr", d.pop("trainer"))),
+    ("trainer", lambda d: d["trainer"].__setitem__("learning_rte", 0.1)),
+    ("model", lambda d: d["model"].__setitem__("hiden", [3])),
+    ("model.init.weights", lambda d: d["model"]["init"]["weights"].__setitem__("sd", 1)),
+    ("dataset.options", lambda d: d["dataset"]["options"].__setitem__("sample", 10)),
+    ("split", lambda d: d["split"].__setitem__("trian", 0.5)),
+]:
+    bad = copy.deepcopy(train_example)
+    mutate(bad)
+    if not errors(validator, bad):
+        failures.append(f"a misspelt key in {where} passes the schema")
+
+# Values out of range, not in an enum, or keys where they do not apply fail.
+for where, mutate in [
+    ("trainer.momentum = 1", lambda d: d["trainer"].__setitem__("momentum", 1.0)),
+    ("model.hidden_activation = relux",
+     lambda d: d["model"].__setitem__("hidden_activation", "relux")),
+    ("normalisation.input_range without minmax",
+     lambda d: d["normalisation"].update(inputs="zscore", input_range=[0, 1])),
+    ("name with a slash", lambda d: d.__setitem__("name", "a/b")),
+]:
+    bad = copy.deepcopy(train_example)
+    mutate(bad)
+    if not errors(validator, bad):
+        failures.append(f"{where} passes the schema")
+
+# --kind gives one kind's schema; an unknown kind is a usage error.
+check(schema_of("--kind", "train"), train_example, "train example against --kind train")
+if run("schema", "--kind", "trian").returncode != 2:
+    failures.append("cnclab schema --kind trian does not exit 2")
+
+if failures:
+    print("\n".join(failures))
+    sys.exit(1)
+print(f"ok: {checked} documents valid, misspelt keys rejected")
