@@ -134,6 +134,52 @@ check(schema_of("--kind", "train"), train_example, "train example against --kind
 if run("schema", "--kind", "trian").returncode != 2:
     failures.append("cnclab schema --kind trian does not exit 2")
 
+# The README's key table ("An experiment, key by key") and the declarations
+# agree: every key it lists is declared, every declared top-level key and
+# section key is listed.
+def properties(schema):
+    """The properties of a schema, with those of its if/then alternatives."""
+    props = dict(schema.get("properties", {}))
+    for case in schema.get("allOf", []):
+        props.update(case.get("then", {}).get("properties", {}))
+    return props
+
+
+def declared(schema, dotted):
+    for part in dotted.split("."):
+        props = properties(schema)
+        if part not in props:
+            return False
+        schema = props[part]
+    return True
+
+
+readme = (SOURCE / "README.md").read_text().split("## An experiment, key by key", 1)[1]
+readme = readme.split("\n## ", 1)[0]
+listed = []
+for row in readme.splitlines():
+    if not row.startswith("| `"):
+        continue
+    previous = ""
+    for key in re.findall(r"`([a-z_.]+)`", row.split("|")[1]):
+        if key.startswith(".") and previous:  # `.validation_count` after `split.train_count`
+            key = previous.rsplit(".", 1)[0] + key
+        listed.append(key)
+        previous = key
+train = json.loads(run("schema", "--kind", "train").stdout)
+for key in listed:
+    if not declared(train, key):
+        failures.append(f"README key table lists {key}, which is not declared")
+for key, sub in properties(train).items():
+    if not any(k == key or k.startswith(key + ".") for k in listed):
+        failures.append(f"declared key {key} is missing from the README key table")
+    for child in properties(sub):
+        dotted = f"{key}.{child}"
+        if key not in ("trainer", "dataset", "model", "split", "normalisation", "init_from"):
+            continue
+        if not any(k == dotted or k.startswith(dotted + ".") for k in listed):
+            failures.append(f"declared key {dotted} is missing from the README key table")
+
 if failures:
     print("\n".join(failures))
     sys.exit(1)
