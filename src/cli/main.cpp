@@ -11,6 +11,7 @@
 #include "cli/builtins.hpp"
 #include "cli/commands.hpp"
 #include "cli/dataset_commands.hpp"
+#include "cli/schema_command.hpp"
 #include "cli/sweep_command.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/rng.hpp"
@@ -247,6 +248,14 @@ int main(int argc, char** argv) {
       "Examples:\n  cnclab tables ik    # seed 004 Table 5 and the machine-space error\n"
       "  cnclab tables step-error --format md   # seed 000 Tables 2-8 as Markdown");
 
+  std::string schema_kind;
+  auto* schema = app.add_subcommand(
+      "schema", "Print the JSON Schema (draft 2020-12) of experiment files, for editors");
+  schema->add_option("--kind", schema_kind, "Only this kind's schema (train, sweep, ...)");
+  schema->footer(
+      "Example:\n  cnclab schema > cnclab.schema.json\n  then start an experiment file with\n"
+      "  # yaml-language-server: $schema=../../cnclab.schema.json");
+
   auto* version = app.add_subcommand("version", "Print version, git commit and library versions");
   version->footer("Example:\n  cnclab version");
 
@@ -290,6 +299,7 @@ int main(int argc, char** argv) {
     if (*run) return cnclab::run_command(experiment, overrides, seed, common, std::cout, std::cerr);
     if (*validate) return cnclab::validate_command(experiment, overrides, seed, common, std::cout);
     if (*show) return cnclab::show_command(paths, std::cout);
+    if (*schema) return cnclab::schema_command(schema_kind, std::cout);
     if (*reproduce) return cnclab::reproduce_command(paths, common, std::cout, std::cerr);
     if (*compare) return cnclab::compare_command(paths, compare_format, std::cout);
     if (*merge) return cnclab::sweep_merge_command(merge_dir, std::cout);
