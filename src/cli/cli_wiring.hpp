@@ -18,7 +18,7 @@ using CommandAction = std::function<int()>;
 void add_experiment_commands(CLI::App& app, CommandAction& action);
 // sweep and sweep merge (wire_sweep_commands.cpp).
 void add_sweep_commands(CLI::App& app, CommandAction& action);
-// dataset generate/show, gcode, tables, version (wire_tool_commands.cpp).
+// dataset generate/show, gcode, tables, schema, version (wire_tool_commands.cpp).
 void add_tool_commands(CLI::App& app, CommandAction& action);
 
 // Shared by the wiring files (cli_wiring.cpp).

@@ -1,4 +1,4 @@
-// CLI11 wiring of dataset generate/show, gcode, tables and version
+// CLI11 wiring of dataset generate/show, gcode, tables, schema and version
 // (cli_wiring.hpp).
 #include <iostream>
 #include <memory>
@@ -7,6 +7,7 @@
 #include "cli/cli_wiring.hpp"
 #include "cli/commands.hpp"
 #include "cli/dataset_commands.hpp"
+#include "cli/schema_command.hpp"
 #include "cnclab/report/tables.hpp"
 
 namespace cnclab {
@@ -120,6 +121,16 @@ void add_tool_commands(CLI::App& app, CommandAction& action) {
   add_dataset(app, action);
   add_gcode(app, action);
   add_tables(app, action);
+  auto schema_kind = std::make_shared<std::string>();
+  auto* schema = app.add_subcommand(
+      "schema", "Print the JSON Schema (draft 2020-12) of experiment files, for editors");
+  schema->add_option("--kind", *schema_kind, "Only this kind's schema (train, sweep, ...)");
+  schema->footer(
+      "Example:\n  cnclab schema > cnclab.schema.json\n  then start an experiment file with\n"
+      "  # yaml-language-server: $schema=../../cnclab.schema.json");
+  schema->callback([schema_kind, &action] {
+    action = [schema_kind] { return schema_command(*schema_kind, std::cout); };
+  });
   auto* version = app.add_subcommand("version", "Print version, git commit and library versions");
   version->footer("Example:\n  cnclab version");
   version->callback([&action] { action = [] { return version_command(std::cout); }; });

@@ -128,5 +128,193 @@ TEST(Fields, SchemaHasTypesBoundsEnumsDefaultsAndDocs) {
   EXPECT_EQ(s, expected) << s.dump(2);
 }
 
+// The extensions: optional members, enums, conditional keys, defaults left
+// out of the emitted map, groups, optional sections and [low, high] pairs.
+enum class Shape { round, square };
+
+struct Options {
+  std::optional<std::size_t> count;
+  double share = 0.5;
+  Shape shape = Shape::round;
+  double radius = 1;
+  std::array<double, 2> range = {-1.0, 1.0};
+  bool extra = false;
+  std::string id = "a";
+  double group_value = 2;
+  std::optional<Inner> inner;
+};
+
+const FieldList<Options>& group_fields() {
+  static const auto f = FieldList<Options>().field("value", &Options::group_value, "in a group");
+  return f;
+}
+
+const FieldList<Options>& options_fields() {
+  using O = Options;
+  static const auto f =
+      FieldList<O>()
+          .field("count", &O::count, "how many (instead of share)")
+          .field("share", &O::share, "a share", Rule::in(0, true, 1, true))
+          .unless_set("count", "give count or share, not both")
+          .choice("shape", &O::shape, {{"round", Shape::round}, {"square", Shape::square}}, "form")
+          .field("radius", &O::radius, "round only", Rule::positive())
+          .when("shape", {"round"})
+          .field("range", &O::range, "[low, high]")
+          .when("shape", {"square"}, "applies to square only")
+          .field("extra", &O::extra, "left out when false")
+          .omit_default()
+          .field("id", &O::id, "an identifier",
+                 Rule::matches("^[a-z]+$", "must be lower-case letters"))
+          .group("group", group_fields(), "a group")
+          .optional_section("inner", &O::inner, inner_fields(), "optional");
+  return f;
+}
+
+Options read_options(const std::string& yaml) {
+  const ConfigDocument doc = ConfigDocument::parse(yaml, "o.yaml");
+  Options o;
+  options_fields().read(doc.root(), o);
+  doc.check_all_consumed();
+  return o;
+}
+
+std::string emitted(const Options& o) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  options_fields().emit(out, o);
+  out << YAML::EndMap;
+  return out.c_str();
+}
+
+std::string error_of(const std::string& yaml) {
+  try {
+    read_options(yaml);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Fields, OptionalConditionalAndOmittedKeys) {
+  // Defaults: count unset, so share applies; round, so radius applies.
+  EXPECT_EQ(emitted(Options{}), "share: 0.5\nshape: round\nradius: 1\nid: a\ngroup:\n  value: 2");
+  const Options o = read_options(
+      "count: 4\nshape: square\nrange: [0, 2]\nextra: true\ngroup: {value: 3}\ninner: {ratio: "
+      "0.75}\n");
+  EXPECT_EQ(o.count, std::optional<std::size_t>(4));
+  EXPECT_EQ(o.shape, Shape::square);
+  EXPECT_EQ(o.range[1], 2.0);
+  EXPECT_EQ(o.group_value, 3.0);
+  ASSERT_TRUE(o.inner.has_value());
+  EXPECT_EQ(o.inner->ratio, 0.75);
+  EXPECT_EQ(emitted(o),
+            "count: 4\nshape: square\nrange: [0, 2]\nextra: true\nid: a\ngroup:\n  value: "
+            "3\ninner:\n  ratio: 0.75");
+  EXPECT_EQ(emitted(read_options(emitted(o))), emitted(o));  // a fixed point
+}
+
+TEST(Fields, KeysWhereTheyDoNotApplyAreErrors) {
+  EXPECT_NE(error_of("count: 3\nshare: 0.2\n").find("share = 0.2: give count or share, not both"),
+            std::string::npos)
+      << error_of("count: 3\nshare: 0.2\n");
+  EXPECT_NE(error_of("range: [0, 1]\n").find("applies to square only"), std::string::npos);
+  // No misplaced text: an unknown key.
+  EXPECT_NE(error_of("shape: square\nradius: 2\n").find("radius: unknown key"), std::string::npos);
+  EXPECT_NE(error_of("shape: oval\n").find("must be one of: round, square"), std::string::npos);
+  EXPECT_NE(error_of("shape: square\nrange: [1, 0]\n").find("low < high"), std::string::npos);
+  Options bad;
+  bad.id = "A1";
+  try {
+    options_fields().check(bad);
+    FAIL();
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "id");
+    EXPECT_EQ(e.rule(), "must be lower-case letters");
+  }
+}
+
+TEST(Fields, SchemaOfConditionalAndOptionalKeys) {
+  const nlohmann::json s = object_schema(options_fields().info());
+  EXPECT_FALSE(s["properties"]["count"].contains("default"));  // optional: no default
+  EXPECT_EQ(s["properties"]["range"]["minItems"], 2);
+  EXPECT_EQ(s["properties"]["range"]["maxItems"], 2);
+  EXPECT_EQ(s["properties"]["id"]["pattern"], "^[a-z]+$");
+  EXPECT_EQ(s["properties"]["shape"]["enum"], nlohmann::json::array({"round", "square"}));
+  EXPECT_EQ(s["properties"]["group"]["properties"]["value"]["default"], 2);
+  EXPECT_EQ(s["properties"]["inner"]["additionalProperties"], false);
+  // share is forbidden once count is given; radius only with round (the
+  // default: an absent shape is round); range only with square (not the
+  // default: shape must be given).
+  const nlohmann::json expected = nlohmann::json::parse(R"([
+    {"if": {"required": ["count"]}, "then": {"not": {"required": ["share"]}}},
+    {"if": {"properties": {"shape": {"enum": ["round"]}}},
+     "else": {"not": {"required": ["radius"]}}},
+    {"if": {"properties": {"shape": {"enum": ["square"]}}, "required": ["shape"]},
+     "else": {"not": {"required": ["range"]}}}])");
+  EXPECT_EQ(s["allOf"], expected) << s["allOf"].dump(2);
+}
+
+// Conditions chain (split: train applies unless train_count is set, and
+// train_count only while mode is random, the default, left out when
+// emitted).
+struct Chained {
+  std::string mode = "random";
+  std::optional<std::size_t> count;
+  double share = 0.5;
+};
+
+const FieldList<Chained>& chained_fields() {
+  using C = Chained;
+  static const auto f =
+      FieldList<C>()
+          .field("mode", &C::mode, "random or halves", Rule::one_of({"random", "halves"}))
+          .omit_default()
+          .field("count", &C::count, "a count")
+          .when("mode", {"random"}, "applies to mode random only")
+          .field("share", &C::share, "a share")
+          .unless_set("count", "give count or share, not both");
+  return f;
+}
+
+std::string chained(const std::string& yaml) {
+  const ConfigDocument doc = ConfigDocument::parse(yaml, "c.yaml");
+  Chained c;
+  try {
+    chained_fields().read(doc.root(), c);
+    doc.check_all_consumed();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  chained_fields().emit(out, c);
+  out << YAML::EndMap;
+  return out.c_str();
+}
+
+TEST(Fields, ConditionsChain) {
+  // An omitted default still satisfies a condition on its value.
+  EXPECT_EQ(chained("{}"), "share: 0.5");
+  EXPECT_EQ(chained("count: 3\n"), "count: 3");
+  EXPECT_EQ(chained("mode: halves\n"), "mode: halves");
+  // share depends on count, which does not apply: share does not either,
+  // for count's reason.
+  EXPECT_NE(chained("mode: halves\nshare: 0.2\n").find("share = 0.2: applies to mode random only"),
+            std::string::npos)
+      << chained("mode: halves\nshare: 0.2\n");
+  EXPECT_NE(chained("mode: halves\ncount: 2\n").find("applies to mode random only"),
+            std::string::npos);
+  EXPECT_NE(chained("count: 3\nshare: 0.2\n").find("not both"), std::string::npos);
+  // The schema forbids share where count may not be given, too.
+  const nlohmann::json s = object_schema(chained_fields().info());
+  const nlohmann::json expected = nlohmann::json::parse(R"([
+    {"if": {"properties": {"mode": {"enum": ["random"]}}},
+     "else": {"not": {"required": ["count"]}}},
+    {"if": {"required": ["count"]}, "then": {"not": {"required": ["share"]}}},
+    {"if": {"properties": {"mode": {"enum": ["random"]}}},
+     "else": {"not": {"required": ["share"]}}}])");
+  EXPECT_EQ(s["allOf"], expected) << s["allOf"].dump(2);
+}
+
 }  // namespace
 }  // namespace cnclab

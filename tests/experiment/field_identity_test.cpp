@@ -7,14 +7,24 @@
 // emitted fails here.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
 
+#include "cnclab/core/error.hpp"
 #include "cnclab/core/fields.hpp"
 #include "cnclab/core/hash.hpp"
+#include "cnclab/data/friedman1.hpp"
+#include "cnclab/experiment/narx_spec.hpp"
+#include "cnclab/experiment/sequence_metrics.hpp"
 #include "cnclab/experiment/spec.hpp"
 #include "cnclab/train/lm.hpp"
 #include "cnclab/train/sgdm.hpp"
 #include "cnclab/train/trainbr.hpp"
+#include "common/temp_dir.hpp"
 
 namespace cnclab {
 namespace {
@@ -22,18 +32,19 @@ namespace {
 // A valid value other than the default, as override text; "" when none.
 std::string other_value(const FieldInfo& f) {
   const YAML::Node& d = f.default_value;
+  const bool has_default = d.IsDefined() && !d.IsNull();
   switch (f.kind) {
     case FieldKind::boolean:
-      return d.as<bool>() ? "false" : "true";
+      return has_default && d.as<bool>() ? "false" : "true";
     case FieldKind::integer: {
-      const double v = d.as<double>();
+      const double v = has_default ? d.as<double>() : 6;
       for (double c : {v + 1, v - 1}) {
         if (c >= 0 && f.rule.holds(c)) return std::to_string(static_cast<long long>(c));
       }
       return "";
     }
     case FieldKind::number: {
-      const double v = d.as<double>();
+      const double v = has_default ? d.as<double>() : 1;
       for (double c : {v * 1.5, v * 0.5, v + 0.25, v - 0.25, 0.5, 2.0}) {
         if (c != v && f.rule.holds(c)) return shortest_double(c);
       }
@@ -41,52 +52,194 @@ std::string other_value(const FieldInfo& f) {
     }
     case FieldKind::string:
       for (const auto& c : f.rule.choices) {
-        if (c != d.as<std::string>()) return c;
+        if (!has_default || c != d.as<std::string>()) return c;
       }
-      return "other";
+      return f.rule.choices.empty() ? "other" : "";
+    case FieldKind::number_list:
+      return f.items == 2 ? "[0.25, 0.5]" : "";
+    case FieldKind::integer_list:
+      return "[3]";
+    case FieldKind::string_list:
+      return f.rule.choices.empty() ? "" : "[" + f.rule.choices.front() + "]";
     default:
-      return "";  // lists and sections: covered by their own cases
+      return "";  // sections and custom keys: covered by their own cases
   }
 }
 
-// Every scalar leaf of the declarations under `prefix`.
+struct Leaf {
+  std::string key;
+  FieldInfo info;
+  std::vector<std::string> setup;  // overrides that make the key apply
+};
+
+// Every scalar leaf of the declarations under `prefix`, with the overrides
+// its condition needs.
 void leaves(const std::vector<FieldInfo>& fields, const std::string& prefix,
-            std::vector<std::pair<std::string, FieldInfo>>& out) {
+            std::vector<Leaf>& out) {
   for (const auto& f : fields) {
     if (f.kind == FieldKind::section) {
       leaves(f.children, prefix + f.key + ".", out);
-    } else {
-      out.emplace_back(prefix + f.key, f);
+      continue;
     }
+    Leaf leaf{prefix + f.key, f, {}};
+    if (f.when && !f.when->values.empty()) {
+      leaf.setup.push_back(prefix + f.when->key + "=" + f.when->values.front());
+    }
+    out.push_back(leaf);
   }
 }
 
 const std::string kBase =
     "name: t\nseed: 3\ndataset: {generator: friedman1, options: {samples: 50}}\nmodel: {}\n";
 
-void expect_every_key_in_identity(const std::string& trainer_type,
-                                  const std::vector<FieldInfo>& fields) {
-  const std::string base_yaml = kBase + "trainer: {type: " + trainer_type + "}\n";
-  const auto base = parse_experiment(base_yaml, "e.yaml");
-  std::vector<std::pair<std::string, FieldInfo>> keys;
-  leaves(fields, "trainer.", keys);
+// Changes each leaf of `fields` (under `prefix`) in turn. `values` gives the
+// value of keys other_value cannot choose; `skip` lists the keys left to
+// other tests, each with its reason: every one must be a declared leaf.
+void expect_every_key_in_identity(const std::string& base_yaml, const std::string& prefix,
+                                  const std::vector<FieldInfo>& fields,
+                                  std::map<std::string, std::string> values = {},
+                                  std::map<std::string, std::string> skip = {},
+                                  std::map<std::string, std::vector<std::string>> setup = {}) {
+  std::vector<Leaf> keys;
+  leaves(fields, prefix, keys);
   ASSERT_FALSE(keys.empty());
-  for (const auto& [key, info] : keys) {
-    const std::string value = other_value(info);
-    ASSERT_FALSE(value.empty()) << key;
-    const auto changed = parse_experiment(base_yaml, "e.yaml", {key + "=" + value});
+  std::set<std::string> seen;
+  for (auto& leaf : keys) {
+    seen.insert(leaf.key);
+    if (skip.count(leaf.key)) continue;
+    for (const auto& s : setup[leaf.key]) leaf.setup.push_back(s);
+    const std::string value = values.count(leaf.key) ? values[leaf.key] : other_value(leaf.info);
+    ASSERT_FALSE(value.empty()) << leaf.key;
+    const auto base = parse_experiment(base_yaml, "e.yaml", leaf.setup);
+    auto changed_overrides = leaf.setup;
+    changed_overrides.push_back(leaf.key + "=" + value);
+    const auto changed = parse_experiment(base_yaml, "e.yaml", changed_overrides);
     EXPECT_NE(hash_hex(changed.resolved_yaml), hash_hex(base.resolved_yaml))
-        << trainer_type << ": " << key << "=" << value << " does not change the identity";
+        << leaf.key << "=" << value << " does not change the identity";
     EXPECT_EQ(parse_experiment(changed.resolved_yaml, "r.yaml").resolved_yaml,
               changed.resolved_yaml)
-        << key;
+        << leaf.key;
   }
+  for (const auto& [key, why] : skip) EXPECT_TRUE(seen.count(key)) << key << " (" << why << ")";
 }
 
 TEST(FieldIdentity, EveryTrainerKeyChangesTheIdentityAndRoundTrips) {
-  expect_every_key_in_identity("sgdm", sgdm_fields().info());
-  expect_every_key_in_identity("lm", lm_fields().info());
-  expect_every_key_in_identity("trainbr", trainbr_fields().info(TrainbrOptions{}));
+  for (const auto& [type, info] :
+       {std::pair{"sgdm", sgdm_fields().info()}, std::pair{"lm", lm_fields().info()},
+        std::pair{"trainbr", trainbr_fields().info(TrainbrOptions{})}}) {
+    expect_every_key_in_identity(kBase + "trainer: {type: " + type + "}\n", "trainer.", info);
+  }
+}
+
+TEST(FieldIdentity, EveryExperimentKeyChangesTheIdentityAndRoundTrips) {
+  // Upstream files for needs and init_from (absolute: the test's working
+  // folder is not the file's).
+  testing::TempDir dir;
+  std::vector<std::string> files;
+  for (const char* name : {"a.yaml", "b.yaml"}) {
+    const auto path = dir.path() / name;
+    std::ofstream(path) << kBase << "trainer: {type: sgdm}\n";
+    files.push_back(path.string());
+  }
+  const std::string base = kBase + "trainer: {type: sgdm}\n";
+  expect_every_key_in_identity(
+      base, "", experiment_fields().info(),
+      {{"needs", "[" + files[0] + "]"},
+       {"init_from.experiment", files[1]},
+       {"dataset.targets", "[y]"},
+       {"model.hidden", "[3]"},
+       // below the default high (0.1)
+       {"model.init.weights.low", "-1"},
+       {"model.init.biases.low", "-1"}},
+      {{"kind", "not emitted: only train here"},
+       {"sweep", "read by `cnclab sweep`, not part of a trial's config"},
+       {"trainer", "EveryTrainerKeyChangesTheIdentityAndRoundTrips"},
+       {"dataset.generator", "another generator needs other options: GeneratorOptions"},
+       {"dataset.options", "GeneratorOptions"},
+       {"model.type", "narx: EveryNarxKeyChangesTheIdentityAndRoundTrips"}},
+      {{"init_from.normaliser", {"init_from.experiment=" + files[0]}},
+       {"split.validation_count", {"split.train_count=20"}},
+       {"split.test_count", {"split.train_count=20"}}});
+}
+
+TEST(FieldIdentity, GeneratorOptions) {
+  expect_every_key_in_identity(kBase + "trainer: {type: sgdm}\n", "dataset.options.",
+                               friedman1_fields().info());
+}
+
+// model.type narx (narx_spec.hpp): its model keys, each key of a training
+// stage and the sequence metrics. The stages list is replaced whole (an
+// override cannot address one list entry).
+const std::string kNarxBase =
+    "name: t\nseed: 3\ndataset: {generator: friedman1, options: {samples: 50}}\n"
+    "split: {mode: sequential_halves}\nnormalisation: {inputs: none, targets: none}\n"
+    "model: {type: narx}\ntrainer: {stages: [{mode: open_loop, type: trainbr}]}\n";
+
+// Sequence metrics for a narx experiment (a study registers them in the
+// program; once per test process here).
+const std::vector<std::string>& identity_test_sequence_metrics() {
+  static const std::vector<std::string> names = [] {
+    const std::vector<std::string> mine = {"identity_test_rms", "identity_test_max"};
+    register_sequence_metrics({"field_identity_test", mine, [](const SequencePrediction&) {
+                                 return std::map<std::string, double>{};
+                               }});
+    return mine;
+  }();
+  return names;
+}
+
+TEST(FieldIdentity, EveryNarxKeyChangesTheIdentityAndRoundTrips) {
+  identity_test_sequence_metrics();
+  expect_every_key_in_identity(kNarxBase, "model.", narx_model_fields().info());
+}
+
+// "trainer.stages=[{mode: open_loop, type: TYPE, KEY: VALUE}]" (no KEY: "").
+std::string one_stage(const std::string& type, const std::string& key, const std::string& value) {
+  std::map<std::string, std::string> stage = {{"mode", "open_loop"}, {"type", type}};
+  if (!key.empty()) stage[key] = value;
+  std::string text;
+  for (const auto& [k, v] : stage) text += (text.empty() ? "" : ", ") + k + ": " + v;
+  return "trainer.stages=[{" + text + "}]";
+}
+
+TEST(FieldIdentity, EveryStageKeyChangesTheIdentityAndRoundTrips) {
+  identity_test_sequence_metrics();
+  for (const auto& [type, trainer] :
+       {std::pair{"lm", lm_fields().info()},
+        std::pair{"trainbr", trainbr_fields().info(TrainbrOptions{})}}) {
+    std::vector<FieldInfo> keys = stage_fields().info();
+    keys.insert(keys.end(), trainer.begin(), trainer.end());
+    const auto base = parse_experiment(kNarxBase, "e.yaml", {one_stage(type, "", "")});
+    for (const auto& f : keys) {
+      const std::string value = other_value(f);
+      ASSERT_FALSE(value.empty()) << f.key;
+      const auto changed = parse_experiment(kNarxBase, "e.yaml", {one_stage(type, f.key, value)});
+      EXPECT_NE(hash_hex(changed.resolved_yaml), hash_hex(base.resolved_yaml))
+          << type << " stage: " << f.key << "=" << value << " does not change the identity";
+      EXPECT_EQ(parse_experiment(changed.resolved_yaml, "r.yaml").resolved_yaml,
+                changed.resolved_yaml)
+          << f.key;
+    }
+  }
+}
+
+TEST(FieldIdentity, NarxMetricsAreTheSequenceMetrics) {
+  const auto& names = identity_test_sequence_metrics();
+  const auto all = parse_experiment(kNarxBase, "e.yaml");
+  for (const auto& m : names) {
+    EXPECT_NE(std::find(all.spec.metrics.begin(), all.spec.metrics.end(), m),
+              all.spec.metrics.end())
+        << m << " is not a default";
+  }
+  const auto one = parse_experiment(kNarxBase, "e.yaml", {"metrics=[" + names.front() + "]"});
+  EXPECT_EQ(one.spec.metrics, std::vector<std::string>{names.front()});
+  EXPECT_NE(hash_hex(one.resolved_yaml), hash_hex(all.resolved_yaml));
+  EXPECT_EQ(parse_experiment(one.resolved_yaml, "r.yaml").resolved_yaml, one.resolved_yaml);
+  // A regression metric is not a narx metric, nor a sequence metric an mlp one.
+  EXPECT_THROW(parse_experiment(kNarxBase, "e.yaml", {"metrics=[mse]"}), ConfigError);
+  EXPECT_THROW(parse_experiment(kBase + "trainer: {type: sgdm}\n", "e.yaml",
+                                {"metrics=[" + names.front() + "]"}),
+               ConfigError);
 }
 
 }  // namespace

@@ -1,13 +1,20 @@
 #include "cnclab/core/field_schema.hpp"
 
+#include <algorithm>
+
 namespace cnclab {
 namespace {
 
 using nlohmann::json;
 
-void add_bounds(json& s, const Rule& r) {
-  if (r.min) s[r.min->inclusive ? "minimum" : "exclusiveMinimum"] = r.min->value;
-  if (r.max) s[r.max->inclusive ? "maximum" : "exclusiveMaximum"] = r.max->value;
+// Bounds of integer fields as JSON integers (5, not 5.0).
+json bound(double v, bool integer) {
+  return integer ? json(static_cast<long long>(v)) : json(v);
+}
+
+void add_bounds(json& s, const Rule& r, bool integer = false) {
+  if (r.min) s[r.min->inclusive ? "minimum" : "exclusiveMinimum"] = bound(r.min->value, integer);
+  if (r.max) s[r.max->inclusive ? "maximum" : "exclusiveMaximum"] = bound(r.max->value, integer);
 }
 
 json scalar_schema(FieldKind kind, const Rule& r) {
@@ -22,7 +29,7 @@ json scalar_schema(FieldKind kind, const Rule& r) {
     case FieldKind::integer_list:
       s["type"] = "integer";
       s["minimum"] = 0;  // every integer field is a count or a seed
-      add_bounds(s, r);
+      add_bounds(s, r, true);
       break;
     case FieldKind::boolean:
       s["type"] = "boolean";
@@ -31,11 +38,42 @@ json scalar_schema(FieldKind kind, const Rule& r) {
     case FieldKind::string_list:
       s["type"] = "string";
       if (!r.choices.empty()) s["enum"] = r.choices;
+      if (!r.pattern.empty()) s["pattern"] = r.pattern;
       break;
     case FieldKind::section:
+    case FieldKind::any:
       break;
   }
   return s;
+}
+
+// The sibling `key`'s default as a string ("" when it has none).
+std::string default_text(const std::vector<FieldInfo>& fields, const std::string& key) {
+  for (const auto& f : fields) {
+    if (f.key == key && f.default_value.IsDefined() && f.default_value.IsScalar()) {
+      return f.default_value.Scalar();
+    }
+  }
+  return "";
+}
+
+// Condition `c` of field `key` as JSON Schema: where it does not hold the
+// field must be absent (the reader rejects it there, as a misplaced or an
+// unknown key).
+json condition_schema(const std::vector<FieldInfo>& fields, const std::string& key,
+                      const Condition& c) {
+  const json absent = {{"not", {{"required", {key}}}}};
+  if (c.values.empty()) {
+    return {{"if", {{"required", {c.key}}}}, {"then", absent}};
+  }
+  json cond = {{"properties", {{c.key, {{"enum", c.values}}}}}};
+  // An absent sibling takes its default: the condition then holds only if
+  // the default is one of the values.
+  const std::string d = default_text(fields, c.key);
+  if (std::find(c.values.begin(), c.values.end(), d) == c.values.end()) {
+    cond["required"] = {c.key};
+  }
+  return {{"if", cond}, {"else", absent}};
 }
 
 }  // namespace
@@ -72,17 +110,22 @@ json field_schema(const FieldInfo& f) {
     case FieldKind::section:
       s = object_schema(f.children, f.doc);
       break;
+    case FieldKind::any:
+      s = f.children.empty() ? json::object() : object_schema(f.children, f.doc);
+      break;
     case FieldKind::number_list:
     case FieldKind::integer_list:
     case FieldKind::string_list:
       s["type"] = "array";
       s["items"] = scalar_schema(f.kind, f.rule);
+      if (f.items) s["minItems"] = s["maxItems"] = f.items;
       break;
     default:
       s = scalar_schema(f.kind, f.rule);
   }
   if (!f.doc.empty()) s["description"] = f.doc;
-  if (f.kind != FieldKind::section && f.default_value.IsDefined()) {
+  if (f.kind != FieldKind::section && f.kind != FieldKind::any && f.default_value.IsDefined() &&
+      !f.default_value.IsNull()) {
     s["default"] = yaml_to_json(f.default_value);
   }
   return s;
@@ -91,10 +134,52 @@ json field_schema(const FieldInfo& f) {
 json object_schema(const std::vector<FieldInfo>& fields, const std::string& doc) {
   json s = {{"type", "object"}, {"additionalProperties", false}};
   json props = json::object();
-  for (const auto& f : fields) props[f.key] = field_schema(f);
+  json required = json::array();
+  json conditions = json::array();
+  for (const auto& f : fields) {
+    props[f.key] = field_schema(f);
+    if (f.required) required.push_back(f.key);
+    // The field's condition and those of the siblings it depends on (a
+    // field applies only where they all hold; fields.hpp).
+    for (const FieldInfo* g = &f; g && g->when;) {
+      conditions.push_back(condition_schema(fields, f.key, *g->when));
+      const std::string& up = g->when->key;
+      const auto it = std::find_if(fields.begin(), fields.end(),
+                                   [&](const FieldInfo& x) { return x.key == up; });
+      g = it == fields.end() ? nullptr : &*it;
+    }
+  }
   s["properties"] = props;
+  if (!required.empty()) s["required"] = required;
+  if (!conditions.empty()) s["allOf"] = conditions;
   if (!doc.empty()) s["description"] = doc;
   return s;
+}
+
+json tagged_schema(const std::string& tag, const std::string& default_tag,
+                   const std::vector<TaggedVariant>& variants, const std::string& doc) {
+  json names = json::array();
+  json cases = json::array();
+  for (const auto& v : variants) {
+    names.push_back(v.name);
+    json then = v.schema;
+    if (then.contains("properties") && !then["properties"].contains(tag)) {
+      then["properties"][tag] = json::object();
+    }
+    json cond = {{"properties", {{tag, {{"const", v.name}}}}}};
+    if (v.name != default_tag) cond["required"] = {tag};
+    cases.push_back({{"if", cond}, {"then", then}});
+  }
+  json tag_schema = {{"type", "string"}, {"enum", names}};
+  if (!default_tag.empty()) tag_schema["default"] = default_tag;
+  json s = {{"type", "object"}, {"properties", {{tag, tag_schema}}}, {"allOf", cases}};
+  if (default_tag.empty()) s["required"] = {tag};
+  if (!doc.empty()) s["description"] = doc;
+  return s;
+}
+
+json open_schema(const std::string& doc) {
+  return {{"type", "object"}, {"description", doc}};
 }
 
 }  // namespace cnclab

@@ -1,6 +1,7 @@
 #include "cnclab/core/fields.hpp"
 
 #include <algorithm>
+#include <regex>
 
 namespace cnclab {
 namespace {
@@ -19,10 +20,12 @@ bool Rule::holds(double v) const {
 }
 
 bool Rule::holds(const std::string& v) const {
+  if (!pattern.empty() && !std::regex_match(v, std::regex(pattern))) return false;
   return choices.empty() || std::find(choices.begin(), choices.end(), v) != choices.end();
 }
 
 std::string Rule::text(bool integer) const {
+  if (!pattern.empty()) return pattern_text;
   if (!choices.empty()) {
     std::string s = "must be one of: ";
     for (std::size_t i = 0; i < choices.size(); ++i) s += (i ? ", " : "") + choices[i];

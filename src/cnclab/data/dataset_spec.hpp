@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/core/fields.hpp"
 #include "cnclab/data/generator.hpp"
 
 namespace cnclab {
@@ -23,6 +24,10 @@ struct DatasetSpec {
   // empty = all. One network per output (seed 004 Table 5) selects one.
   std::vector<std::string> targets;
 };
+
+// dataset: {generator, seed?, targets?, options}; `generator` reads its
+// `options` (their keys depend on it: GeneratorEntry::options).
+const FieldList<DatasetSpec>& dataset_fields();
 
 // Reads a `dataset` section (strict; `cnclab dataset generate` and experiments).
 DatasetSpec read_dataset_spec(const ConfigReader& dataset_section);

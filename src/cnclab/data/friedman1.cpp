@@ -9,6 +9,18 @@
 
 namespace cnclab {
 
+const FieldList<Friedman1Options>& friedman1_fields() {
+  using O = Friedman1Options;
+  static const auto fields =
+      FieldList<O>()
+          .field("samples", &O::samples, "number of samples", Rule::in(1, true, 1e8, true))
+          .field("inputs", &O::inputs, "d: x1..x5 enter y, x6..xd are noise features",
+                 Rule::in(5, true, 10000, true))
+          .field("noise_std", &O::noise_std, "standard deviation of eps ~ N(0, noise_std²)",
+                 Rule::non_negative());
+  return fields;
+}
+
 void Friedman1Options::validate() const {
   if (samples < 1) throw OptionError("samples", std::to_string(samples), "must be at least 1");
   if (samples > 100'000'000) {
@@ -56,16 +68,12 @@ Friedman1Generator::Friedman1Generator(Friedman1Options options) : options_(opti
 }
 
 std::string Friedman1Generator::options_yaml() const {
-  return "samples: " + std::to_string(options_.samples) +
-         "\ninputs: " + std::to_string(options_.inputs) +
-         "\nnoise_std: " + shortest_double(options_.noise_std) + "\n";
+  return friedman1_fields().yaml(options_);
 }
 
 std::shared_ptr<const DatasetGenerator> read_friedman1(const ConfigReader& r) {
   Friedman1Options f;
-  f.samples = r.get<std::size_t>("samples", f.samples);
-  f.inputs = r.get<std::size_t>("inputs", f.inputs);
-  f.noise_std = r.get<double>("noise_std", f.noise_std);
+  friedman1_fields().read(r, f);
   r.validate([&] { f.validate(); });
   return std::make_shared<Friedman1Generator>(f);
 }

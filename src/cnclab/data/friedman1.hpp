@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string>
 
+#include "cnclab/core/fields.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset.hpp"
 #include "cnclab/data/generator.hpp"
@@ -18,6 +19,9 @@ struct Friedman1Options {
   double noise_std = 1.0;   // standard deviation of eps, >= 0
   void validate() const;
 };
+
+// dataset.options of `friedman1`: {samples, inputs, noise_std}.
+const FieldList<Friedman1Options>& friedman1_fields();
 
 // The noise-free function value.
 double friedman1_function(const double* x);

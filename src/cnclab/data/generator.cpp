@@ -10,7 +10,8 @@ namespace cnclab {
 
 std::vector<GeneratorEntry> builtin_generators() {
   return {
-      {"friedman1", "Friedman #1 regression benchmark (noisy, d >= 5 inputs)", read_friedman1},
+      {"friedman1", "Friedman #1 regression benchmark (noisy, d >= 5 inputs)", read_friedman1,
+       [] { return friedman1_fields().info(); }},
       {"step_error",
        "step errors of an iso-parametric ball-end tool path on a NURBS surface (seed 000)",
        read_step_error},

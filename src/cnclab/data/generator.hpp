@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/core/field_info.hpp"
 #include "cnclab/core/progress.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset.hpp"
@@ -61,6 +62,9 @@ struct GeneratorEntry {
   std::string name;
   std::string summary;  // one line: what the generator makes
   GeneratorReader read;
+  // The declared `options` keys (core/fields.hpp) for `cnclab schema`; empty
+  // while a generator's options are not declared yet.
+  std::function<std::vector<FieldInfo>()> options = {};
 };
 
 // The built-in generators in a fixed order; a new list each call (no global

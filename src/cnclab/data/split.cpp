@@ -9,6 +9,36 @@
 
 namespace cnclab {
 
+const FieldList<SplitOptions>& split_fields() {
+  using O = SplitOptions;
+  const std::string both = "give either fractions (train, validation) or counts, not both";
+  const std::string random_only = "applies to split.mode random only";
+  static const auto fields =
+      FieldList<O>()
+          .choice(
+              "mode", &O::mode,
+              {{"random", SplitMode::random}, {"sequential_halves", SplitMode::sequential_halves}},
+              "random: shares or counts drawn at random; sequential_halves: first half "
+              "trains, second validates, in time order (seed 002; model.type narx)")
+          .omit_default()
+          .field("train_count", &O::train_count,
+                 "training samples: counts instead of shares (seed 004: 1042)")
+          .when("mode", {"random"}, random_only)
+          .field("validation_count", &O::validation_count,
+                 "validation samples; absent: the rest after test_count (or none)")
+          .when("mode", {"random"}, random_only)
+          .field("test_count", &O::test_count, "test samples; absent: the rest")
+          .when("mode", {"random"}, random_only)
+          .field("train", &O::train_fraction, "share of the samples for training (seed 000: 0.7)",
+                 Rule::in(0, true, 1, true))
+          .unless_set("train_count", both)
+          .field("validation", &O::validation_fraction,
+                 "share held out of training for early stopping; train + validation <= 1",
+                 Rule::in(0, true, 1, false))
+          .unless_set("train_count", both);
+  return fields;
+}
+
 void SplitOptions::validate() const {
   if (uses_counts()) return;
   if (validation_count || test_count) {

@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include "cnclab/core/fields.hpp"
 #include "cnclab/core/rng.hpp"
 
 namespace cnclab {
@@ -44,6 +45,12 @@ struct SplitOptions {
   };
   Sizes sizes(std::size_t n) const;
 };
+
+// split: {mode, train, validation} shares or {train_count, validation_count,
+// test_count}; the fractions apply only without train_count, fractions and
+// counts only with mode random (the default, left out of the resolved
+// config).
+const FieldList<SplitOptions>& split_fields();
 
 struct Split {
   std::vector<std::size_t> train, validation, test;  // each sorted ascending

@@ -13,6 +13,7 @@
 // JobReport::action / why.
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -50,6 +51,10 @@ struct JobKind {
   // The resolved configuration as YAML (`cnclab validate`); throws like run.
   std::function<std::string(const std::filesystem::path& file, const JobContext& context)>
       resolved_yaml;
+  // The JSON Schema of the kind's files (`cnclab schema`; experiment_schema.hpp),
+  // from its field declarations. Empty while its keys are not declared: the
+  // schema then says so and accepts any keys.
+  std::function<nlohmann::json()> schema = {};
 };
 
 // Registers a kind (src/cli/builtins.cpp, before any command runs).

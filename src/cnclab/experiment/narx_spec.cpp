@@ -62,10 +62,11 @@ NarxModelSpec read_narx_model(const ConfigReader& model) {
   return m;
 }
 
-void emit_narx_model(YAML::Emitter& out, const NarxModelSpec& model) {
-  out << YAML::BeginMap << YAML::Key << "type" << YAML::Value << "narx";
-  narx_model_fields().emit(out, model);
-  out << YAML::EndMap;
+YAML::Node narx_model_to_node(const NarxModelSpec& model) {
+  YAML::Node n(YAML::NodeType::Map);
+  n["type"] = "narx";
+  for (const auto& kv : narx_model_fields().to_node(model)) n[kv.first.Scalar()] = kv.second;
+  return n;
 }
 
 namespace {
@@ -115,17 +116,18 @@ std::vector<TrainingStage> read_stages(const ConfigReader& trainer) {
   return stages;
 }
 
-void emit_stages(YAML::Emitter& out, const std::vector<TrainingStage>& stages) {
-  out << YAML::BeginMap << YAML::Key << "stages" << YAML::Value << YAML::BeginSeq;
+YAML::Node stages_to_node(const std::vector<TrainingStage>& stages) {
+  YAML::Node list(YAML::NodeType::Sequence);
   for (const auto& stage : stages) {
-    YAML::Emitter one;
-    emit_trainer(one, stage.trainer);
     YAML::Node node(YAML::NodeType::Map);
     node["mode"] = to_string(stage.mode);
-    for (const auto& kv : YAML::Load(one.c_str())) node[kv.first.Scalar()] = kv.second;
-    out << YAML::Flow << node;
+    for (const auto& kv : trainer_to_node(stage.trainer)) node[kv.first.Scalar()] = kv.second;
+    node.SetStyle(YAML::EmitterStyle::Flow);  // one line per stage
+    list.push_back(node);
   }
-  out << YAML::EndSeq << YAML::EndMap;
+  YAML::Node trainer(YAML::NodeType::Map);
+  trainer["stages"] = list;
+  return trainer;
 }
 
 std::string stages_text(const std::vector<TrainingStage>& stages) {

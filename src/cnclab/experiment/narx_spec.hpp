@@ -73,13 +73,15 @@ const FieldList<StageHead>& stage_fields();
 std::string read_model_type(const ConfigReader& model);
 // The narx model section (type already read); validated.
 NarxModelSpec read_narx_model(const ConfigReader& model);
-void emit_narx_model(YAML::Emitter& out, const NarxModelSpec& model);
+// The model section as resolved: {type: narx, hidden, ...}.
+YAML::Node narx_model_to_node(const NarxModelSpec& model);
 
 // trainer.stages: a non-empty list of maps; each one's keys are checked
 // strictly (unknown keys are ConfigErrors naming trainer.stages[i]).
 std::vector<TrainingStage> read_stages(const ConfigReader& trainer);
-// The trainer section with stages: {stages: [{mode, type, ...}, ...]}.
-void emit_stages(YAML::Emitter& out, const std::vector<TrainingStage>& stages);
+// The trainer section with stages: {stages: [{mode, type, ...}, ...]}, each
+// stage a flow map of every option resolved.
+YAML::Node stages_to_node(const std::vector<TrainingStage>& stages);
 
 // "open_loop:trainbr+closed_loop:trainbr", for messages and result files.
 std::string stages_text(const std::vector<TrainingStage>& stages);

@@ -10,6 +10,7 @@
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/core/suggest.hpp"
+#include "cnclab/experiment/model_spec.hpp"
 #include "cnclab/experiment/sequence_metrics.hpp"
 #include "cnclab/experiment/spec_narx.hpp"
 #include "cnclab/experiment/spec_text.hpp"
@@ -18,47 +19,81 @@
 namespace cnclab {
 namespace {
 
-Scaling read_scaling(const ConfigReader& r, const std::string& key) {
-  Scaling s = Scaling::zscore;
-  parse_scaling(choice(r, key, to_string(s), {"zscore", "minmax", "none"}), s);
-  return s;
+// The rule of `name`: a file-name-safe identifier (results/<name>/).
+Rule name_rule() {
+  return Rule::matches("^[A-Za-z0-9_-][A-Za-z0-9_.-]*$",
+                       "must be a file-name-safe identifier (letters, digits, '_', '-', '.')");
 }
 
-std::array<double, 2> read_range(const ConfigReader& r, const std::string& key,
-                                 std::array<double, 2> fallback) {
-  if (!r.has(key)) return fallback;
-  const auto v = r.require<std::vector<double>>(key);
-  if (v.size() != 2 || !(v[0] < v[1])) r.fail(key, "must be a list [low, high] with low < high");
-  return {v[0], v[1]};
+const std::vector<std::pair<std::string, Scaling>> kScalings = {
+    {"zscore", Scaling::zscore}, {"minmax", Scaling::minmax}, {"none", Scaling::none}};
+
+const FieldList<NormalisationSpec>& normalisation_fields() {
+  using N = NormalisationSpec;
+  static const auto fields =
+      FieldList<N>()
+          .choice("inputs", &N::inputs, kScalings,
+                  "zscore (seed 000 Eq. 7, n-1 std), minmax (MATLAB mapminmax) or none; fitted "
+                  "on the training split")
+          .choice("targets", &N::targets, kScalings, "as inputs, for the targets")
+          .field("input_range", &N::input_range,
+                 "[low, high] of minmax inputs (a sigmoid output needs one inside (0, 1))")
+          .when("inputs", {"minmax"}, "applies to minmax only")
+          .field("target_range", &N::target_range, "[low, high] of minmax targets")
+          .when("targets", {"minmax"}, "applies to minmax only");
+  return fields;
 }
 
-Activation read_activation(const ConfigReader& r, const std::string& key, Activation fallback) {
-  const auto text = r.get<std::string>(key, to_string(fallback));
-  try {
-    return parse_activation(text);
-  } catch (const Error&) {
-    const std::vector<std::string> names = {"relu", "tanh", "sigmoid", "linear"};
-    r.fail(key, one_of(names) + did_you_mean(text, names));
+const FieldList<InitFromSpec>& init_from_fields() {
+  using I = InitFromSpec;
+  static const auto fields =
+      FieldList<I>()
+          .field("experiment", &I::experiment,
+                 "experiment file (relative to this file) whose trained network parameters are "
+                 "the starting point (fine-tuning)")
+          .required()
+          .choice("normaliser", &I::normaliser,
+                  {{"refit", NormaliserSource::refit}, {"keep", NormaliserSource::keep}},
+                  "refit: fit the normaliser on this experiment's training split; keep: the "
+                  "upstream result's, unchanged");
+  return fields;
+}
+
+FieldInfo custom_info(std::string key, std::string doc, FieldKind kind = FieldKind::any,
+                      Rule rule = {}) {
+  FieldInfo i;
+  i.key = std::move(key);
+  i.doc = std::move(doc);
+  i.kind = kind;
+  i.rule = std::move(rule);
+  return i;
+}
+
+// model: model.type picks the declaration (model_types()); the key tables
+// show mlp's keys, the schema every type's.
+FieldInfo model_info() {
+  FieldInfo i = custom_info("model", "the network; model.type (mlp or narx) picks its keys",
+                            FieldKind::section);
+  i.children = mlp_fields().info();
+  return i;
+}
+
+// Read after split and normalisation, which a narx model checks.
+void read_model_section(const ConfigReader& root, ExperimentSpec& spec) {
+  if (read_model_type(root.section("model")) == "narx") {
+    read_narx_model_section(root, spec);
+  } else {
+    mlp_fields().read(root.section("model"), spec.model);
   }
 }
 
-Initializer read_initializer(const ConfigReader& r, const Initializer& fallback) {
-  Initializer init = fallback;
-  const auto kind =
-      choice(r, "type", to_string(fallback.kind), {"normal", "uniform", "xavier", "he"});
-  init.kind = kind == "normal"    ? Initializer::Kind::normal
-              : kind == "uniform" ? Initializer::Kind::uniform
-              : kind == "xavier"  ? Initializer::Kind::xavier
-                                  : Initializer::Kind::he;
-  if (init.kind == Initializer::Kind::normal) {
-    init.mean = r.get<double>("mean", init.mean);
-    init.std = r.get<double>("std", init.std);
-  } else if (init.kind == Initializer::Kind::uniform) {
-    init.low = r.get<double>("low", init.low);
-    init.high = r.get<double>("high", init.high);
+// trainer.type and its options, or trainer.stages for model.type narx.
+void read_trainer_section(const ConfigReader& root, ExperimentSpec& spec) {
+  if (spec.narx) {
+    read_narx_trainer(root, spec);
+  } else {
+    spec.trainer = read_trainer(root.section("trainer"), &spec.reader_notes);
   }
-  r.validate([&] { init.validate(); });
-  return init;
 }
 
 // "; the fragments in configs/<group>/ provide one: a.yaml, b.yaml" for the
@@ -115,6 +150,13 @@ Override expand_config_group(const Override& o, const std::filesystem::path& bas
   return Override{o.path, block, o.text};
 }
 
+void check_train_kind(const ConfigReader& root) {
+  if (root.get<std::string>("kind", "train") != "train") {
+    root.fail("kind",
+              "must be train here (other kinds are read by their job, experiment/job_kinds.hpp)");
+  }
+}
+
 // What an experiment is about has no default (README: "never a silent
 // default"): a forgotten dataset include must not train on some built-in
 // data set. The dataset generator, the model block and the trainer type are
@@ -133,91 +175,48 @@ void require_subject(const ConfigReader& root, const std::filesystem::path& base
   }
 }
 
-SplitOptions read_split(const ConfigReader& r, std::size_t samples) {
-  SplitOptions s;
-  if (choice(r, "mode", "random", {"random", "sequential_halves"}) == "sequential_halves") {
-    s.mode = SplitMode::sequential_halves;
-    for (const auto& key : r.keys()) {
-      if (key != "mode") r.fail(key, "applies to split.mode random only");
-    }
-    return s;
-  }
-  s.train_count = r.optional<std::size_t>("train_count");
-  s.validation_count = r.optional<std::size_t>("validation_count");
-  s.test_count = r.optional<std::size_t>("test_count");
-  if (s.train_count || s.validation_count || s.test_count) {
-    for (const char* key : {"train", "validation"}) {
-      if (r.has(key)) r.fail(key, "give either fractions (train, validation) or counts, not both");
-    }
-  }
-  s.train_fraction = r.get<double>("train", s.train_fraction);
-  s.validation_fraction = r.get<double>("validation", s.validation_fraction);
+// Checks the split against the sample count; SplitOptions names its fields
+// *_fraction, the YAML keys are shorter.
+void validate_split(const ConfigReader& r, const SplitOptions& s, std::size_t samples) {
   r.validate([&] {
     try {
       s.validate_for(samples);
     } catch (const OptionError& e) {
-      // SplitOptions names its fields *_fraction; the YAML keys are shorter.
       const std::string key = e.field() == "train_fraction"        ? "train"
                               : e.field() == "validation_fraction" ? "validation"
                                                                    : e.field();
       throw OptionError(key, e.value(), e.rule());
     }
   });
-  return s;
 }
 
-MlpOptions read_model(const ConfigReader& r) {
-  MlpOptions m;
-  choice(r, "type", "mlp", {"mlp"});
-  m.hidden = r.get<std::vector<std::size_t>>("hidden", m.hidden);
-  m.hidden_activation = read_activation(r, "hidden_activation", m.hidden_activation);
-  m.output_activation = read_activation(r, "output_activation", m.output_activation);
-  const ConfigReader d = r.section("dropout");
-  m.dropout_keep_probability = d.get<double>("keep_probability", m.dropout_keep_probability);
-  const auto placement = choice(d, "placement", to_string(m.dropout_placement),
-                                {"between_hidden", "after_every_hidden"});
-  m.dropout_placement = placement == "between_hidden" ? DropoutPlacement::between_hidden
-                                                      : DropoutPlacement::after_every_hidden;
-  const ConfigReader init = r.section("init");
-  m.weights = read_initializer(init.section("weights"), m.weights);
-  m.biases = read_initializer(init.section("biases"), m.biases);
-  // inputs/outputs are set from the dataset; validate the rest with
-  // placeholders so a bad value is reported now, not after generation.
-  MlpOptions check = m;
-  check.inputs = 1;
-  check.outputs = 1;
-  r.validate([&] {
-    try {
-      check.validate();
-    } catch (const OptionError& e) {
-      const std::string key = e.field() == "dropout_keep_probability" ? "dropout.keep_probability"
-                              : e.field() == "dropout_placement"      ? "dropout.placement"
-                                                                      : e.field();
-      throw OptionError(key, e.value(), e.rule());
+// The keys the declarations cannot check alone: file references, rules
+// across sections, metric names.
+void check_experiment(const ConfigReader& root, const std::filesystem::path& base,
+                      ExperimentSpec& spec) {
+  if (spec.split.mode == SplitMode::random) {
+    validate_split(root.section("split"), spec.split, spec.dataset.generator->shape().samples);
+  }
+  if (!spec.narx) validate_mlp_model(root.section("model"), spec.model);
+  if (is_levenberg_marquardt(spec.trainer) && spec.model.dropout_keep_probability < 1.0) {
+    root.section("model").section("dropout").fail(
+        "keep_probability", "must be 1 with trainer " + trainer_name(spec.trainer) +
+                                " (Levenberg-Marquardt needs a deterministic network)");
+  }
+  for (const auto& m : spec.metrics) {
+    const auto known = spec.narx ? sequence_metric_names() : known_metrics();
+    if (std::find(known.begin(), known.end(), m) == known.end()) {
+      root.fail("metrics",
+                "unknown metric '" + m + "'" + did_you_mean(m, known) + "; " + one_of(known));
     }
-  });
-  return m;
-}
-
-void read_graph(const ConfigReader& root, const std::filesystem::path& base, ExperimentSpec& spec) {
-  spec.needs = root.get<std::vector<std::string>>("needs", {});
+  }
   for (const auto& text : spec.needs) {
     spec.needs_files.push_back(upstream_file(root, "needs", text, base));
   }
-  if (root.has("init_from")) {
-    const ConfigReader init = root.section("init_from");
-    InitFromSpec from;
-    from.experiment = init.require<std::string>("experiment");
-    from.resolved_file = upstream_file(init, "experiment", from.experiment, base);
-    from.normaliser =
-        choice(init, "normaliser", to_string(from.normaliser), {"refit", "keep"}) == "keep"
-            ? NormaliserSource::keep
-            : NormaliserSource::refit;
-    spec.init_from = from;
+  if (spec.init_from) {
+    spec.init_from->resolved_file =
+        upstream_file(root.section("init_from"), "experiment", spec.init_from->experiment, base);
   }
-  // The sweep block is read by `cnclab sweep` (sweep_spec.hpp); a run of the
-  // file runs its base configuration.
-  root.raw("sweep");
 }
 
 // The training part must be trainable: at least 2 samples, unless
@@ -260,83 +259,16 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
 
   const ConfigReader root = doc.root();
   ExperimentSpec spec;
-  if (root.get<std::string>("kind", "train") != "train") {
-    root.fail("kind",
-              "must be train here (other kinds are read by their job, experiment/job_kinds.hpp)");
-  }
-  spec.name = read_experiment_name(root);
-  spec.description = root.get<std::string>("description", "");
-  spec.seed = root.require<std::uint64_t>("seed");
+  // The first errors a user meets: the kind, the name, what is learnt.
+  check_train_kind(root);
+  read_experiment_name(root);
+  root.require<std::uint64_t>("seed");  // read again by the declarations
   require_subject(root, base);
-  spec.dataset = read_dataset_spec(root.section("dataset"));
-  spec.split = read_split(root.section("split"), spec.dataset.generator->shape().samples);
-  const ConfigReader norm = root.section("normalisation");
-  spec.normalisation.inputs = read_scaling(norm, "inputs");
-  spec.normalisation.targets = read_scaling(norm, "targets");
-  for (const auto& [key, scaling] : {std::pair{"input_range", spec.normalisation.inputs},
-                                     std::pair{"target_range", spec.normalisation.targets}}) {
-    if (norm.has(key) && scaling != Scaling::minmax) norm.fail(key, "applies to minmax only");
-  }
-  spec.normalisation.input_range = read_range(norm, "input_range", spec.normalisation.input_range);
-  spec.normalisation.target_range =
-      read_range(norm, "target_range", spec.normalisation.target_range);
-  std::vector<std::string> notes;
-  if (read_model_type(root.section("model")) == "narx") {
-    read_narx_experiment(root, spec);
-  } else {
-    spec.model = read_model(root.section("model"));
-    spec.trainer = read_trainer(root.section("trainer"), &notes);
-  }
-  if (is_levenberg_marquardt(spec.trainer) && spec.model.dropout_keep_probability < 1.0) {
-    root.section("model").section("dropout").fail(
-        "keep_probability", "must be 1 with trainer " + trainer_name(spec.trainer) +
-                                " (Levenberg-Marquardt needs a deterministic network)");
-  }
-  spec.metrics = root.get<std::vector<std::string>>(
-      "metrics", spec.narx ? sequence_metric_names() : spec.metrics);
-  for (const auto& m : spec.metrics) {
-    const auto known = spec.narx ? sequence_metric_names() : known_metrics();
-    if (std::find(known.begin(), known.end(), m) == known.end()) {
-      root.fail("metrics",
-                "unknown metric '" + m + "'" + did_you_mean(m, known) + "; " + one_of(known));
-    }
-  }
-  read_graph(root, base, spec);
-  spec.may_diverge = root.get<bool>("may_diverge", false);
+  experiment_fields().read(root, spec);
+  check_experiment(root, base, spec);
   check_training_samples(root, spec);
   doc.check_all_consumed();
-  return {spec, to_yaml(spec), notes};
-}
-
-void emit_initializer(YAML::Emitter& out, const Initializer& init) {
-  out << YAML::BeginMap << YAML::Key << "type" << YAML::Value << to_string(init.kind);
-  if (init.kind == Initializer::Kind::normal) {
-    out << YAML::Key << "mean" << YAML::Value << shortest_double(init.mean);
-    out << YAML::Key << "std" << YAML::Value << shortest_double(init.std);
-  } else if (init.kind == Initializer::Kind::uniform) {
-    out << YAML::Key << "low" << YAML::Value << shortest_double(init.low);
-    out << YAML::Key << "high" << YAML::Value << shortest_double(init.high);
-  }
-  out << YAML::EndMap;
-}
-
-void emit_mlp_model(YAML::Emitter& out, const MlpOptions& m) {
-  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
-  out << Key << "model" << Value << BeginMap;
-  out << Key << "type" << Value << "mlp";
-  out << Key << "hidden" << Value << YAML::Flow << m.hidden;
-  out << Key << "hidden_activation" << Value << to_string(m.hidden_activation);
-  out << Key << "output_activation" << Value << to_string(m.output_activation);
-  out << Key << "dropout" << Value << BeginMap;
-  out << Key << "keep_probability" << Value << shortest_double(m.dropout_keep_probability);
-  out << Key << "placement" << Value << to_string(m.dropout_placement);
-  out << EndMap;
-  out << Key << "init" << Value << BeginMap;
-  out << Key << "weights" << Value;
-  emit_initializer(out, m.weights);
-  out << Key << "biases" << Value;
-  emit_initializer(out, m.biases);
-  out << EndMap << EndMap;
+  return {spec, to_yaml(spec), spec.reader_notes};
 }
 
 std::vector<Override> parse_overrides(const std::vector<std::string>& texts) {
@@ -346,6 +278,62 @@ std::vector<Override> parse_overrides(const std::vector<std::string>& texts) {
 }
 
 }  // namespace
+
+const FieldList<ExperimentSpec>& experiment_fields() {
+  using E = ExperimentSpec;
+  const auto never = [](const E&) { return false; };
+  const auto nothing = [](const E&) { return YAML::Node(); };
+  static const auto fields =
+      FieldList<E>()
+          .custom(
+              custom_info("kind", "train (this file trains a network) or a job kind",
+                          FieldKind::string, Rule::one_of({"train"})),
+              [](const ConfigReader& r, E&) { check_train_kind(r); }, nothing, never)
+          .field("name", &E::name, "result folder and file name (results/<name>/)", name_rule())
+          .required()
+          .field("description", &E::description, "free text, stored in the result")
+          .field("seed", &E::seed,
+                 "master seed; the split, initial weights, dropout masks, shuffling and the "
+                 "generator each draw from their own stream derived from it by name")
+          .required()
+          .section("dataset", &E::dataset, dataset_fields(), "what data the experiment learns")
+          .section("split", &E::split, split_fields(),
+                   "train / validation / test split; the rest after train and validation is "
+                   "the test set")
+          .section("normalisation", &E::normalisation, normalisation_fields(),
+                   "input and target scaling, fitted on the training split")
+          .custom(model_info(), read_model_section,
+                  [](const E& s) {
+                    return s.narx ? narx_model_to_node(*s.narx) : mlp_fields().to_node(s.model);
+                  })
+          .custom(custom_info("trainer",
+                              "the training algorithm (trainer.type) and its options; "
+                              "model.type narx: trainer.stages instead"),
+                  read_trainer_section,
+                  [](const E& s) {
+                    return s.narx ? stages_to_node(s.stages) : trainer_to_node(s.trainer);
+                  })
+          .field("metrics", &E::metrics,
+                 "metrics of the test split (physical units) and normalised_mse / "
+                 "normalised_validation_mse (scaled units; metrics.hpp); model.type narx: the "
+                 "registered sequence metrics (sequence_metrics.hpp), all of them by default",
+                 Rule::one_of(known_metrics()))
+          .field("needs", &E::needs,
+                 "experiment files (relative to this file) whose results this one depends on")
+          .omit_default()
+          .optional_section("init_from", &E::init_from, init_from_fields(),
+                            "start from another experiment's trained network (fine-tuning)")
+          .field("may_diverge", &E::may_diverge,
+                 "true: a diverged training is this experiment's expected outcome (exit 0, "
+                 "result status failed with the reason)")
+          .omit_default()
+          .custom(
+              custom_info("sweep",
+                          "the sweep block, read only by `cnclab sweep` (README: "
+                          "Sweeps)"),
+              [](const ConfigReader& r, E&) { r.raw("sweep"); }, nothing, never);
+  return fields;
+}
 
 std::filesystem::path upstream_file(const ConfigReader& r, const std::string& key,
                                     const std::string& text, const std::filesystem::path& base) {
@@ -364,13 +352,8 @@ std::string to_string(NormaliserSource s) {
 
 std::string read_experiment_name(const ConfigReader& root) {
   const auto name = root.require<std::string>("name");
-  for (char c : name) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '_' || c == '-' || c == '.';
-    if (!ok || name.front() == '.') {
-      root.fail("name", "must be a file-name-safe identifier (letters, digits, '_', '-', '.')");
-    }
-  }
+  const Rule rule = name_rule();
+  if (!rule.holds(name)) root.fail("name", rule.text(false));
   return name;
 }
 
@@ -413,77 +396,7 @@ std::uint64_t generator_seed(const ExperimentSpec& spec) {
 }
 
 std::string to_yaml(const ExperimentSpec& spec) {
-  using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
-  YAML::Emitter out;
-  out << BeginMap;
-  out << Key << "name" << Value << spec.name;
-  out << Key << "description" << Value << spec.description;
-  out << Key << "seed" << Value << spec.seed;
-
-  out << Key << "dataset" << Value << BeginMap;
-  out << Key << "generator" << Value << spec.dataset.generator->name();
-  if (spec.dataset.seed) out << Key << "seed" << Value << *spec.dataset.seed;
-  if (!spec.dataset.targets.empty()) {
-    out << Key << "targets" << Value << YAML::Flow << spec.dataset.targets;
-  }
-  out << Key << "options" << Value << YAML::Load(spec.dataset.generator->options_yaml());
-  out << EndMap;
-
-  const SplitOptions& split = spec.split;
-  out << Key << "split" << Value << BeginMap;
-  if (split.mode == SplitMode::sequential_halves) {
-    out << Key << "mode" << Value << "sequential_halves";
-  } else if (split.uses_counts()) {
-    out << Key << "train_count" << Value << *split.train_count;
-    if (split.validation_count)
-      out << Key << "validation_count" << Value << *split.validation_count;
-    if (split.test_count) out << Key << "test_count" << Value << *split.test_count;
-  } else {
-    out << Key << "train" << Value << shortest_double(split.train_fraction);
-    out << Key << "validation" << Value << shortest_double(split.validation_fraction);
-  }
-  out << EndMap;
-
-  const NormalisationSpec& norm = spec.normalisation;
-  const auto range = [](const std::array<double, 2>& r) {
-    return std::vector<std::string>{shortest_double(r[0]), shortest_double(r[1])};
-  };
-  out << Key << "normalisation" << Value << BeginMap;
-  out << Key << "inputs" << Value << to_string(norm.inputs);
-  out << Key << "targets" << Value << to_string(norm.targets);
-  if (norm.inputs == Scaling::minmax) {
-    out << Key << "input_range" << Value << YAML::Flow << range(norm.input_range);
-  }
-  if (norm.targets == Scaling::minmax) {
-    out << Key << "target_range" << Value << YAML::Flow << range(norm.target_range);
-  }
-  out << EndMap;
-
-  if (spec.narx) {
-    out << Key << "model" << Value;
-    emit_narx_model(out, *spec.narx);
-  } else {
-    emit_mlp_model(out, spec.model);
-  }
-  out << Key << "trainer" << Value;
-  if (spec.narx) {
-    emit_stages(out, spec.stages);
-  } else {
-    emit_trainer(out, spec.trainer);
-  }
-
-  out << Key << "metrics" << Value << YAML::Flow << spec.metrics;
-  // Emitted only when set, so experiments without them keep their identity.
-  if (!spec.needs.empty()) out << Key << "needs" << Value << YAML::Flow << spec.needs;
-  if (spec.init_from) {
-    out << Key << "init_from" << Value << BeginMap;
-    out << Key << "experiment" << Value << spec.init_from->experiment;
-    out << Key << "normaliser" << Value << to_string(spec.init_from->normaliser);
-    out << EndMap;
-  }
-  if (spec.may_diverge) out << Key << "may_diverge" << Value << true;
-  out << EndMap;
-  return std::string(out.c_str()) + "\n";
+  return experiment_fields().yaml(spec);
 }
 
 }  // namespace cnclab

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/core/fields.hpp"
 #include "cnclab/core/override.hpp"
 #include "cnclab/data/dataset_spec.hpp"
 #include "cnclab/data/generator.hpp"
@@ -91,7 +92,16 @@ struct ExperimentSpec {
   // The `profiles:` entry applied when loading ("" = none; core/config.hpp).
   // Upstream experiments (needs, init_from) load with the same profile.
   std::string profile;
+  // What the reader changed on its own (LoadedExperiment::notes); not configuration.
+  std::vector<std::string> reader_notes;
 };
+
+// Every key of a `kind: train` file, declared once (core/fields.hpp): the
+// reader, the resolved config (so the result identity), `cnclab schema` and
+// the key tables loop over it. Rules across sections (the split against the
+// sample count, dropout with LM, metric names, upstream files) are checked
+// by the reader after it.
+const FieldList<ExperimentSpec>& experiment_fields();
 
 struct LoadedExperiment {
   ExperimentSpec spec;

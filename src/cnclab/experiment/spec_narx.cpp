@@ -1,8 +1,10 @@
 #include "cnclab/experiment/spec_narx.hpp"
 
+#include "cnclab/experiment/sequence_metrics.hpp"
+
 namespace cnclab {
 
-void read_narx_experiment(const ConfigReader& root, ExperimentSpec& spec) {
+void read_narx_model_section(const ConfigReader& root, ExperimentSpec& spec) {
   if (spec.split.mode != SplitMode::sequential_halves) {
     root.section("split").fail(
         "mode",
@@ -16,6 +18,10 @@ void read_narx_experiment(const ConfigReader& root, ExperimentSpec& spec) {
               "the dataset's own scaling (following_error: mapminmax by its generator)");
   }
   spec.narx = read_narx_model(root.section("model"));
+  spec.metrics = sequence_metric_names();
+}
+
+void read_narx_trainer(const ConfigReader& root, ExperimentSpec& spec) {
   const ConfigReader trainer = root.section("trainer");
   if (trainer.has("type") || !trainer.has("stages")) {
     trainer.fail("stages",

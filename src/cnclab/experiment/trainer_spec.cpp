@@ -96,20 +96,22 @@ TrainerSpec read_trainer(const ConfigReader& r, std::vector<std::string>* notes)
   return read_sgdm(r);
 }
 
-void emit_trainer(YAML::Emitter& out, const TrainerSpec& trainer) {
-  using YAML::Key, YAML::Value;
-  out << YAML::BeginMap << Key << "type" << Value << trainer_name(trainer);
+YAML::Node trainer_to_node(const TrainerSpec& trainer) {
+  YAML::Node n(YAML::NodeType::Map);
+  n["type"] = trainer_name(trainer);
   std::visit(
       [&](const auto& t) {
         using T = std::decay_t<decltype(t)>;
+        YAML::Node fields;
         if constexpr (std::is_same_v<T, SgdmOptions>) {
-          sgdm_fields().emit(out, t);
+          fields = sgdm_fields().to_node(t);
         } else {
-          fields_of(std::is_same_v<T, TrainbrOptions> ? "trainbr" : "lm").emit(out, t);
+          fields = fields_of(std::is_same_v<T, TrainbrOptions> ? "trainbr" : "lm").to_node(t);
         }
+        for (const auto& kv : fields) n[kv.first.Scalar()] = kv.second;
       },
       trainer);
-  out << YAML::EndMap;
+  return n;
 }
 
 }  // namespace cnclab

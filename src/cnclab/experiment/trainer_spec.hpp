@@ -35,7 +35,7 @@ TrainerSpec read_trainer(const ConfigReader& r, std::vector<std::string>* notes 
 // trainbr's keys (epochs, goal, mu, mu_dec, mu_inc, mu_max, min_gradient)
 // without `type`, each defaulting to `start`'s value; validated.
 TrainbrOptions read_trainbr_options(const ConfigReader& r, const TrainbrOptions& start);
-// The section with every option resolved (a map value).
-void emit_trainer(YAML::Emitter& out, const TrainerSpec& trainer);
+// The section with every option resolved, as a map.
+YAML::Node trainer_to_node(const TrainerSpec& trainer);
 
 }  // namespace cnclab

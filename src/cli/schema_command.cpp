@@ -1,0 +1,12 @@
+#include "cli/schema_command.hpp"
+
+#include "cnclab/experiment/experiment_schema.hpp"
+
+namespace cnclab {
+
+int schema_command(const std::string& kind, std::ostream& out) {
+  out << experiment_file_schema(kind).dump(2) << "\n";
+  return 0;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,181 @@
+#include "cnclab/experiment/experiment_schema.hpp"
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/field_schema.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/model_spec.hpp"
+#include "cnclab/experiment/narx_spec.hpp"
+#include "cnclab/experiment/sequence_metrics.hpp"
+#include "cnclab/experiment/spec.hpp"
+#include "cnclab/nn/metrics.hpp"
+
+namespace cnclab {
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kDraft = "https://json-schema.org/draft/2020-12/schema";
+
+// One entry of trainer.stages: its own keys (mode) and those of its type.
+json stage_schema() {
+  const auto with_head = [](const std::vector<FieldInfo>& trainer) {
+    std::vector<FieldInfo> fields = stage_fields().info();
+    fields.insert(fields.end(), trainer.begin(), trainer.end());
+    return object_schema(fields);
+  };
+  return tagged_schema("type", "",
+                       {{"lm", with_head(lm_fields().info())},
+                        {"trainbr", with_head(trainbr_fields().info(TrainbrOptions{}))}},
+                       "one training stage (lm or trainbr), from the previous stage's weights");
+}
+
+// trainer: {type, ...} or, for model.type narx, {stages: [...]} alone (the
+// if/then of train_file_schema says which one a file needs).
+json trainer_schema(const std::string& doc) {
+  json s = tagged_schema("type", "",
+                         {{"sgdm", object_schema(sgdm_fields().info())},
+                          {"lm", object_schema(lm_fields().info())},
+                          {"trainbr", object_schema(trainbr_fields().info(TrainbrOptions{}))}},
+                         doc);
+  s.erase("required");
+  s["properties"]["stages"] = {
+      {"description",
+       "model.type narx: the training stages, run in order (narx_spec.hpp), e.g. [{mode: "
+       "open_loop, type: trainbr, epochs: 150}, {mode: closed_loop, type: trainbr, epochs: 40}]"},
+      {"type", "array"},
+      {"minItems", 1},
+      {"items", stage_schema()}};
+  s["allOf"].push_back(
+      {{"if", {{"required", {"stages"}}}},
+       {"then", {{"properties", {{"stages", json::object()}}}, {"additionalProperties", false}}}});
+  return s;
+}
+
+json metrics_schema(const std::vector<std::string>& names) {
+  return {{"type", "array"}, {"items", {{"type", "string"}, {"enum", names}}}};
+}
+
+// What model.type narx needs elsewhere in the file (spec_narx.hpp): trainer
+// stages, split.mode sequential_halves, no normalisation, sequence metrics;
+// any other model needs trainer.type and takes the regression metrics.
+void add_model_rules(json& s) {
+  const json is_narx = {
+      {"properties",
+       {{"model", {{"properties", {{"type", {{"const", "narx"}}}}}, {"required", {"type"}}}}}},
+      {"required", {"model"}}};
+  const json none = {{"const", "none"}};
+  s["if"] = is_narx;
+  s["then"] = {
+      {"properties",
+       {{"trainer", {{"required", {"stages"}}}},
+        {"split",
+         {{"properties", {{"mode", {{"const", "sequential_halves"}}}}}, {"required", {"mode"}}}},
+        {"normalisation",
+         {{"properties", {{"inputs", none}, {"targets", none}}},
+          {"required", {"inputs", "targets"}}}},
+        {"metrics", metrics_schema(sequence_metric_names())}}},
+      {"required", {"split", "normalisation"}}};
+  s["else"] = {
+      {"properties",
+       {{"trainer", {{"required", {"type"}}}}, {"metrics", metrics_schema(known_metrics())}}}};
+  std::vector<std::string> all = known_metrics();
+  for (const auto& m : sequence_metric_names()) all.push_back(m);
+  s["properties"]["metrics"]["items"]["enum"] = all;
+}
+
+json model_schema(const std::string& doc) {
+  std::vector<TaggedVariant> variants;
+  for (const auto& m : model_types()) variants.push_back({m.type, object_schema(m.fields())});
+  return tagged_schema("type", "mlp", variants, doc);
+}
+
+// dataset: the generator picks the schema of `options`.
+json dataset_schema(const std::vector<FieldInfo>& dataset_info, const std::string& doc) {
+  std::vector<TaggedVariant> variants;
+  for (const auto& g : builtin_generators()) {
+    std::vector<FieldInfo> fields = dataset_info;
+    for (auto& f : fields) {
+      if (f.key != "options") continue;
+      f.doc = "options of " + g.name + " (" + g.summary + ")";
+      if (g.options) {
+        f.kind = FieldKind::section;
+        f.children = g.options();
+      } else {
+        f.doc +=
+            "; not declared yet (issue 16 item 6): any keys pass here, `cnclab validate` "
+            "checks them";
+      }
+    }
+    variants.push_back({g.name, object_schema(fields)});
+  }
+  return tagged_schema("generator", "", variants, doc);
+}
+
+// Keys every file may have, handled by the config loader (core/config.hpp).
+void add_loader_keys(json& s) {
+  s["properties"]["include"] = {
+      {"description",
+       "YAML fragment(s) merged first (paths relative to the file, or configs/...); the file's "
+       "own keys override them"},
+      {"anyOf",
+       json::array({{{"type", "string"}}, {{"type", "array"}, {"items", {{"type", "string"}}}}})}};
+  s["properties"]["profiles"] = {
+      {"description",
+       "named override sets, e.g. {quick: {trainer.epochs: 20}}, applied by --profile NAME; "
+       "never part of the resolved config"},
+      {"type", "object"},
+      {"additionalProperties", {{"type", "object"}}}};
+}
+
+json with_header(json s, const std::string& title) {
+  s["$schema"] = kDraft;
+  s["title"] = title;
+  return s;
+}
+
+}  // namespace
+
+json train_file_schema() {
+  const auto info = experiment_fields().info();
+  json s = object_schema(info, "a training experiment (kind: train, the default)");
+  for (const auto& f : info) {
+    if (f.key == "dataset") s["properties"]["dataset"] = dataset_schema(f.children, f.doc);
+    if (f.key == "model") s["properties"]["model"] = model_schema(f.doc);
+    if (f.key == "trainer") s["properties"]["trainer"] = trainer_schema(f.doc);
+    if (f.key == "sweep") {
+      s["properties"]["sweep"] = open_schema(
+          f.doc + "; its keys are not declared yet (issue 16 item 6): checked by `cnclab sweep`");
+    }
+  }
+  // The reader requires what the experiment is about (no silent defaults).
+  for (const char* key : {"dataset", "model", "trainer"}) s["required"].push_back(key);
+  add_model_rules(s);
+  add_loader_keys(s);
+  return s;
+}
+
+json experiment_file_schema(const std::string& kind) {
+  std::vector<TaggedVariant> variants = {{"train", train_file_schema()}};
+  for (const auto& k : registered_job_kinds()) {
+    json s = k.schema ? k.schema()
+                      : open_schema("kind " + k.kind + " (" + k.summary +
+                                    "): its keys are not declared yet (issue 16 item 6); any "
+                                    "keys pass here, `cnclab validate FILE` checks them");
+    if (s.contains("properties")) add_loader_keys(s);
+    variants.push_back({k.kind, s});
+  }
+  if (!kind.empty()) {
+    for (const auto& v : variants) {
+      if (v.name == kind) return with_header(v.schema, "cnclab experiment file, kind " + kind);
+    }
+    std::string known;
+    for (const auto& v : variants) known += (known.empty() ? "" : ", ") + v.name;
+    throw ConfigError("--kind " + kind + ": unknown kind; known: " + known);
+  }
+  return with_header(
+      tagged_schema("kind", "train", variants,
+                    "a cnclab experiment file; `kind` (default train) picks its keys"),
+      "cnclab experiment file");
+}
+
+}  // namespace cnclab

@@ -1,0 +1,25 @@
+#pragma once
+// `cnclab schema`: a JSON Schema (draft 2020-12) of experiment files,
+// generated from the field declarations (core/fields.hpp) of every section,
+// the model types (model_spec.hpp), the trainers, the dataset generators
+// (data/generator.hpp) and the registered job kinds (job_kinds.hpp).
+//
+// It describes one file as the reader sees it after `include:` is merged:
+// a file whose required keys come from an include passes once resolved
+// (`cnclab validate FILE` prints that), a self-contained file passes as
+// written. Unknown keys fail where the reader is strict.
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace cnclab {
+
+// The schema of a `kind: train` file (the default kind).
+nlohmann::json train_file_schema();
+
+// The whole document schema: `kind` picks the train schema or a job kind's
+// (its JobKind::schema, or an open object saying its keys are not declared
+// yet). `kind` non-empty: that kind's schema alone, as a document. Throws
+// ConfigError for an unknown kind.
+nlohmann::json experiment_file_schema(const std::string& kind = "");
+
+}  // namespace cnclab

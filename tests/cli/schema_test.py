@@ -1,0 +1,216 @@
+#!/usr/bin/env python3
+"""`cnclab schema` checked by an independent validator (python3-jsonschema,
+Draft 2020-12; issue 16 item 7).
+
+The schema describes one experiment file as the reader sees it after
+`include:` is merged (src/cnclab/experiment/experiment_schema.hpp). So every
+file under experiments/ is validated in its resolved form (`cnclab validate
+FILE`, with and without --profile quick: the config a result stores), and as
+written when it is self-contained (no `include:`). Misspelt keys, at the top
+and in nested sections, must fail.
+
+usage: schema_test.py CNCLAB SOURCE_DIR
+"""
+import copy
+import json
+import pathlib
+import re
+import subprocess
+import sys
+
+import jsonschema
+import yaml
+
+CNCLAB, SOURCE = sys.argv[1], pathlib.Path(sys.argv[2])
+
+failures = []
+
+
+class Yaml12Loader(yaml.SafeLoader):
+    """YAML 1.2 floats (PyYAML's 1.1 rules read 1e-05 as a string)."""
+
+
+Yaml12Loader.yaml_implicit_resolvers = {
+    k: [r for r in v if r[0] != "tag:yaml.org,2002:float"]
+    for k, v in yaml.SafeLoader.yaml_implicit_resolvers.items()}
+Yaml12Loader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(r"^(?:[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?"
+               r"|[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN))$"),
+    list("-+0123456789."))
+
+
+def load(text):
+    return yaml.load(text, Loader=Yaml12Loader)
+
+
+def run(*args):
+    return subprocess.run([CNCLAB, *args], cwd=SOURCE, capture_output=True, text=True)
+
+
+def schema_of(*args):
+    r = run("schema", *args)
+    assert r.returncode == 0, r.stderr
+    s = json.loads(r.stdout)
+    jsonschema.Draft202012Validator.check_schema(s)
+    return jsonschema.Draft202012Validator(s)
+
+
+def errors(validator, document):
+    return [f"{'/'.join(map(str, e.absolute_path)) or '<root>'}: {e.message}"
+            for e in validator.iter_errors(document)]
+
+
+def check(validator, document, what):
+    found = errors(validator, document)
+    if found:
+        failures.append(f"{what}:\n  " + "\n  ".join(found[:5]))
+
+
+def resolved(path, profile):
+    args = ["validate", str(path)] + (["--profile", profile] if profile else [])
+    r = run(*args)
+    if r.returncode != 0:
+        failures.append(f"cnclab {' '.join(args)} failed: {r.stderr.strip()}")
+        return None
+    return load(r.stdout)
+
+
+validator = schema_of()
+checked = 0
+train_example = None
+for path in sorted((SOURCE / "experiments").rglob("*.yaml")):
+    rel = path.relative_to(SOURCE)
+    raw = load(path.read_text())
+    for profile in ("", "quick"):
+        doc = resolved(rel, profile)
+        if doc is not None:
+            check(validator, doc, f"{rel} resolved{' --profile ' + profile if profile else ''}")
+            checked += 1
+    if "include" not in raw:
+        check(validator, raw, f"{rel} as written")
+        checked += 1
+    if raw.get("kind", "train") == "train" and train_example is None:
+        example = resolved(rel, "")
+        if example is not None and example["model"]["type"] == "mlp":
+            train_example = example
+
+assert checked > 40, f"only {checked} documents checked"
+assert train_example is not None
+
+# Misspelt keys fail, wherever they are.
+for where, mutate in [
+    ("top level", lambda d: d.__setitem__("trainr", d.pop("trainer"))),
+    ("trainer", lambda d: d["trainer"].__setitem__("learning_rte", 0.1)),
+    ("model", lambda d: d["model"].__setitem__("hiden", [3])),
+    ("model.init.weights", lambda d: d["model"]["init"]["weights"].__setitem__("sd", 1)),
+    ("dataset.options", lambda d: d["dataset"]["options"].__setitem__("sample", 10)),
+    ("split", lambda d: d["split"].__setitem__("trian", 0.5)),
+]:
+    bad = copy.deepcopy(train_example)
+    mutate(bad)
+    if not errors(validator, bad):
+        failures.append(f"a misspelt key in {where} passes the schema")
+
+# Values out of range, not in an enum, or keys where they do not apply fail.
+for where, mutate in [
+    ("trainer.momentum = 1", lambda d: d["trainer"].__setitem__("momentum", 1.0)),
+    ("model.hidden_activation = relux",
+     lambda d: d["model"].__setitem__("hidden_activation", "relux")),
+    ("normalisation.input_range without minmax",
+     lambda d: d["normalisation"].update(inputs="zscore", input_range=[0, 1])),
+    ("name with a slash", lambda d: d.__setitem__("name", "a/b")),
+]:
+    bad = copy.deepcopy(train_example)
+    mutate(bad)
+    if not errors(validator, bad):
+        failures.append(f"{where} passes the schema")
+
+# model.type narx (experiments/contour_error/narx.yaml): trainer.stages, the
+# split and normalisation it needs and its sequence metrics.
+narx_example = resolved("experiments/contour_error/narx.yaml", "")
+assert narx_example is not None and narx_example["model"]["type"] == "narx"
+for where, mutate in [
+    ("a misspelt key in a stage", lambda d: d["trainer"]["stages"][0].__setitem__("epoch", 5)),
+    ("max_fail in a trainbr stage",
+     lambda d: d["trainer"]["stages"][0].update(type="trainbr", max_fail=6)),
+    ("a stage mode closed", lambda d: d["trainer"]["stages"][0].__setitem__("mode", "closed")),
+    ("a misspelt narx model key", lambda d: d["model"].__setitem__("input_delay", 4)),
+    ("an mlp key in a narx model", lambda d: d["model"].__setitem__("hidden_activation", "tanh")),
+    ("trainer.type beside trainer.stages", lambda d: d["trainer"].__setitem__("type", "trainbr")),
+    ("narx without trainer.stages", lambda d: d.__setitem__("trainer", {"type": "trainbr"})),
+    ("narx with split.mode random", lambda d: d.__setitem__("split", {"mode": "random"})),
+    ("split.train with sequential_halves", lambda d: d["split"].__setitem__("train", 0.5)),
+    ("narx with zscore inputs", lambda d: d["normalisation"].__setitem__("inputs", "zscore")),
+    ("narx with a regression metric", lambda d: d.__setitem__("metrics", ["mse"])),
+]:
+    bad = copy.deepcopy(narx_example)
+    mutate(bad)
+    if not errors(validator, bad):
+        failures.append(f"{where} passes the schema")
+for where, mutate in [
+    ("trainer.stages with an mlp",
+     lambda d: d["trainer"].__setitem__("stages", [{"mode": "open_loop", "type": "lm"}])),
+    ("a sequence metric with an mlp",
+     lambda d: d.__setitem__("metrics", [narx_example["metrics"][0]])),
+]:
+    bad = copy.deepcopy(train_example)
+    mutate(bad)
+    if not errors(validator, bad):
+        failures.append(f"{where} passes the schema")
+
+# --kind gives one kind's schema; an unknown kind is a usage error.
+check(schema_of("--kind", "train"), train_example, "train example against --kind train")
+if run("schema", "--kind", "trian").returncode != 2:
+    failures.append("cnclab schema --kind trian does not exit 2")
+
+# The README's key table ("An experiment, key by key") and the declarations
+# agree: every key it lists is declared, every declared top-level key and
+# section key is listed.
+def properties(schema):
+    """The properties of a schema, with those of its if/then alternatives."""
+    props = dict(schema.get("properties", {}))
+    for case in schema.get("allOf", []):
+        props.update(case.get("then", {}).get("properties", {}))
+    return props
+
+
+def declared(schema, dotted):
+    for part in dotted.split("."):
+        props = properties(schema)
+        if part not in props:
+            return False
+        schema = props[part]
+    return True
+
+
+readme = (SOURCE / "README.md").read_text().split("## An experiment, key by key", 1)[1]
+readme = readme.split("\n## ", 1)[0]
+listed = []
+for row in readme.splitlines():
+    if not row.startswith("| `"):
+        continue
+    previous = ""
+    for key in re.findall(r"`([a-z_.]+)`", row.split("|")[1]):
+        if key.startswith(".") and previous:  # `.validation_count` after `split.train_count`
+            key = previous.rsplit(".", 1)[0] + key
+        listed.append(key)
+        previous = key
+train = json.loads(run("schema", "--kind", "train").stdout)
+for key in listed:
+    if not declared(train, key):
+        failures.append(f"README key table lists {key}, which is not declared")
+for key, sub in properties(train).items():
+    if not any(k == key or k.startswith(key + ".") for k in listed):
+        failures.append(f"declared key {key} is missing from the README key table")
+    for child in properties(sub):
+        dotted = f"{key}.{child}"
+        if key not in ("trainer", "dataset", "model", "split", "normalisation", "init_from"):
+            continue
+        if not any(k == dotted or k.startswith(dotted + ".") for k in listed):
+            failures.append(f"declared key {dotted} is missing from the README key table")
+
+if failures:
+    print("\n".join(failures))
+    sys.exit(1)
+print(f"ok: {checked} documents valid, misspelt keys rejected")
