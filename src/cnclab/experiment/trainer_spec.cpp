@@ -65,10 +65,6 @@ void drop_keys_of_other_trainers(const ConfigReader& r, const std::string& type,
 
 }  // namespace
 
-TrainbrOptions read_trainbr_options(const ConfigReader& r, const TrainbrOptions& start) {
-  return read_lm<TrainbrOptions>(r, start);
-}
-
 std::string trainer_name(const TrainerSpec& trainer) {
   return kTrainerNames[trainer.index()];
 }

@@ -32,9 +32,6 @@ bool is_levenberg_marquardt(const TrainerSpec& trainer);
 // experiment reader; here it defaults to sgdm). Dropped keys of other types
 // add one line to `notes` when given.
 TrainerSpec read_trainer(const ConfigReader& r, std::vector<std::string>* notes = nullptr);
-// trainbr's keys (epochs, goal, mu, mu_dec, mu_inc, mu_max, min_gradient)
-// without `type`, each defaulting to `start`'s value; validated.
-TrainbrOptions read_trainbr_options(const ConfigReader& r, const TrainbrOptions& start);
 // The section with every option resolved, as a map.
 YAML::Node trainer_to_node(const TrainerSpec& trainer);
 
