@@ -79,7 +79,10 @@ TEST(SweepCli, TwoJobsGiveBitIdenticalTrialsToOneJob) {
   TempDir dir;
   const Result one = sh(dir.path(), kCnclab + " sweep " + sweep_args("--jobs 1 --dir one"));
   ASSERT_EQ(one.code, 0) << one.err << one.out;
-  const Result two = sh(dir.path(), kCnclab + " sweep " + sweep_args("--jobs 2 --dir two"));
+  // Its own results folder: with the first one's, every trial would be taken
+  // from the result store instead of trained.
+  const Result two =
+      sh(dir.path(), kCnclab + " sweep " + sweep_args("--jobs 2 --dir two --out results-two"));
   ASSERT_EQ(two.code, 0) << two.err << two.out;
   ASSERT_EQ(trial_files(dir / "one").size(), 6u);
   expect_same_trials(dir / "one", dir / "two");
@@ -160,6 +163,64 @@ TEST(SweepCli, RerunSkipsCompleteTrials) {
   EXPECT_EQ(fs::last_write_time(trial_files(dir / "s")[0]), before);
 }
 
+// A trial is the run of its config: a sweep takes a complete result `cnclab
+// run` made for the same config instead of training, and publishes the
+// trials it trains where `cnclab run` would write them, so a second sweep over
+// the same points (another sweep folder) trains nothing.
+TEST(SweepCli, TrialsShareResultsWithTheResultStore) {
+  TempDir dir;
+  const Result run =
+      sh(dir.path(), kCnclab + " run " + kExperiment +
+                         " trainer.epochs=20 dataset.options.samples=300 "
+                         "model.hidden=[16,8] model.dropout.keep_probability=0.9 "
+                         "trainer.learning_rate=1e-2 --quiet --data-dir data --out r");
+  ASSERT_EQ(run.code, 0) << run.err;
+  const fs::path plain = dir / run.out.substr(0, run.out.find('\n'));
+  const std::string plain_bytes = slurp(plain);
+  // Without --quiet: the sweep's header line says what it took.
+  const auto verbose_sweep = [&](const std::string& folder) {
+    std::string args = sweep_args("--jobs 2 --dir " + folder + " --out r");
+    args.erase(args.find(" --quiet"), 8);
+    return sh(dir.path(), kCnclab + " sweep " + args);
+  };
+
+  const Result first = verbose_sweep("s");
+  ASSERT_EQ(first.code, 0) << first.err << first.out;
+  EXPECT_NE(first.err.find("1 taken from the results store; 1 already done, running 5"),
+            std::string::npos)
+      << first.err;
+  const auto trials = trial_files(dir / "s");
+  ASSERT_EQ(trials.size(), 6u);
+  std::size_t published = 0;
+  for (const auto& f : trials) {
+    const RunRecord t = read_result(f);
+    EXPECT_EQ(f.stem().string(), t.config_hash);
+    // Where `cnclab run` writes this config: <out>/<name>/<name>-seed<s>-<8 hex>.h5
+    std::vector<fs::path> stored;
+    for (const auto& e : fs::directory_iterator(dir / "r/friedman1_mlp")) {
+      const std::string name = e.path().filename().string();
+      if (name.ends_with("-" + t.config_hash.substr(0, 8) + ".h5")) stored.push_back(e.path());
+    }
+    ASSERT_EQ(stored.size(), 1u) << f;
+    EXPECT_EQ(slurp(stored[0]), slurp(f)) << f;
+    if (stored[0] == plain) {
+      EXPECT_EQ(slurp(f), plain_bytes);  // taken, not trained again
+    } else {
+      ++published;
+    }
+  }
+  EXPECT_EQ(published, 5u);
+  EXPECT_EQ(slurp(plain), plain_bytes);  // never replaced
+
+  // Another sweep folder over the same points trains nothing.
+  const Result again = verbose_sweep("s2");
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_NE(again.err.find("6 taken from the results store; 6 already done, running 0"),
+            std::string::npos)
+      << again.err;
+  expect_same_trials(dir / "s", dir / "s2");
+}
+
 // Starts a sweep, waits until `done_before_kill` trials have results, sends
 // `sig`, and returns the exit status.
 int interrupt_sweep(const fs::path& dir, const std::string& sweep_dir, int sig,
@@ -177,7 +238,9 @@ int interrupt_sweep(const fs::path& dir, const std::string& sweep_dir, int sig,
                                    "--data-dir",
                                    (dir / "data").string(),
                                    "--dir",
-                                   (dir / sweep_dir).string()};
+                                   (dir / sweep_dir).string(),
+                                   "--out",
+                                   (dir / (sweep_dir + "-results")).string()};
   const pid_t pid = testing::spawn_quiet(args);
   if (pid <= 0) return -1;  // never kill(-1, ...)
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
@@ -205,7 +268,7 @@ void expect_resume_completes(const fs::path& dir, const std::string& sweep_dir, 
                   " trainer.epochs=100 dataset.options.samples=500 "
                   "model.dropout.keep_probability=0.7,0.8,0.9,1.0 trainer.learning_rate=1e-3,1e-2 "
                   "--jobs 2 --data-dir data --dir " +
-                  sweep_dir);
+                  sweep_dir + " --out " + sweep_dir + "-results");
   ASSERT_EQ(resume.code, 0) << resume.err << resume.out;
   EXPECT_NE(resume.err.find(std::to_string(after_kill) + " already done, running " +
                             std::to_string(8 - after_kill)),
@@ -230,7 +293,7 @@ class SweepKill : public ::testing::Test {
                       " trainer.epochs=100 dataset.options.samples=500 "
                       "model.dropout.keep_probability=0.7,0.8,0.9,1.0 "
                       "trainer.learning_rate=1e-3,1e-2 --jobs 2 --quiet --data-dir data "
-                      "--dir reference");
+                      "--dir reference --out reference-results");
     ASSERT_EQ(ref.code, 0) << ref.err;
   }
   static void TearDownTestSuite() {
@@ -330,7 +393,9 @@ TEST(SweepCli, ShardsThenMergeEqualAnUnshardedSweep) {
   for (const char* shard : {"1/3", "2/3", "3/3"}) {
     const Result r =
         sh(dir.path(), kCnclab + " sweep " +
-                           sweep_args(std::string("--jobs 1 --dir sharded --shard ") + shard));
+                           sweep_args(std::string("--jobs 1 --dir sharded --out results-sharded "
+                                                  "--shard ") +
+                                      shard));
     ASSERT_EQ(r.code, 0) << shard << r.err << r.out;
     EXPECT_NE(r.out.find("2 complete"), std::string::npos) << r.out;  // 6 trials / 3 shards
   }

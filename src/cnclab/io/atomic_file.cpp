@@ -234,4 +234,22 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
   out.commit();
 }
 
+void copy_file_atomically(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  // rename(2) does nothing when both names already link the same file,
+  // which would leave the temporary behind.
+  if (fs::equivalent(from, to, ec)) return;
+  ec.clear();
+  AtomicOutput out(to);
+  fs::create_hard_link(from, out.temp_path(), ec);
+  if (ec) {
+    ec.clear();
+    fs::copy_file(from, out.temp_path(), fs::copy_options::overwrite_existing, ec);
+    if (ec) {
+      throw IoError(to.string() + ": cannot copy " + from.string() + " (" + ec.message() + ")");
+    }
+  }
+  out.commit();
+}
+
 }  // namespace cnclab

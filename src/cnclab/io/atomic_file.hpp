@@ -51,6 +51,12 @@ class AtomicOutput {
 // failure.
 void write_text_atomically(const std::filesystem::path& path, const std::string& text);
 
+// Makes `to` a copy of the finished file `from`, atomically: a hard link
+// when both lie on one file system (the files are never modified in place,
+// only replaced by rename, so the two names stay independent), else a byte
+// copy. Replaces what was at `to`. Throws IoError naming both files.
+void copy_file_atomically(const std::filesystem::path& from, const std::filesystem::path& to);
+
 // True if the file name has the temporary's pattern above (with or without
 // the host).
 bool is_partial_path(const std::filesystem::path& path);

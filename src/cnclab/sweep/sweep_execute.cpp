@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
+#include "cnclab/experiment/result_store.hpp"
 #include "cnclab/experiment/upstream.hpp"
+#include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/sweep/trial_pool.hpp"
 
@@ -77,6 +80,72 @@ std::size_t invalidate_stale(const SweepPlan& plan, const std::vector<std::size_
   return stale;
 }
 
+// Trials share results with the result store (result_store.hpp): a trial is
+// an experiment with a resolved config, and its id is that config's hash, so
+// the result `cnclab run` would write for the same config is the trial's
+// result. Seed 002's studies train one configuration (12 neurons, 4 delays,
+// seed 1, two-stage) in the plain experiment and in both sweeps; it is
+// trained once. Only trials without upstream results share: theirs would
+// also need the upstream check of invalidate_stale.
+bool shares_with_store(const PlannedTrial& trial) {
+  return upstream_files(trial.experiment->spec).empty();
+}
+
+// The store's complete result of the trial's config, if any (a file that is
+// not one is left to the trial, which then writes its own).
+std::optional<fs::path> stored_result(const ResultStore& store, const PlannedTrial& trial) {
+  try {
+    const auto r = store.existing(result_key(*trial.experiment));
+    if (r && r->complete()) return r->file;
+  } catch (const IoError&) {
+  }
+  return std::nullopt;
+}
+
+// Takes the store's results of trials still to run; returns the trials that
+// remain to run.
+std::vector<std::size_t> take_stored_results(const SweepPlan& plan, const fs::path& dir,
+                                             const ResultStore& store,
+                                             std::vector<std::size_t> todo,
+                                             std::vector<TrialOutcome>& outcomes) {
+  std::vector<std::size_t> remaining;
+  for (std::size_t i : todo) {
+    const PlannedTrial& t = plan.trials[i];
+    const auto file = shares_with_store(t) ? stored_result(store, t) : std::nullopt;
+    if (!file) {
+      remaining.push_back(i);
+      continue;
+    }
+    try {
+      copy_file_atomically(*file, trial_result_path(dir, t.id));
+    } catch (const IoError&) {
+      remaining.push_back(i);  // the trial makes its own
+      continue;
+    }
+    std::error_code ec;
+    fs::remove(trial_error_path(dir, t.id), ec);
+    outcomes[i] = read_trial_outcome(dir, t);
+  }
+  return remaining;
+}
+
+// A trial that completed becomes the store's result of its config unless
+// the store already has a file there (never replaced: it may be in use).
+// A failure only costs the sharing: a warning to `note`.
+void publish_to_store(const ResultStore& store, const PlannedTrial& trial,
+                      const fs::path& trial_file, std::ostream* note) {
+  if (!shares_with_store(trial)) return;
+  const fs::path target = store.path_of(result_key(*trial.experiment));
+  std::error_code ec;
+  if (fs::exists(target, ec)) return;
+  try {
+    copy_file_atomically(trial_file, target);
+  } catch (const IoError& e) {
+    if (note)
+      *note << "warning: trial " << trial.id << " not shared with the store: " << e.what() << "\n";
+  }
+}
+
 }  // namespace
 
 SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
@@ -90,6 +159,13 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
     const bool retry = o.retry_failed && ex.outcomes[i].status == TrialOutcome::Status::failed;
     if (o.rerun || retry || !ex.outcomes[i].done()) todo.push_back(i);
   }
+  const ResultStore store(o.common.results_dir);
+  std::size_t taken = 0;
+  if (!o.rerun) {
+    const std::size_t before = todo.size();
+    todo = take_stored_results(plan, dir, store, std::move(todo), ex.outcomes);
+    taken = before - todo.size();
+  }
   const std::size_t jobs = o.jobs > 0 ? o.jobs : available_cores();
   if (note) {
     *note << "sweep " << dir.string() << ": " << plan.trials.size() << " trials";
@@ -98,6 +174,7 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
     if (plan.merged_duplicates)
       *note << " (" << plan.merged_duplicates << " duplicate samples merged)";
     if (stale) *note << "; " << stale << " to run again (upstream results changed)";
+    if (taken) *note << "; " << taken << " taken from the results store";
     *note << "; " << ex.mine.size() - todo.size() << " already done, running " << todo.size()
           << " with " << std::min(jobs, std::max<std::size_t>(todo.size(), 1)) << " job(s)\n";
   }
@@ -122,6 +199,9 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
     if (!ex.outcomes[i].result_file.empty()) {
       std::error_code ec;
       fs::remove(trial_error_path(dir, plan.trials[i].id), ec);  // a stale note of an earlier try
+    }
+    if (ex.outcomes[i].status == TrialOutcome::Status::complete) {
+      publish_to_store(store, plan.trials[i], trial_result_path(dir, plan.trials[i].id), note);
     }
     ++ex.finished;
     if (!note) return;

@@ -9,6 +9,8 @@
 //   trials/<id>.h5      one result file per trial (result_file.hpp)
 //   trials/<id>.error   why a trial stopped without a result (exception, crash)
 //   summary.h5          parameters -> metrics -> status table (sweep_summary.hpp)
+// A complete trial is also the result store's result of its config (hard
+// link; sweep_execute.cpp, "Trials share results with the result store").
 #include <cstdint>
 #include <filesystem>
 #include <optional>
