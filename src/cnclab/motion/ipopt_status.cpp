@@ -1,48 +1,36 @@
 #include "cnclab/motion/ipopt_status.hpp"
 
+#include "cnclab/core/enum_names.hpp"
+
 namespace cnclab {
+namespace {
+
+// Ipopt's ApplicationReturnStatus names (IpReturnCodes_inc.h).
+constexpr EnumName<Ipopt::ApplicationReturnStatus> kIpoptStatusNames[] = {
+    {Ipopt::Solve_Succeeded, "Solve_Succeeded"},
+    {Ipopt::Solved_To_Acceptable_Level, "Solved_To_Acceptable_Level"},
+    {Ipopt::Infeasible_Problem_Detected, "Infeasible_Problem_Detected"},
+    {Ipopt::Search_Direction_Becomes_Too_Small, "Search_Direction_Becomes_Too_Small"},
+    {Ipopt::Diverging_Iterates, "Diverging_Iterates"},
+    {Ipopt::User_Requested_Stop, "User_Requested_Stop"},
+    {Ipopt::Feasible_Point_Found, "Feasible_Point_Found"},
+    {Ipopt::Maximum_Iterations_Exceeded, "Maximum_Iterations_Exceeded"},
+    {Ipopt::Restoration_Failed, "Restoration_Failed"},
+    {Ipopt::Error_In_Step_Computation, "Error_In_Step_Computation"},
+    {Ipopt::Maximum_CpuTime_Exceeded, "Maximum_CpuTime_Exceeded"},
+    {Ipopt::Not_Enough_Degrees_Of_Freedom, "Not_Enough_Degrees_Of_Freedom"},
+    {Ipopt::Invalid_Problem_Definition, "Invalid_Problem_Definition"},
+    {Ipopt::Invalid_Option, "Invalid_Option"},
+    {Ipopt::Invalid_Number_Detected, "Invalid_Number_Detected"},
+    {Ipopt::Unrecoverable_Exception, "Unrecoverable_Exception"},
+    {Ipopt::NonIpopt_Exception_Thrown, "NonIpopt_Exception_Thrown"},
+    {Ipopt::Insufficient_Memory, "Insufficient_Memory"},
+    {Ipopt::Internal_Error, "Internal_Error"}};
+
+}  // namespace
 
 const char* ipopt_status_name(Ipopt::ApplicationReturnStatus s) {
-  switch (s) {
-    case Ipopt::Solve_Succeeded:
-      return "Solve_Succeeded";
-    case Ipopt::Solved_To_Acceptable_Level:
-      return "Solved_To_Acceptable_Level";
-    case Ipopt::Infeasible_Problem_Detected:
-      return "Infeasible_Problem_Detected";
-    case Ipopt::Search_Direction_Becomes_Too_Small:
-      return "Search_Direction_Becomes_Too_Small";
-    case Ipopt::Diverging_Iterates:
-      return "Diverging_Iterates";
-    case Ipopt::User_Requested_Stop:
-      return "User_Requested_Stop";
-    case Ipopt::Feasible_Point_Found:
-      return "Feasible_Point_Found";
-    case Ipopt::Maximum_Iterations_Exceeded:
-      return "Maximum_Iterations_Exceeded";
-    case Ipopt::Restoration_Failed:
-      return "Restoration_Failed";
-    case Ipopt::Error_In_Step_Computation:
-      return "Error_In_Step_Computation";
-    case Ipopt::Maximum_CpuTime_Exceeded:
-      return "Maximum_CpuTime_Exceeded";
-    case Ipopt::Not_Enough_Degrees_Of_Freedom:
-      return "Not_Enough_Degrees_Of_Freedom";
-    case Ipopt::Invalid_Problem_Definition:
-      return "Invalid_Problem_Definition";
-    case Ipopt::Invalid_Option:
-      return "Invalid_Option";
-    case Ipopt::Invalid_Number_Detected:
-      return "Invalid_Number_Detected";
-    case Ipopt::Unrecoverable_Exception:
-      return "Unrecoverable_Exception";
-    case Ipopt::NonIpopt_Exception_Thrown:
-      return "NonIpopt_Exception_Thrown";
-    case Ipopt::Insufficient_Memory:
-      return "Insufficient_Memory";
-    case Ipopt::Internal_Error:
-      return "Internal_Error";
-  }
-  return "unknown status";
+  return enum_name(kIpoptStatusNames, s, "unknown status");
 }
+
 }  // namespace cnclab

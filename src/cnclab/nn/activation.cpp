@@ -1,29 +1,25 @@
 #include "cnclab/nn/activation.hpp"
 
+#include "cnclab/core/enum_names.hpp"
 #include "cnclab/core/error.hpp"
 
 namespace cnclab {
+namespace {
+
+constexpr EnumName<Activation> kActivationNames[] = {{Activation::relu, "relu"},
+                                                     {Activation::tanh, "tanh"},
+                                                     {Activation::sigmoid, "sigmoid"},
+                                                     {Activation::linear, "linear"}};
+
+}  // namespace
 
 Activation parse_activation(const std::string& name) {
-  if (name == "relu") return Activation::relu;
-  if (name == "tanh") return Activation::tanh;
-  if (name == "sigmoid") return Activation::sigmoid;
-  if (name == "linear") return Activation::linear;
-  throw OptionError("activation", name, "must be one of: relu, tanh, sigmoid, linear");
+  if (const auto a = enum_value(kActivationNames, name)) return *a;
+  throw OptionError("activation", name, "must be one of: " + enum_name_list(kActivationNames));
 }
 
 std::string to_string(Activation a) {
-  switch (a) {
-    case Activation::relu:
-      return "relu";
-    case Activation::tanh:
-      return "tanh";
-    case Activation::sigmoid:
-      return "sigmoid";
-    case Activation::linear:
-      return "linear";
-  }
-  return "?";
+  return enum_name(kActivationNames, a);
 }
 
 void apply_activation(Activation f, Eigen::Ref<Eigen::MatrixXd> z) {

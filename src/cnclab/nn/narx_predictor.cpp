@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "cnclab/core/enum_names.hpp"
 #include "cnclab/core/error.hpp"
 
 namespace cnclab {
@@ -28,20 +29,16 @@ void push_front(Eigen::VectorXd& history, double newest) noexcept {
   history[0] = newest;
 }
 
+constexpr EnumName<PredictorStatus> kPredictorStatusNames[] = {
+    {PredictorStatus::ok, "ok"},
+    {PredictorStatus::non_finite_input, "non-finite input"},
+    {PredictorStatus::wrong_history_length, "wrong history length"},
+    {PredictorStatus::undefined_tangent, "undefined tangent (zero or non-finite path derivative)"}};
+
 }  // namespace
 
 const char* to_string(PredictorStatus status) noexcept {
-  switch (status) {
-    case PredictorStatus::ok:
-      return "ok";
-    case PredictorStatus::non_finite_input:
-      return "non-finite input";
-    case PredictorStatus::wrong_history_length:
-      return "wrong history length";
-    case PredictorStatus::undefined_tangent:
-      return "undefined tangent (zero or non-finite path derivative)";
-  }
-  return "?";
+  return enum_name(kPredictorStatusNames, status);
 }
 
 NarxPredictor::NarxPredictor(NarxAxisModel model)

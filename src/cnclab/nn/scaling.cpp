@@ -1,29 +1,24 @@
 #include "cnclab/nn/scaling.hpp"
 
+#include "cnclab/core/enum_names.hpp"
 #include "cnclab/nn/zscore.hpp"
 
 namespace cnclab {
+namespace {
+
+constexpr EnumName<Scaling> kScalingNames[] = {
+    {Scaling::zscore, "zscore"}, {Scaling::minmax, "minmax"}, {Scaling::none, "none"}};
+
+}  // namespace
 
 std::string to_string(Scaling s) {
-  switch (s) {
-    case Scaling::zscore:
-      return "zscore";
-    case Scaling::minmax:
-      return "minmax";
-    case Scaling::none:
-      return "none";
-  }
-  return "?";
+  return enum_name(kScalingNames, s);
 }
 
 bool parse_scaling(const std::string& text, Scaling& s) {
-  for (auto candidate : {Scaling::zscore, Scaling::minmax, Scaling::none}) {
-    if (to_string(candidate) == text) {
-      s = candidate;
-      return true;
-    }
-  }
-  return false;
+  const auto parsed = enum_value(kScalingNames, text);
+  if (parsed) s = *parsed;
+  return parsed.has_value();
 }
 
 ScalingRecord ScalingRecord::fit(Scaling method, const Eigen::MatrixXd& train,

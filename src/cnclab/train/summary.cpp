@@ -1,37 +1,29 @@
 #include "cnclab/train/summary.hpp"
 
+#include "cnclab/core/enum_names.hpp"
+
 namespace cnclab {
+namespace {
+
+constexpr EnumName<Termination> kTerminationNames[] = {
+    {Termination::max_epochs, "max_epochs"},
+    {Termination::early_stop, "early_stop"},
+    {Termination::diverged, "diverged"},
+    {Termination::stopped_by_callback, "stopped_by_callback"},
+    {Termination::goal, "goal"},
+    {Termination::min_gradient, "min_gradient"},
+    {Termination::mu_max, "mu_max"}};
+
+}  // namespace
 
 std::string to_string(Termination t) {
-  switch (t) {
-    case Termination::max_epochs:
-      return "max_epochs";
-    case Termination::early_stop:
-      return "early_stop";
-    case Termination::diverged:
-      return "diverged";
-    case Termination::stopped_by_callback:
-      return "stopped_by_callback";
-    case Termination::goal:
-      return "goal";
-    case Termination::min_gradient:
-      return "min_gradient";
-    case Termination::mu_max:
-      return "mu_max";
-  }
-  return "?";
+  return enum_name(kTerminationNames, t);
 }
 
 bool parse_termination(const std::string& text, Termination& t) {
-  for (auto candidate : {Termination::max_epochs, Termination::early_stop, Termination::diverged,
-                         Termination::stopped_by_callback, Termination::goal,
-                         Termination::min_gradient, Termination::mu_max}) {
-    if (to_string(candidate) == text) {
-      t = candidate;
-      return true;
-    }
-  }
-  return false;
+  const auto parsed = enum_value(kTerminationNames, text);
+  if (parsed) t = *parsed;
+  return parsed.has_value();
 }
 
 }  // namespace cnclab
