@@ -72,11 +72,11 @@ def sweep_trials(sweep_dir):
     return paths, open_trials
 
 
-def newest_sweep(results):
+def newest_sweep(results, study=STUDY):
     """The study's sweep-* folder whose planned trials all finished, the most
     recently finished one (newest trial file) when there are several, and
     its finished trial files."""
-    root = os.path.join(results, STUDY)
+    root = os.path.join(results, study)
     done, notes = [], []
     for d in glob.glob(os.path.join(root, "sweep-*")):
         if not os.path.exists(os.path.join(d, "sweep.yaml")):

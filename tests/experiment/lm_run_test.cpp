@@ -6,6 +6,7 @@
 #include <hdf5.h>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "cnclab/experiment/result_file.hpp"
@@ -101,6 +102,35 @@ TEST(LmRun, TrainbrHistorySatisfiesTheUpdateRulesAndShowSummarisesIt) {
   EXPECT_EQ(record.input_scaling.method, Scaling::minmax);
   ASSERT_EQ(record.training.lm_history.size(), sse.size());
   EXPECT_EQ(record.training.lm_history.back().gamma, gamma.back());
+  // The state before the first step: trainbr's start, gamma = N_w,
+  // beta = (N - N_w) / (2 E_D), alpha = N_w / (2 E_W) (trainbr.hpp).
+  ASSERT_TRUE(record.training.lm_initial);
+  const LmEpochRecord& start = *record.training.lm_initial;
+  EXPECT_EQ(start.gamma, nw);
+  EXPECT_NEAR(start.beta, (n - nw) / (2 * start.sse), 1e-12 * start.beta);
+  EXPECT_NEAR(start.alpha, nw / (2 * start.ssw), 1e-12 * start.alpha);
+  EXPECT_GT(start.sse, sse.back());
+  EXPECT_GT(record.training.lm_history.back().curvature, 0.0);
+  // A file written before `curvature` and the initial state were recorded
+  // still reads: NaN curvature, no initial state.
+  const std::filesystem::path older = dir / "older.h5";
+  std::filesystem::copy_file(outcome.result_file, older);
+  const hid_t f = H5Fopen(older.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_GE(H5Ldelete(f, "/history/curvature", H5P_DEFAULT), 0);
+  for (const char* series :
+       {"sse", "ssw", "alpha", "beta", "gamma", "mu", "gradient", "curvature"}) {
+    EXPECT_GE(
+        H5Adelete_by_name(f, "/history", (std::string("initial_") + series).c_str(), H5P_DEFAULT),
+        0)
+        << series;
+  }
+  H5Fclose(f);
+  const RunRecord old_record = read_result(older);
+  EXPECT_FALSE(old_record.training.lm_initial);
+  ASSERT_EQ(old_record.training.lm_history.size(), sse.size());
+  EXPECT_TRUE(std::isnan(old_record.training.lm_history.back().curvature));
+  EXPECT_EQ(old_record.training.lm_history.back().sse, sse.back());
   std::ostringstream shown;
   print_result(record, shown);
   EXPECT_NE(shown.str().find("training     trainbr, "), std::string::npos) << shown.str();

@@ -150,6 +150,51 @@ TEST(Lm, GradientAndGoalAreMatlabsMsePerformanceTrainbrsSse) {
   EXPECT_NE(train_trainbr(near, w, b).termination, Termination::goal);
 }
 
+TEST(Termination, EveryValueRoundTrips) {
+  for (int i = 0; i <= static_cast<int>(Termination::mu_max); ++i) {
+    const auto t = static_cast<Termination>(i);
+    Termination parsed = Termination::goal;
+    ASSERT_TRUE(parse_termination(to_string(t), parsed)) << i << " " << to_string(t);
+    EXPECT_EQ(parsed, t);
+  }
+  Termination untouched = Termination::goal;
+  EXPECT_FALSE(parse_termination("converged", untouched));
+  EXPECT_EQ(untouched, Termination::goal);
+}
+
+TEST(Lm, RecordsTheInitialStateAndTheCurvatureScale) {
+  // Linear residuals A w - t: J = A, so the curvature scale is
+  // beta max_i (A^T A)_ii = beta max_i ||A_:,i||^2; before the first step
+  // (w = 0) E_D = ||t||^2, E_W = 0, and trainbr's beta = (N - N_w) / (2 E_D),
+  // alpha = 1 (E_W = 0; trainbr.hpp).
+  Rng rng(7);
+  Eigen::MatrixXd a = random_matrix(50, 3, rng);
+  a.col(1) *= 10;  // the largest column
+  const Eigen::VectorXd t = random_matrix(50, 1, rng);
+  LinearResiduals r(a, t);
+  const double max_diag = a.colwise().squaredNorm().maxCoeff();
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(3);
+  LmOptions o;
+  o.epochs = 2;
+  const Summary lm = train_lm(r, w, o);
+  ASSERT_TRUE(lm.lm_initial);
+  EXPECT_NEAR(lm.lm_initial->sse, t.squaredNorm(), 1e-12 * t.squaredNorm());
+  EXPECT_EQ(lm.lm_initial->mu, o.mu);
+  EXPECT_NEAR(lm.lm_initial->curvature, max_diag, 1e-12 * max_diag);
+  EXPECT_NEAR(lm.lm_history.back().curvature, max_diag, 1e-12 * max_diag);
+  w.setZero();
+  TrainbrOptions b;
+  b.epochs = 2;
+  const Summary br = train_trainbr(r, w, b);
+  ASSERT_TRUE(br.lm_initial);
+  const double beta0 = (50.0 - 3.0) / (2 * t.squaredNorm());
+  EXPECT_NEAR(br.lm_initial->beta, beta0, 1e-12 * beta0);
+  EXPECT_EQ(br.lm_initial->alpha, 1.0);
+  EXPECT_NEAR(br.lm_initial->curvature, beta0 * max_diag, 1e-12 * beta0 * max_diag);
+  const LmEpochRecord& last = br.lm_history.back();
+  EXPECT_NEAR(last.curvature, last.beta * max_diag, 1e-12 * last.beta * max_diag);
+}
+
 // A validation loss hook that replays `values`: the first for the starting
 // parameters, then one per epoch (the last repeats).
 LmHooks replayed_validation(std::vector<double> values, std::vector<Eigen::VectorXd>* params) {

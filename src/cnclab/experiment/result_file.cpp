@@ -8,6 +8,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/job_result.hpp"
+#include "cnclab/experiment/result_lm_history.hpp"
 #include "cnclab/experiment/result_narx.hpp"
 #include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
@@ -96,11 +97,7 @@ void write_mlp_sections(H5File& f, const RunRecord& r) {
   if (r.trainer != "sgdm") {
     f.set_attribute("/training", "beta_guard_count",
                     static_cast<std::int64_t>(r.training.beta_guard_count));
-    for (const auto& series : kLmSeries) {
-      std::vector<double> v;
-      for (const auto& e : r.training.lm_history) v.push_back(e.*series.field);
-      f.write_vector(std::string("/history/") + series.name, v, series.units);
-    }
+    write_lm_history(f, "/history", r.training);
   }
 
   const std::string target_units = join(r.target_units, ",");
@@ -280,12 +277,7 @@ void read_mlp_sections(const H5File& f, RunRecord& r) {
   if (r.trainer != "sgdm") {
     r.training.beta_guard_count =
         static_cast<std::size_t>(f.attribute_int("/training", "beta_guard_count"));
-    r.training.lm_history.resize(epoch.size());
-    for (const auto& series : kLmSeries) {
-      const auto v = f.read_vector(std::string("/history/") + series.name);
-      if (v.size() != epoch.size()) bad(std::string("/history/") + series.name + ": wrong length");
-      for (std::size_t i = 0; i < v.size(); ++i) r.training.lm_history[i].*series.field = v[i];
-    }
+    read_lm_history(f, "/history", epoch.size(), r.training);
   }
   r.test_loss = f.read_vector("/history/test_loss");
   r.test_predictions = f.read_matrix("/test/predictions");

@@ -5,6 +5,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/experiment/result_lm_history.hpp"
 #include "cnclab/io/eigen_std.hpp"
 #include "cnclab/nn/metrics.hpp"
 
@@ -31,11 +32,7 @@ void write_stage(H5File& f, const std::string& g, const NarxStageRecord& st) {
   f.write_vector(g + "/train_loss", train, "MSE in the dataset's target units");
   f.write_vector(g + "/validation_loss", val, "MSE in the dataset's target units");
   f.write_vector(g + "/wall_seconds", wall, "s");
-  for (const auto& series : kLmSeries) {
-    std::vector<double> v;
-    for (const auto& e : s.lm_history) v.push_back(e.*series.field);
-    f.write_vector(g + "/" + series.name, v, series.units);
-  }
+  write_lm_history(f, g, s);
 }
 
 NarxStageRecord read_stage(const H5File& f, const std::string& g) {
@@ -59,15 +56,10 @@ NarxStageRecord read_stage(const H5File& f, const std::string& g) {
   if (train.size() != epoch.size() || val.size() != epoch.size() || wall.size() != epoch.size()) {
     bad("series of different lengths");
   }
-  s.lm_history.resize(epoch.size());
   for (std::size_t i = 0; i < epoch.size(); ++i) {
     s.history.push_back({static_cast<std::size_t>(epoch[i]), train[i], val[i], wall[i]});
   }
-  for (const auto& series : kLmSeries) {
-    const auto v = f.read_vector(g + "/" + series.name);
-    if (v.size() != epoch.size()) bad(std::string(series.name) + ": wrong length");
-    for (std::size_t i = 0; i < v.size(); ++i) s.lm_history[i].*series.field = v[i];
-  }
+  read_lm_history(f, g, epoch.size(), s);
   return st;
 }
 
@@ -172,8 +164,12 @@ void print_narx_model(const RunRecord& r, std::ostream& out) {
     for (const auto& st : net.stages) {
       out << " " << st.mode << " " << st.trainer << " " << st.summary.history.size() << " epochs ("
           << to_string(st.summary.termination) << ")";
-      if (!st.summary.lm_history.empty()) {
-        out << " SSE " << format_metric(st.summary.lm_history.back().sse);
+      const Summary& sm = st.summary;
+      if (sm.lm_initial) out << " SSE " << format_metric(sm.lm_initial->sse) << " ->";
+      if (!sm.lm_history.empty()) {
+        out << (sm.lm_initial ? " " : " SSE ") << format_metric(sm.lm_history.back().sse);
+      } else if (sm.lm_initial) {
+        out << " (no step)";
       }
       out << ";";
     }

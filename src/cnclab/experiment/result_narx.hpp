@@ -26,22 +26,6 @@
 
 namespace cnclab {
 
-// Levenberg-Marquardt history (lm, trainbr): one value per epoch.
-struct LmSeries {
-  const char* name;
-  double LmEpochRecord::*field;
-  const char* units;
-};
-inline constexpr LmSeries kLmSeries[] = {
-    {"sse", &LmEpochRecord::sse, "normalised target units squared (E_D, sum)"},
-    {"ssw", &LmEpochRecord::ssw, "1 (E_W, sum of squared parameters)"},
-    {"alpha", &LmEpochRecord::alpha, "1"},
-    {"beta", &LmEpochRecord::beta, "1"},
-    {"gamma", &LmEpochRecord::gamma, "1 (effective number of parameters)"},
-    {"mu", &LmEpochRecord::mu, "1"},
-    {"gradient", &LmEpochRecord::gradient, "lm: 2 |J^T e| / N (mse); trainbr: 2 |J^T e| (sse)"},
-};
-
 void write_narx_sections(H5File& f, const RunRecord& r);
 // IoError naming the file and object on a malformed part.
 void read_narx_sections(const H5File& f, RunRecord& r);

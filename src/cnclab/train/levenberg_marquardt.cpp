@@ -55,6 +55,19 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
   // MATLAB's performance and gradient (lm.hpp): mse for trainlm, sse for trainbr.
   const double per_residual = bayesian ? 1.0 : 1.0 / n;
   const auto gradient_now = [&] { return 2.0 * ne.jte.norm() * per_residual; };
+  const auto snapshot = [&] {
+    LmEpochRecord lm;
+    lm.sse = ne.sse;
+    lm.ssw = ssw;
+    lm.alpha = reg.alpha;
+    lm.beta = reg.beta;
+    lm.gamma = reg.gamma;
+    lm.mu = mu;
+    lm.gradient = gradient_now();
+    lm.curvature = reg.beta * ne.jtj.diagonal().maxCoeff();
+    return lm;
+  };
+  summary.lm_initial = snapshot();
 
   // Validation checks (lm.hpp): the best validation loss and its parameters.
   const bool validating = !bayesian && o.max_fail > 0 && hooks.validation_loss;
@@ -141,14 +154,7 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
     record.validation_loss = hooks.validation_loss ? hooks.validation_loss(params) : std::nan("");
     record.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    LmEpochRecord lm;
-    lm.sse = ne.sse;
-    lm.ssw = ssw;
-    lm.alpha = reg.alpha;
-    lm.beta = reg.beta;
-    lm.gamma = reg.gamma;
-    lm.mu = mu;
-    lm.gradient = gradient_now();
+    const LmEpochRecord lm = snapshot();
     if (validating) {
       if (record.validation_loss < best_validation) {
         best_validation = record.validation_loss;

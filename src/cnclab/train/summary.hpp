@@ -2,6 +2,7 @@
 // What a trainer returns: why it stopped and the per-epoch history.
 // Non-convergence and divergence are results, not exceptions.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ struct LmEpochRecord {
   double gamma = 0;     // effective number of parameters (lm: N_w)
   double mu = 0;        // damping after the epoch's accepted step
   double gradient = 0;  // 2 ||J^T e||, the data-term gradient norm
+  // beta max_i (J^T J)_ii: the curvature scale mu competes with. While mu is
+  // far below it, the step is Gauss-Newton's in the stiff directions;
+  // mu_max below it means the step never becomes a short gradient step.
+  double curvature = 0;
 };
 
 struct Summary {
@@ -44,8 +49,11 @@ struct Summary {
   std::string message;
   std::vector<EpochRecord> history;
   std::size_t best_epoch = 0;  // epoch of the lowest validation loss (0: none)
-  // lm / trainbr only: one record per entry of `history`.
+  // lm / trainbr only: one record per entry of `history`, and the state
+  // before the first step (mu: the initial damping), which a run that stops
+  // without a step has only.
   std::vector<LmEpochRecord> lm_history;
+  std::optional<LmEpochRecord> lm_initial;
   // trainbr only: epochs in which beta = (N - gamma) / (2 E_D) was not
   // positive and the previous beta was kept.
   std::size_t beta_guard_count = 0;
