@@ -193,9 +193,11 @@ TEST(FieldIdentity, EveryNarxKeyChangesTheIdentityAndRoundTrips) {
   expect_every_key_in_identity(kNarxBase, "model.", narx_model_fields().info());
 }
 
-// "trainer.stages=[{mode: open_loop, type: TYPE, KEY: VALUE}]" (no KEY: "").
+// "trainer.stages=[{mode: open_loop, type: TYPE, KEY: VALUE}]" (no KEY: "");
+// mode closed_loop for `horizon`, which only closed-loop stages have.
 std::string one_stage(const std::string& type, const std::string& key, const std::string& value) {
-  std::map<std::string, std::string> stage = {{"mode", "open_loop"}, {"type", type}};
+  std::map<std::string, std::string> stage = {
+      {"mode", key == "horizon" ? "closed_loop" : "open_loop"}, {"type", type}};
   if (!key.empty()) stage[key] = value;
   std::string text;
   for (const auto& [k, v] : stage) text += (text.empty() ? "" : ", ") + k + ": " + v;
@@ -209,8 +211,9 @@ TEST(FieldIdentity, EveryStageKeyChangesTheIdentityAndRoundTrips) {
         std::pair{"trainbr", trainbr_fields().info(TrainbrOptions{})}}) {
     std::vector<FieldInfo> keys = stage_fields().info();
     keys.insert(keys.end(), trainer.begin(), trainer.end());
-    const auto base = parse_experiment(kNarxBase, "e.yaml", {one_stage(type, "", "")});
     for (const auto& f : keys) {
+      const auto base = parse_experiment(
+          kNarxBase, "e.yaml", {one_stage(type, f.key == "horizon" ? "mode" : "", "closed_loop")});
       const std::string value = other_value(f);
       ASSERT_FALSE(value.empty()) << f.key;
       const auto changed = parse_experiment(kNarxBase, "e.yaml", {one_stage(type, f.key, value)});

@@ -67,6 +67,50 @@ TEST(NarxTraining, ClosedLoopObjectiveServesBlocksOfOneSimulation) {
   EXPECT_EQ(r, narx.simulate_closed_loop(w, s.v, s.e) - s.e.tail(n));
 }
 
+// Windows of H steps (docs/narx_training.md): H = 1 is the series-parallel
+// (open-loop) prediction, every window starting from measured states; one
+// window at least as long as the series is the whole closed loop; the
+// Jacobian of any H agrees with central differences of the residuals.
+TEST(NarxTraining, ClosedLoopWindowsSpanOpenLoopToParallel) {
+  const Narx narx(small_narx());
+  Rng rng(5);
+  const Series s = first_order_system(60, rng);
+  Eigen::VectorXd w(narx.num_parameters());
+  narx.initialise(w, rng);
+  const Eigen::Index n = 60 - narx.first_step();
+  const auto residuals = [&](Eigen::Index horizon, const Eigen::VectorXd& p,
+                             Eigen::MatrixXd* jac = nullptr) {
+    NarxClosedLoopObjective objective(narx, s.v, s.e, horizon);
+    EXPECT_EQ(objective.num_residuals(), n);
+    Eigen::VectorXd r(n);
+    if (jac) jac->resize(n, p.size());
+    objective.evaluate(p, 0, n, r, jac);
+    return r;
+  };
+  NarxOpenLoopObjective open(narx, s.v, s.e);
+  Eigen::VectorXd r_open(n);
+  open.evaluate(w, 0, n, r_open, nullptr);
+  EXPECT_LT((residuals(1, w) - r_open).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_EQ(residuals(n, w), residuals(0, w));
+  EXPECT_EQ(residuals(n + 100, w), residuals(0, w));
+  // A window of 7 steps: the first step of each window is the open-loop
+  // prediction, later ones are not.
+  const Eigen::VectorXd r7 = residuals(7, w);
+  EXPECT_LT(std::abs(r7[14] - r_open[14]), 1e-14);
+  EXPECT_GT(std::abs(r7[15] - r_open[15]), 1e-6);
+  Eigen::MatrixXd jac;
+  residuals(7, w, &jac);
+  const double h = 1e-6;
+  for (Eigen::Index k = 0; k < w.size(); ++k) {
+    Eigen::VectorXd up = w, down = w;
+    up[k] += h;
+    down[k] -= h;
+    const Eigen::VectorXd fd = (residuals(7, up) - residuals(7, down)) / (2 * h);
+    EXPECT_LT((jac.col(k) - fd).cwiseAbs().maxCoeff(), 1e-7) << "parameter " << k;
+  }
+  EXPECT_THROW(NarxClosedLoopObjective(narx, s.v, s.e, -1), Error);
+}
+
 // Seed 002's two-stage method on measurements with output noise: the
 // series-parallel stage fits the noisy fed-back errors (equation-error
 // bias), the parallel stage then lowers the closed-loop prediction error on

@@ -69,7 +69,7 @@ Summary train_stage(const Narx& narx, const TrainingStage& stage, const Eigen::V
     NarxOpenLoopObjective open(narx, v, e);
     return train(open);
   }
-  NarxClosedLoopObjective closed(narx, v, e);
+  NarxClosedLoopObjective closed(narx, v, e, static_cast<Eigen::Index>(stage.horizon));
   return train(closed);
 }
 

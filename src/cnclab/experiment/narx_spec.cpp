@@ -36,11 +36,19 @@ NarxOptions NarxModelSpec::options() const {
 }
 
 const FieldList<StageHead>& stage_fields() {
-  static const auto fields = FieldList<StageHead>().field(
-      "mode", &StageHead::mode,
-      "open_loop: measured errors fed back (series-parallel); closed_loop: the network's own "
-      "predictions fed back (parallel, RTRL Jacobian)",
-      Rule::one_of({"open_loop", "closed_loop"}));
+  static const auto fields =
+      FieldList<StageHead>()
+          .field("mode", &StageHead::mode,
+                 "open_loop: measured errors fed back (series-parallel); closed_loop: the "
+                 "network's own "
+                 "predictions fed back (parallel, RTRL Jacobian)",
+                 Rule::one_of({"open_loop", "closed_loop"}))
+          .field(
+              "horizon", &StageHead::horizon,
+              "closed_loop: predict the series in windows of this many steps, each started from "
+              "measured states (0: the whole series in one window, seed 002's parallel training; "
+              "docs/narx_training.md)",
+              Rule::non_negative());
   return fields;
 }
 
@@ -92,6 +100,10 @@ TrainingStage read_stage(const ConfigReader& s) {
   choice(s, "type", "trainbr", {"lm", "trainbr"});
   TrainingStage stage;
   stage.mode = head.mode == "closed_loop" ? StageMode::closed_loop : StageMode::open_loop;
+  if (head.horizon != 0 && stage.mode == StageMode::open_loop) {
+    s.fail("horizon", "applies to closed_loop stages only (an open_loop stage has no windows)");
+  }
+  stage.horizon = head.horizon;
   stage.trainer = read_trainer(s);
   return stage;
 }
@@ -121,6 +133,8 @@ YAML::Node stages_to_node(const std::vector<TrainingStage>& stages) {
   for (const auto& stage : stages) {
     YAML::Node node(YAML::NodeType::Map);
     node["mode"] = to_string(stage.mode);
+    // Only when set: the identities of results trained before the key existed stay.
+    if (stage.horizon != 0) node["horizon"] = stage.horizon;
     for (const auto& kv : trainer_to_node(stage.trainer)) node[kv.first.Scalar()] = kv.second;
     node.SetStyle(YAML::EmitterStyle::Flow);  // one line per stage
     list.push_back(node);

@@ -60,11 +60,16 @@ std::string to_string(StageMode mode);
 struct TrainingStage {
   StageMode mode = StageMode::open_loop;
   TrainerSpec trainer = TrainbrOptions{};  // lm or trainbr
+  // closed_loop: the series is predicted in windows of `horizon` steps, each
+  // started from measured states (NarxClosedLoopObjective); 0 = one window,
+  // the whole series (seed 002's parallel training).
+  std::size_t horizon = 0;
 };
 
 // One stage's own keys besides its trainer's.
 struct StageHead {
   std::string mode = "open_loop";
+  std::size_t horizon = 0;
 };
 const FieldList<StageHead>& stage_fields();
 

@@ -1,5 +1,8 @@
 #include "cnclab/train/narx_training.hpp"
 
+#include <algorithm>
+#include <string>
+
 #include "cnclab/core/error.hpp"
 
 namespace cnclab {
@@ -11,9 +14,10 @@ NarxOpenLoopObjective::NarxOpenLoopObjective(const Narx& narx, const Eigen::Vect
       static_(narx.mlp(), inputs_, targets_) {}
 
 NarxClosedLoopObjective::NarxClosedLoopObjective(const Narx& narx, const Eigen::VectorXd& v,
-                                                 const Eigen::VectorXd& e)
-    : narx_(narx), v_(v), e_(e) {
+                                                 const Eigen::VectorXd& e, Eigen::Index horizon)
+    : narx_(narx), v_(v), e_(e), horizon_(horizon) {
   narx.open_loop_regressors(v, e);  // the same checks on the series (lengths, NaN)
+  if (horizon < 0) throw Error("closed-loop horizon " + std::to_string(horizon) + " < 0");
 }
 
 void NarxClosedLoopObjective::evaluate(const Eigen::VectorXd& params, Eigen::Index first,
@@ -22,12 +26,34 @@ void NarxClosedLoopObjective::evaluate(const Eigen::VectorXd& params, Eigen::Ind
   const bool same = cached_params_.size() == params.size() && cached_params_ == params;
   if (!same || (jacobian != nullptr && !has_jacobian_)) {
     has_jacobian_ = jacobian != nullptr;
-    residuals_ = narx_.simulate_closed_loop(params, v_, e_, has_jacobian_ ? &jacobian_ : nullptr) -
-                 e_.tail(num_residuals());
+    simulate(params);
     cached_params_ = params;
   }
   residuals = residuals_.segment(first, count);
   if (jacobian != nullptr) *jacobian = jacobian_.middleRows(first, count);
+}
+
+void NarxClosedLoopObjective::simulate(const Eigen::VectorXd& params) {
+  const Eigen::Index steps = num_residuals(), t0 = narx_.first_step();
+  const Eigen::Index window = horizon_ > 0 ? std::min(horizon_, steps) : steps;
+  if (window == steps) {  // one window: no copies of the series or the Jacobian
+    residuals_ = narx_.simulate_closed_loop(params, v_, e_, has_jacobian_ ? &jacobian_ : nullptr) -
+                 e_.tail(steps);
+    return;
+  }
+  residuals_.resize(steps);
+  if (has_jacobian_) jacobian_.resize(steps, num_parameters());
+  Eigen::MatrixXd window_jacobian;
+  // Window [s, s + n) of the residual rows predicts steps t0 + s .. t0 + s + n - 1
+  // from the measured states e(s .. s + t0 - 1) and the inputs from s on.
+  for (Eigen::Index s = 0; s < steps; s += window) {
+    const Eigen::Index n = std::min(window, steps - s);
+    const Eigen::VectorXd v = v_.segment(s, t0 + n), e = e_.segment(s, t0 + n);
+    residuals_.segment(s, n) =
+        narx_.simulate_closed_loop(params, v, e, has_jacobian_ ? &window_jacobian : nullptr) -
+        e.tail(n);
+    if (has_jacobian_) jacobian_.middleRows(s, n) = window_jacobian;
+  }
 }
 
 void NarxTrainingOptions::validate() const {

@@ -38,9 +38,18 @@ class NarxOpenLoopObjective : public ResidualObjective {
 // started from the measured initial states. The simulation is sequential:
 // one pass (with the dynamic Jacobian when asked) per parameter vector,
 // cached and served in row blocks.
+//
+// horizon H > 0: the steps are predicted in consecutive windows of H steps
+// (the last one shorter), each started afresh from the measured states
+// before it, so a prediction depends on the weights only through at most
+// H - 1 fed-back predictions. The residuals are the same steps as with one
+// window (H = 0): every step after the first D is predicted once. Why:
+// docs/narx_training.md (the RTRL sensitivities of an unstable closed loop
+// grow along the whole series; short windows bound them).
 class NarxClosedLoopObjective : public ResidualObjective {
  public:
-  NarxClosedLoopObjective(const Narx& narx, const Eigen::VectorXd& v, const Eigen::VectorXd& e);
+  NarxClosedLoopObjective(const Narx& narx, const Eigen::VectorXd& v, const Eigen::VectorXd& e,
+                          Eigen::Index horizon = 0);
   Eigen::Index num_residuals() const override { return e_.size() - narx_.first_step(); }
   Eigen::Index num_parameters() const override {
     return static_cast<Eigen::Index>(narx_.num_parameters());
@@ -52,9 +61,12 @@ class NarxClosedLoopObjective : public ResidualObjective {
   const Narx& narx_;
   const Eigen::VectorXd& v_;
   const Eigen::VectorXd& e_;
+  Eigen::Index horizon_;  // steps per window; the whole series when 0
   Eigen::VectorXd cached_params_, residuals_;
   Eigen::MatrixXd jacobian_;
   bool has_jacobian_ = false;
+
+  void simulate(const Eigen::VectorXd& params);  // residuals_ (and jacobian_) at params
 };
 
 // trainbr with seed 002's stopping rule: "until minimum gradient of 1e-8

@@ -60,6 +60,19 @@ TEST(NarxTrial, ConfigErrorsNameTheKey) {
             std::string::npos);
   EXPECT_NE(message(tiny_trial("[{mode: half_loop, type: trainbr}]")).find("mode"),
             std::string::npos);
+  EXPECT_NE(message(tiny_trial("[{mode: open_loop, horizon: 100, type: trainbr}]"))
+                .find("horizon = 100: applies to closed_loop stages only"),
+            std::string::npos);
+  // horizon 0 (one window) is the default and not written, so results
+  // trained before the key existed keep their identity.
+  const auto windowed =
+      parse_experiment(tiny_trial("[{mode: closed_loop, horizon: 100, type: trainbr}]"), "t.yaml");
+  EXPECT_EQ(windowed.spec.stages.at(0).horizon, 100u);
+  EXPECT_NE(windowed.resolved_yaml.find("horizon: 100"), std::string::npos);
+  EXPECT_EQ(
+      parse_experiment(tiny_trial("[{mode: closed_loop, horizon: 0, type: trainbr}]"), "t.yaml")
+          .resolved_yaml.find("horizon"),
+      std::string::npos);
   std::string random = tiny_trial(kTwoStage);
   random.replace(random.find("{mode: sequential_halves}"), 25, "{train: 0.5}");
   EXPECT_NE(message(random).find("split.mode"), std::string::npos);
