@@ -10,8 +10,9 @@ Reads the sweep of experiments/contour_error/training_methods.yaml
 `cnclab reproduce`): of the sweep folders whose planned trials (sweep.yaml)
 have all finished (a result file, or an .error note for a trial that stopped
 on an error), the one finished last; in it the complete trial trained
-in two stages (trainer.stages: open_loop, then closed_loop) with seed 1 (else
-the first complete two-stage trial), its closed-loop validation prediction
+in two stages (trainer.stages: open_loop, then closed_loop stages), windowed
+(narx.yaml's default) before plain, with seed 1 (else another seed; see
+pick_trial), its closed-loop validation prediction
 and the dataset file it names. The contour error is predicted from that with
 the Taylor estimate the C++ metric uses (studies/contour_error/narx_metrics.cpp),
 and its RMS against the exact one is checked against the trial's contour_rms
@@ -95,13 +96,20 @@ def newest_sweep(results, study=STUDY):
 
 
 def two_stage_seed(path):
-    """(is two-stage, seed) of a complete trial, from its resolved config."""
+    """(two-stage kind, seed) of a complete trial, from its resolved config:
+    kind "windowed" (open_loop, then closed_loop stages of which one has a
+    horizon, narx.yaml's default), "plain" (open_loop, closed_loop: the paper
+    as printed) or None."""
     with h5py.File(path, "r") as h:
         if text(h.attrs.get("status", "")) != "complete":
-            return False, None
+            return None, None
         config = yaml.safe_load(resolved_yaml(h)) or {}
-    modes = [s.get("mode") for s in (config.get("trainer") or {}).get("stages") or []]
-    return modes == ["open_loop", "closed_loop"], config.get("seed")
+    stages = (config.get("trainer") or {}).get("stages") or []
+    modes = [s.get("mode") for s in stages]
+    if len(modes) < 2 or modes[0] != "open_loop" or any(m != "closed_loop" for m in modes[1:]):
+        return None, config.get("seed")
+    windowed = any(s.get("horizon", 0) for s in stages)
+    return ("windowed" if windowed else "plain"), config.get("seed")
 
 
 def resolved_yaml(h):
@@ -112,17 +120,17 @@ def resolved_yaml(h):
 
 
 def pick_trial(trials):
-    """Two-stage with seed PREFERRED_SEED, else the first two-stage trial."""
-    two_stage = []
+    """The windowed two-stage trial with seed PREFERRED_SEED, else the first
+    windowed one, else the same for plain two-stage trials."""
+    found = {"windowed": [], "plain": []}
     for path in trials:
-        is_two_stage, seed = two_stage_seed(path)
-        if is_two_stage:
-            if seed == PREFERRED_SEED:
-                return path
-            two_stage.append(path)
-    if not two_stage:
-        raise Missing("no complete two-stage trial (trainer.stages open_loop, closed_loop)")
-    return two_stage[0]
+        kind, seed = two_stage_seed(path)
+        if kind:
+            found[kind].append((seed != PREFERRED_SEED, path))
+    for kind in ("windowed", "plain"):
+        if found[kind]:
+            return min(found[kind])[1]
+    raise Missing("no complete two-stage trial (trainer.stages open_loop, then closed_loop)")
 
 
 def read_trial(path):

@@ -170,7 +170,8 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
                  " epochs (" + to_string(s.termination) + ")";
       ok = ok && s.termination != Termination::diverged;
       rec.training.termination = s.termination;
-      net.stages.push_back({to_string(stage.mode), trainer_name(stage.trainer), std::move(s)});
+      net.stages.push_back(
+          {to_string(stage.mode), trainer_name(stage.trainer), std::move(s), stage.horizon});
     }
     net.seconds = seconds_since(t0);
     // Closed loop over the whole validation part from measured initial states.

@@ -17,6 +17,7 @@ void write_stage(H5File& f, const std::string& g, const NarxStageRecord& st) {
   f.create_group(g);
   f.set_attribute(g, "mode", st.mode);
   f.set_attribute(g, "trainer", st.trainer);
+  f.set_attribute(g, "horizon", static_cast<std::int64_t>(st.horizon));
   f.set_attribute(g, "termination", to_string(s.termination));
   f.set_attribute(g, "message", s.message);
   f.set_attribute(g, "best_epoch", static_cast<std::int64_t>(s.best_epoch));
@@ -42,6 +43,10 @@ NarxStageRecord read_stage(const H5File& f, const std::string& g) {
   NarxStageRecord st;
   st.mode = f.attribute_string(g, "mode");
   st.trainer = f.attribute_string(g, "trainer");
+  // Files written before windows existed have no horizon: one window.
+  if (f.has_attribute(g, "horizon")) {
+    st.horizon = static_cast<std::size_t>(f.attribute_int(g, "horizon"));
+  }
   Summary& s = st.summary;
   if (!parse_termination(f.attribute_string(g, "termination"), s.termination)) {
     bad("unknown termination");
@@ -162,7 +167,9 @@ void print_narx_model(const RunRecord& r, std::ostream& out) {
     out << "  " << net.axis << " (" << net.input << " -> " << net.target << ", "
         << format_metric(net.seconds) << " s):";
     for (const auto& st : net.stages) {
-      out << " " << st.mode << " " << st.trainer << " " << st.summary.history.size() << " epochs ("
+      out << " " << st.mode;
+      if (st.horizon != 0) out << " (windows of " << st.horizon << " steps)";
+      out << " " << st.trainer << " " << st.summary.history.size() << " epochs ("
           << to_string(st.summary.termination) << ")";
       const Summary& sm = st.summary;
       if (sm.lm_initial) out << " SSE " << format_metric(sm.lm_initial->sse) << " ->";

@@ -11,7 +11,9 @@
 //   /training                    attrs trainer (the stages, e.g.
 //                                "open_loop:trainbr+closed_loop:trainbr"),
 //                                termination and message (every stage's)
-//   /history/<axis>/stage<k>/    attrs mode, trainer, termination, message,
+//   /history/<axis>/stage<k>/    attrs mode, horizon (closed_loop windows;
+//                                0 or absent: the whole series), trainer,
+//                                termination, message,
 //                                best_epoch, beta_guard_count, seconds (the
 //                                network's); the series of an MLP run's
 //                                /history (epoch, train_loss, ..., gradient)

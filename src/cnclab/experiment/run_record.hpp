@@ -2,6 +2,7 @@
 // Everything one run produced, in memory: what result_file.cpp writes and
 // reads back. Plain data.
 #include <Eigen/Core>
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
@@ -34,6 +35,7 @@ struct NarxStageRecord {
   std::string mode;     // open_loop | closed_loop
   std::string trainer;  // lm | trainbr
   Summary summary;
+  std::size_t horizon = 0;  // closed_loop window length (0: the whole series)
 };
 struct NarxNetworkRecord {
   std::string axis;            // e_x -> x

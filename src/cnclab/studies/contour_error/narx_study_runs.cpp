@@ -1,5 +1,6 @@
 #include "cnclab/studies/contour_error/narx_study_runs.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "cnclab/experiment/result_file.hpp"
@@ -10,14 +11,27 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
+// two_stage: open_loop stages, then closed_loop stages; open_loop_only,
+// closed_loop_only; "_windowed" when a closed_loop stage has a horizon
+// (the last one being the whole series or not). Else the modes joined by '+'.
 std::string method_of(const NarxNetworkRecord& network) {
-  std::vector<std::string> modes;
-  for (const auto& st : network.stages) modes.push_back(st.mode);
-  if (modes == std::vector<std::string>{"open_loop", "closed_loop"}) return "two_stage";
-  if (modes == std::vector<std::string>{"open_loop"}) return "open_loop_only";
-  if (modes == std::vector<std::string>{"closed_loop"}) return "closed_loop_only";
+  std::size_t open = 0, closed = 0;
+  bool windowed = false, open_after_closed = false;
+  for (const auto& st : network.stages) {
+    if (st.mode == "open_loop") {
+      ++open;
+      open_after_closed = open_after_closed || closed > 0;
+    } else {
+      ++closed;
+      windowed = windowed || st.horizon != 0;
+    }
+  }
+  const std::string suffix = windowed ? "_windowed" : "";
+  if (!open_after_closed && open == 1 && closed > 0) return "two_stage" + suffix;
+  if (open == 1 && closed == 0) return "open_loop_only";
+  if (open == 0 && closed > 0) return "closed_loop_only" + suffix;
   std::string joined;
-  for (const auto& m : modes) joined += (joined.empty() ? "" : "+") + m;
+  for (const auto& st : network.stages) joined += (joined.empty() ? "" : "+") + st.mode;
   return joined;
 }
 
@@ -33,7 +47,7 @@ NarxStudyRun run_of(const RunRecord& r, const fs::path& file) {
   run.feedback_delays = n.options.feedback_delays;
   run.seed = r.provenance.master_seed;
   for (const auto& st : n.networks.front().stages) {
-    (st.mode == "open_loop" ? run.open_epochs : run.closed_epochs) = st.summary.history.size();
+    (st.mode == "open_loop" ? run.open_epochs : run.closed_epochs) += st.summary.history.size();
   }
   run.metrics = r.metrics;
   return run;
@@ -41,9 +55,22 @@ NarxStudyRun run_of(const RunRecord& r, const fs::path& file) {
 
 }  // namespace
 
-bool NarxStudyRun::stable() const {
+bool NarxStudyRun::bounded() const {
   const auto it = metrics.find("stable");
   return it != metrics.end() && it->second == 1.0;
+}
+
+bool NarxStudyRuns::stable(const NarxStudyRun& run) const {
+  if (!run.bounded()) return false;
+  for (const auto& axis : axes) {
+    const std::string name = "closed_loop_rms_" + axis;
+    double best = INFINITY;
+    for (const auto& other : runs) {
+      if (other.bounded()) best = std::min(best, other.metrics.at(name));
+    }
+    if (!(run.metrics.at(name) <= kStableFactor * best)) return false;
+  }
+  return true;
 }
 
 double NarxStudyRuns::metric(const std::string& name) const {

@@ -18,14 +18,22 @@ namespace cnclab {
 // One trial: what it trained and its metrics.
 struct NarxStudyRun {
   // From trainer.stages: two_stage (open_loop then closed_loop),
-  // open_loop_only, closed_loop_only, else the modes joined by '+'.
+  // open_loop_only, closed_loop_only, "_windowed" when a closed_loop stage
+  // has a horizon; else the modes joined by '+'.
   std::string method;
   std::size_t hidden = 0, input_delays = 0, feedback_delays = 0;
   std::uint64_t seed = 0;
   std::size_t open_epochs = 0, closed_epochs = 0;  // the first network's, per mode
   std::map<std::string, double> metrics;           // narx_metrics.hpp names, µm
-  bool stable() const;                             // metric "stable" is 1
+  bool bounded() const;  // metric "stable" is 1: the prediction stayed bounded
 };
+
+// Issue 17's criterion for a stable run, stricter than bounded: a bounded
+// prediction, and on every axis a closed-loop RMS within kStableFactor times
+// the best bounded run's of the same study. A network that does not blow up
+// but predicts 10x worse than the others is a failed training, as seed 002
+// counts "large prediction errors" with the unstable runs (Sec. II).
+inline constexpr double kStableFactor = 3.0;
 
 struct NarxStudyRuns {
   std::vector<std::string> axes;  // network axes of the first run (x, y)
@@ -34,6 +42,7 @@ struct NarxStudyRuns {
   std::vector<std::filesystem::path> sources;    // the result files read
   std::size_t trials = 0;                        // planned; runs.size() completed
   double metric(const std::string& name) const;  // of the first run (dataset-level numbers)
+  bool stable(const NarxStudyRun& run) const;    // kStableFactor criterion above
 };
 
 // The complete trials of experiments/contour_error/<file> under the tables'
