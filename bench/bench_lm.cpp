@@ -3,6 +3,7 @@
 //       problem; a stored dense J, so only the solver's work is timed), and
 //   (b) the seed-000 network 73-28-20-1 ReLU on 13,860 samples (Jacobian by
 //       per-sample backpropagation, 2,673 parameters),
+//   (c) seed 002's NARX 12/4 on 86,000 steps, open and closed loop (RTRL),
 // with the J^T J step's GFLOP/s (N W (W + 1) flops for the symmetric rank
 // updates) against Eigen's dense GEMM rate measured in the same run.
 //
@@ -25,6 +26,7 @@
 #include "cnclab/nn/mlp.hpp"
 #include "cnclab/train/lm.hpp"
 #include "cnclab/train/mlp_residuals.hpp"
+#include "cnclab/train/narx_training.hpp"
 #include "cnclab/train/normal_equations.hpp"
 
 namespace {
@@ -145,6 +147,35 @@ Seed000Problem seed000_problem() {
   return p;
 }
 
+// Seed 002's NARX (12 tanh units, 4 input and 4 feedback delays, 121
+// parameters) on an 86,000-step series the size of its training half:
+// v(t) = 0.95 v(t-1) + 0.2 n(t), e(t) = 0.8 e(t-1) + 0.3 v(t) - 0.1 v(t-1).
+// One trainbr stage's iteration in open loop (static network) and closed loop
+// (RTRL Jacobian: "Jacobian" is the sequential simulation with the dynamic
+// derivatives, "trial SSE" one simulation without them). The tanh output
+// layer keeps the closed loop finite for any weights.
+void narx_iterations(int repeats, double gemm) {
+  constexpr Eigen::Index kSteps = 86000;
+  NarxOptions o;
+  o.hidden = 12;
+  o.input_delays = 4;
+  o.feedback_delays = 4;
+  const Narx narx(o);
+  Rng rng(3);
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(kSteps), e = Eigen::VectorXd::Zero(kSteps);
+  for (Eigen::Index t = 1; t < kSteps; ++t) {
+    v[t] = 0.95 * v[t - 1] + 0.2 * rng.normal();
+    e[t] = 0.8 * e[t - 1] + 0.3 * v[t] - 0.1 * v[t - 1];
+  }
+  Eigen::VectorXd w;
+  narx.initialise(w, rng);
+  const Eigen::Index n = kSteps - narx.first_step();
+  NarxOpenLoopObjective open(narx, v, e);
+  report("narx open loop 12/4", n, w.size(), time_iteration(open, w, repeats), gemm);
+  NarxClosedLoopObjective closed(narx, v, e);
+  report("narx closed loop 12/4", n, w.size(), time_iteration(closed, w, repeats), gemm);
+}
+
 void write_binary(const std::filesystem::path& file, const double* data, Eigen::Index count) {
   std::ofstream out(file, std::ios::binary);
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(count * 8));
@@ -171,6 +202,7 @@ int iteration(int repeats) {
   MlpResidualObjective objective(p.mlp, p.x, p.y);
   report("seed-000 73-28-20-1", p.y.cols(), p.w0.size(),
          time_iteration(objective, p.w0, std::max(1, repeats / 2)), gemm);
+  narx_iterations(repeats, gemm);
   return 0;
 }
 

@@ -10,8 +10,8 @@ Reads the sweep of experiments/contour_error/training_methods.yaml
 `cnclab reproduce`): of the sweep folders whose planned trials (sweep.yaml)
 have all finished (a result file, or an .error note for a trial that stopped
 on an error), the one finished last; in it the complete trial trained
-in two stages (trainer.stages: open_loop, then closed_loop stages), windowed
-(narx.yaml's default) before plain, with seed 1 (else another seed; see
+in two stages (trainer.stages: open_loop, then closed_loop stages), with a
+second try or windows (narx.yaml's default) before plain, with seed 1 (else another seed; see
 pick_trial), its closed-loop validation prediction
 and the dataset file it names. The contour error is predicted from that with
 the Taylor estimate the C++ metric uses (studies/contour_error/narx_metrics.cpp),
@@ -97,8 +97,8 @@ def newest_sweep(results, study=STUDY):
 
 def two_stage_seed(path):
     """(two-stage kind, seed) of a complete trial, from its resolved config:
-    kind "windowed" (open_loop, then closed_loop stages of which one has a
-    horizon, narx.yaml's default), "plain" (open_loop, closed_loop: the paper
+    kind "windows" (open_loop, then closed_loop stages of which one has a
+    horizon or a fallback_horizon: narx.yaml's default), "plain" (the paper
     as printed) or None."""
     with h5py.File(path, "r") as h:
         if text(h.attrs.get("status", "")) != "complete":
@@ -108,8 +108,8 @@ def two_stage_seed(path):
     modes = [s.get("mode") for s in stages]
     if len(modes) < 2 or modes[0] != "open_loop" or any(m != "closed_loop" for m in modes[1:]):
         return None, config.get("seed")
-    windowed = any(s.get("horizon", 0) for s in stages)
-    return ("windowed" if windowed else "plain"), config.get("seed")
+    windows = any(s.get("horizon", 0) or s.get("fallback_horizon", 0) for s in stages)
+    return ("windows" if windows else "plain"), config.get("seed")
 
 
 def resolved_yaml(h):
@@ -120,14 +120,15 @@ def resolved_yaml(h):
 
 
 def pick_trial(trials):
-    """The windowed two-stage trial with seed PREFERRED_SEED, else the first
-    windowed one, else the same for plain two-stage trials."""
-    found = {"windowed": [], "plain": []}
+    """The two-stage trial with windows (a second try or a windowed start)
+    and seed PREFERRED_SEED, else another seed, else the same for plain
+    two-stage trials."""
+    found = {"windows": [], "plain": []}
     for path in trials:
         kind, seed = two_stage_seed(path)
         if kind:
             found[kind].append((seed != PREFERRED_SEED, path))
-    for kind in ("windowed", "plain"):
+    for kind in ("windows", "plain"):
         if found[kind]:
             return min(found[kind])[1]
     raise Missing("no complete two-stage trial (trainer.stages open_loop, then closed_loop)")

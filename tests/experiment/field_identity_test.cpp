@@ -194,10 +194,12 @@ TEST(FieldIdentity, EveryNarxKeyChangesTheIdentityAndRoundTrips) {
 }
 
 // "trainer.stages=[{mode: open_loop, type: TYPE, KEY: VALUE}]" (no KEY: "");
-// mode closed_loop for `horizon`, which only closed-loop stages have.
+// mode closed_loop for `horizon` and `fallback_horizon`, which only
+// closed-loop stages have.
 std::string one_stage(const std::string& type, const std::string& key, const std::string& value) {
   std::map<std::string, std::string> stage = {
-      {"mode", key == "horizon" ? "closed_loop" : "open_loop"}, {"type", type}};
+      {"mode", key == "horizon" || key == "fallback_horizon" ? "closed_loop" : "open_loop"},
+      {"type", type}};
   if (!key.empty()) stage[key] = value;
   std::string text;
   for (const auto& [k, v] : stage) text += (text.empty() ? "" : ", ") + k + ": " + v;
@@ -213,7 +215,9 @@ TEST(FieldIdentity, EveryStageKeyChangesTheIdentityAndRoundTrips) {
     keys.insert(keys.end(), trainer.begin(), trainer.end());
     for (const auto& f : keys) {
       const auto base = parse_experiment(
-          kNarxBase, "e.yaml", {one_stage(type, f.key == "horizon" ? "mode" : "", "closed_loop")});
+          kNarxBase, "e.yaml",
+          {one_stage(type, f.key == "horizon" || f.key == "fallback_horizon" ? "mode" : "",
+                     "closed_loop")});
       const std::string value = other_value(f);
       ASSERT_FALSE(value.empty()) << f.key;
       const auto changed = parse_experiment(kNarxBase, "e.yaml", {one_stage(type, f.key, value)});

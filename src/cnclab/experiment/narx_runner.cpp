@@ -1,9 +1,12 @@
 #include "cnclab/experiment/narx_runner.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <ostream>
 #include <sstream>
+#include <variant>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/progress.hpp"
@@ -71,6 +74,47 @@ Summary train_stage(const Narx& narx, const TrainingStage& stage, const Eigen::V
   }
   NarxClosedLoopObjective closed(narx, v, e, static_cast<Eigen::Index>(stage.horizon));
   return train(closed);
+}
+
+// The final whole-series SSE of a recorded stage (its starting SSE when it
+// took no step; infinity when it has neither).
+double final_sse(const Summary& s) {
+  if (!s.lm_history.empty()) return s.lm_history.back().sse;
+  return s.lm_initial ? s.lm_initial->sse : INFINITY;
+}
+
+// fallback_horizon (narx_spec.hpp): the stage stopped on mu_max or diverged
+// (params: where it stopped). Trains again from `start`, on windows of
+// fallback_horizon steps for the first half of the stage's epochs, then on
+// the whole series for the rest (the schedule measured in
+// docs/narx_training.md), both recorded as second tries, and keeps the
+// weights with the lower whole-series SSE. Returns the termination of the
+// weights kept.
+template <class RunStage>
+Termination retry_stage(const TrainingStage& stage, const Eigen::VectorXd& start,
+                        RunStage& run_stage, const NarxNetworkRecord& net, Eigen::VectorXd& params,
+                        Termination first) {
+  const Eigen::VectorXd first_params = params;
+  const double first_sse =
+      first == Termination::diverged ? INFINITY : final_sse(net.stages.back().summary);
+  params = start;
+  const std::size_t epochs = trainer_epochs(stage.trainer);
+  const auto with_epochs = [](TrainingStage s, std::size_t n) {
+    std::visit([n](auto& o) { o.epochs = n; }, s.trainer);
+    return s;
+  };
+  TrainingStage windowed = with_epochs(stage, (epochs + 1) / 2);
+  windowed.horizon = stage.fallback_horizon;
+  windowed.fallback_horizon = 0;
+  run_stage(windowed, true);
+  TrainingStage whole = with_epochs(stage, std::max<std::size_t>(epochs / 2, 1));
+  whole.fallback_horizon = 0;
+  const Termination second = run_stage(whole, true);
+  if (second != Termination::diverged && final_sse(net.stages.back().summary) < first_sse) {
+    return second;
+  }
+  params = first_params;
+  return first;
 }
 
 const NarxNetworkRecord* upstream_network(const std::optional<UpstreamResult>& up,
@@ -160,18 +204,29 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
     }
     const auto t0 = std::chrono::steady_clock::now();
     message += (message.empty() ? "" : "; ") + net.axis + ":";
-    for (const auto& stage : spec.stages) {
-      Progress progress(spec.name + " " + net.axis + " " + to_string(stage.mode),
-                        trainer_epochs(stage.trainer), options.log ? *options.log : std::cerr,
+    // One stage from `params`, recorded; its termination.
+    const auto run_stage = [&](const TrainingStage& stage, bool fallback) {
+      const std::string label = to_string(stage.mode) + (fallback ? " (second try)" : "");
+      Progress progress(spec.name + " " + net.axis + " " + label, trainer_epochs(stage.trainer),
+                        options.log ? *options.log : std::cerr,
                         {options.log ? options.progress : ProgressMode::quiet, 10.0, 0.1});
       Summary s = train_stage(narx, stage, v_train, e_train, params, progress);
       progress.finish(to_string(s.termination));
-      message += " " + to_string(stage.mode) + " " + std::to_string(s.history.size()) +
-                 " epochs (" + to_string(s.termination) + ")";
-      ok = ok && s.termination != Termination::diverged;
-      rec.training.termination = s.termination;
-      net.stages.push_back(
-          {to_string(stage.mode), trainer_name(stage.trainer), std::move(s), stage.horizon});
+      message += " " + label + " " + std::to_string(s.history.size()) + " epochs (" +
+                 to_string(s.termination) + ")";
+      const Termination t = s.termination;
+      net.stages.push_back({to_string(stage.mode), trainer_name(stage.trainer), std::move(s),
+                            stage.horizon, fallback, stage.fallback_horizon});
+      return t;
+    };
+    for (const auto& stage : spec.stages) {
+      const Eigen::VectorXd start = params;
+      Termination t = run_stage(stage, false);
+      if (stage.fallback_horizon != 0 && (t == Termination::mu_max || t == Termination::diverged)) {
+        t = retry_stage(stage, start, run_stage, net, params, t);
+      }
+      ok = ok && t != Termination::diverged;
+      rec.training.termination = t;
     }
     net.seconds = seconds_since(t0);
     // Closed loop over the whole validation part from measured initial states.

@@ -48,7 +48,13 @@ const FieldList<StageHead>& stage_fields() {
               "closed_loop: predict the series in windows of this many steps, each started from "
               "measured states (0: the whole series in one window, seed 002's parallel training; "
               "docs/narx_training.md)",
-              Rule::non_negative());
+              Rule::non_negative())
+          .field("fallback_horizon", &StageHead::fallback_horizon,
+                 "closed_loop on the whole series: when the stage stops on mu_max or diverges, "
+                 "train again from its starting weights on windows of this many steps, then on "
+                 "the whole series, and keep the lower whole-series SSE (0: no second try; "
+                 "docs/narx_training.md)",
+                 Rule::non_negative());
   return fields;
 }
 
@@ -104,6 +110,11 @@ TrainingStage read_stage(const ConfigReader& s) {
     s.fail("horizon", "applies to closed_loop stages only (an open_loop stage has no windows)");
   }
   stage.horizon = head.horizon;
+  if (head.fallback_horizon != 0 && (stage.mode != StageMode::closed_loop || head.horizon != 0)) {
+    s.fail("fallback_horizon",
+           "applies to closed_loop stages on the whole series only (horizon 0)");
+  }
+  stage.fallback_horizon = head.fallback_horizon;
   stage.trainer = read_trainer(s);
   return stage;
 }
@@ -135,6 +146,7 @@ YAML::Node stages_to_node(const std::vector<TrainingStage>& stages) {
     node["mode"] = to_string(stage.mode);
     // Only when set: the identities of results trained before the key existed stay.
     if (stage.horizon != 0) node["horizon"] = stage.horizon;
+    if (stage.fallback_horizon != 0) node["fallback_horizon"] = stage.fallback_horizon;
     for (const auto& kv : trainer_to_node(stage.trainer)) node[kv.first.Scalar()] = kv.second;
     node.SetStyle(YAML::EmitterStyle::Flow);  // one line per stage
     list.push_back(node);

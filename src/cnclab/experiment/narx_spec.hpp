@@ -64,12 +64,19 @@ struct TrainingStage {
   // started from measured states (NarxClosedLoopObjective); 0 = one window,
   // the whole series (seed 002's parallel training).
   std::size_t horizon = 0;
+  // closed_loop on the whole series: when the stage stops on mu_max or
+  // diverges, it is trained again from its starting weights, first on
+  // windows of this many steps, then on the whole series (the stage's epochs
+  // each), and the weights with the lower whole-series SSE are kept
+  // (docs/narx_training.md). 0: no second try.
+  std::size_t fallback_horizon = 0;
 };
 
 // One stage's own keys besides its trainer's.
 struct StageHead {
   std::string mode = "open_loop";
   std::size_t horizon = 0;
+  std::size_t fallback_horizon = 0;
 };
 const FieldList<StageHead>& stage_fields();
 

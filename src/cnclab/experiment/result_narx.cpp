@@ -18,6 +18,8 @@ void write_stage(H5File& f, const std::string& g, const NarxStageRecord& st) {
   f.set_attribute(g, "mode", st.mode);
   f.set_attribute(g, "trainer", st.trainer);
   f.set_attribute(g, "horizon", static_cast<std::int64_t>(st.horizon));
+  f.set_attribute(g, "fallback", static_cast<std::int64_t>(st.fallback ? 1 : 0));
+  f.set_attribute(g, "fallback_horizon", static_cast<std::int64_t>(st.fallback_horizon));
   f.set_attribute(g, "termination", to_string(s.termination));
   f.set_attribute(g, "message", s.message);
   f.set_attribute(g, "best_epoch", static_cast<std::int64_t>(s.best_epoch));
@@ -46,6 +48,10 @@ NarxStageRecord read_stage(const H5File& f, const std::string& g) {
   // Files written before windows existed have no horizon: one window.
   if (f.has_attribute(g, "horizon")) {
     st.horizon = static_cast<std::size_t>(f.attribute_int(g, "horizon"));
+  }
+  st.fallback = f.has_attribute(g, "fallback") && f.attribute_int(g, "fallback") != 0;
+  if (f.has_attribute(g, "fallback_horizon")) {
+    st.fallback_horizon = static_cast<std::size_t>(f.attribute_int(g, "fallback_horizon"));
   }
   Summary& s = st.summary;
   if (!parse_termination(f.attribute_string(g, "termination"), s.termination)) {
@@ -167,7 +173,7 @@ void print_narx_model(const RunRecord& r, std::ostream& out) {
     out << "  " << net.axis << " (" << net.input << " -> " << net.target << ", "
         << format_metric(net.seconds) << " s):";
     for (const auto& st : net.stages) {
-      out << " " << st.mode;
+      out << (st.fallback ? " second try: " : " ") << st.mode;
       if (st.horizon != 0) out << " (windows of " << st.horizon << " steps)";
       out << " " << st.trainer << " " << st.summary.history.size() << " epochs ("
           << to_string(st.summary.termination) << ")";

@@ -12,7 +12,9 @@
 //                                "open_loop:trainbr+closed_loop:trainbr"),
 //                                termination and message (every stage's)
 //   /history/<axis>/stage<k>/    attrs mode, horizon (closed_loop windows;
-//                                0 or absent: the whole series), trainer,
+//                                0 or absent: the whole series), fallback
+//                                (1: a second try of the stage before it,
+//                                fallback_horizon), trainer,
 //                                termination, message,
 //                                best_epoch, beta_guard_count, seconds (the
 //                                network's); the series of an MLP run's

@@ -35,7 +35,9 @@ struct NarxStageRecord {
   std::string mode;     // open_loop | closed_loop
   std::string trainer;  // lm | trainbr
   Summary summary;
-  std::size_t horizon = 0;  // closed_loop window length (0: the whole series)
+  std::size_t horizon = 0;           // closed_loop window length (0: the whole series)
+  bool fallback = false;             // a second try of the stage before it (fallback_horizon)
+  std::size_t fallback_horizon = 0;  // as configured (second tries only when it stopped)
 };
 struct NarxNetworkRecord {
   std::string axis;            // e_x -> x

@@ -41,28 +41,28 @@ ScalingRecord ScalingRecord::fit(Scaling method, const Eigen::MatrixXd& train,
   return r;
 }
 
-Eigen::MatrixXd ScalingRecord::transform(const Eigen::MatrixXd& data) const {
+// `map` applied to the record's normaliser (transform or inverse_transform);
+// the data unchanged for Scaling::none.
+template <class Map>
+Eigen::MatrixXd ScalingRecord::apply(const Eigen::MatrixXd& data, Map map) const {
   switch (method) {
     case Scaling::zscore:
-      return ZScoreNormaliser(mean, std).transform(data);
+      return map(ZScoreNormaliser(mean, std), data);
     case Scaling::minmax:
-      return MinMaxNormaliser(min, max, y_min, y_max).transform(data);
+      return map(MinMaxNormaliser(min, max, y_min, y_max), data);
     case Scaling::none:
       break;
   }
   return data;
 }
 
+Eigen::MatrixXd ScalingRecord::transform(const Eigen::MatrixXd& data) const {
+  return apply(data, [](const auto& n, const Eigen::MatrixXd& d) { return n.transform(d); });
+}
+
 Eigen::MatrixXd ScalingRecord::inverse_transform(const Eigen::MatrixXd& scaled) const {
-  switch (method) {
-    case Scaling::zscore:
-      return ZScoreNormaliser(mean, std).inverse_transform(scaled);
-    case Scaling::minmax:
-      return MinMaxNormaliser(min, max, y_min, y_max).inverse_transform(scaled);
-    case Scaling::none:
-      break;
-  }
-  return scaled;
+  return apply(scaled,
+               [](const auto& n, const Eigen::MatrixXd& d) { return n.inverse_transform(d); });
 }
 
 }  // namespace cnclab

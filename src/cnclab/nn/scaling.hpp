@@ -30,6 +30,10 @@ struct ScalingRecord {
                                                                  MinMaxNormaliser::kYMax});
   Eigen::MatrixXd transform(const Eigen::MatrixXd& data) const;
   Eigen::MatrixXd inverse_transform(const Eigen::MatrixXd& scaled) const;
+
+ private:
+  template <class Map>
+  Eigen::MatrixXd apply(const Eigen::MatrixXd& data, Map map) const;
 };
 
 }  // namespace cnclab

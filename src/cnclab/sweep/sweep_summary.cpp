@@ -77,6 +77,18 @@ void write_values(H5File& f, const std::string& name, const std::vector<std::str
 
 // "id1,id2,...": a point's trials in repeat order (their result files are
 // trials/<id>.h5 in the sweep folder).
+// <group>/parameters/<key>: each row's swept value of every key (rows:
+// planned trials or points, both with `values` in plan.keys order).
+template <class Rows>
+void write_parameters(H5File& f, const std::string& group, const SweepPlan& plan,
+                      const Rows& rows) {
+  for (std::size_t k = 0; k < plan.keys.size(); ++k) {
+    std::vector<std::string> texts;
+    for (const auto& row : rows) texts.push_back(row.values[k]);
+    write_values(f, group + "/parameters/" + plan.keys[k], texts);
+  }
+}
+
 std::string trial_ids(const SweepPlan& plan, const PointStats& p) {
   std::string ids;
   for (std::size_t i : p.trials) ids += (ids.empty() ? "" : ",") + plan.trials[i].id;
@@ -242,11 +254,7 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
     f.write_strings("/trials/seed", seed);
     f.write_int64s("/trials/point", point);
     f.write_int64s("/trials/repeat", repeat);
-    for (std::size_t k = 0; k < plan.keys.size(); ++k) {
-      std::vector<std::string> texts;
-      for (const auto& t : plan.trials) texts.push_back(t.values[k]);
-      write_values(f, "/trials/parameters/" + plan.keys[k], texts);
-    }
+    write_parameters(f, "/trials", plan, plan.trials);
     for (const auto& metric : plan.metrics) {
       std::vector<double> v;
       for (const auto& o : outcomes) v.push_back(metric_or_nan(o.metrics, metric));
@@ -265,11 +273,7 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
     f.write_strings("/points/trials", p_trials);
     f.write_int64s("/points/complete", p_complete);
     f.write_int64s("/points/failed", p_failed);
-    for (std::size_t k = 0; k < plan.keys.size(); ++k) {
-      std::vector<std::string> texts;
-      for (const auto& p : s.points) texts.push_back(p.values[k]);
-      write_values(f, "/points/parameters/" + plan.keys[k], texts);
-    }
+    write_parameters(f, "/points", plan, s.points);
     for (const auto& metric : plan.metrics) {
       std::vector<double> mean, sd;
       for (const auto& p : s.points) {

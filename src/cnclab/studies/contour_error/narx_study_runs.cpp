@@ -13,25 +13,31 @@ namespace {
 
 // two_stage: open_loop stages, then closed_loop stages; open_loop_only,
 // closed_loop_only; "_windowed" when a closed_loop stage has a horizon
-// (the last one being the whole series or not). Else the modes joined by '+'.
+// (the last one being the whole series or not), "_retry" when one has a
+// fallback_horizon. Else the modes joined by '+'.
 std::string method_of(const NarxNetworkRecord& network) {
   std::size_t open = 0, closed = 0;
-  bool windowed = false, open_after_closed = false;
+  bool windowed = false, retry = false, open_after_closed = false;
   for (const auto& st : network.stages) {
+    if (st.fallback) continue;  // second tries are not part of the method
     if (st.mode == "open_loop") {
       ++open;
       open_after_closed = open_after_closed || closed > 0;
     } else {
       ++closed;
       windowed = windowed || st.horizon != 0;
+      retry = retry || st.fallback_horizon != 0;
     }
   }
-  const std::string suffix = windowed ? "_windowed" : "";
+  const std::string suffix =
+      std::string(windowed ? "_windowed" : "") + std::string(retry ? "_retry" : "");
   if (!open_after_closed && open == 1 && closed > 0) return "two_stage" + suffix;
   if (open == 1 && closed == 0) return "open_loop_only";
   if (open == 0 && closed > 0) return "closed_loop_only" + suffix;
   std::string joined;
-  for (const auto& st : network.stages) joined += (joined.empty() ? "" : "+") + st.mode;
+  for (const auto& st : network.stages) {
+    if (!st.fallback) joined += (joined.empty() ? "" : "+") + st.mode;
+  }
   return joined;
 }
 
@@ -47,7 +53,13 @@ NarxStudyRun run_of(const RunRecord& r, const fs::path& file) {
   run.feedback_delays = n.options.feedback_delays;
   run.seed = r.provenance.master_seed;
   for (const auto& st : n.networks.front().stages) {
+    if (st.fallback) continue;
     (st.mode == "open_loop" ? run.open_epochs : run.closed_epochs) += st.summary.history.size();
+  }
+  for (const auto& net : n.networks) {
+    const bool retried = std::any_of(net.stages.begin(), net.stages.end(),
+                                     [](const NarxStageRecord& st) { return st.fallback; });
+    run.second_tries += retried ? 1 : 0;
   }
   run.metrics = r.metrics;
   return run;

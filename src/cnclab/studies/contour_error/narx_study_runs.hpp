@@ -19,13 +19,15 @@ namespace cnclab {
 struct NarxStudyRun {
   // From trainer.stages: two_stage (open_loop then closed_loop),
   // open_loop_only, closed_loop_only, "_windowed" when a closed_loop stage
-  // has a horizon; else the modes joined by '+'.
+  // has a horizon, "_retry" when one has a fallback_horizon; else the modes
+  // joined by '+'.
   std::string method;
   std::size_t hidden = 0, input_delays = 0, feedback_delays = 0;
   std::uint64_t seed = 0;
   std::size_t open_epochs = 0, closed_epochs = 0;  // the first network's, per mode
-  std::map<std::string, double> metrics;           // narx_metrics.hpp names, µm
-  bool bounded() const;  // metric "stable" is 1: the prediction stayed bounded
+  std::size_t second_tries = 0;           // networks whose stage was tried again (fallback_horizon)
+  std::map<std::string, double> metrics;  // narx_metrics.hpp names, µm
+  bool bounded() const;                   // metric "stable" is 1: the prediction stayed bounded
 };
 
 // Issue 17's criterion for a stable run, stricter than bounded: a bounded

@@ -160,20 +160,20 @@ SurfaceTiming time_surface(const SurfaceCase& c, const StepErrorTimingOptions& o
     forward.push_back(seconds_since(start));
     e_network.assign(y.data(), y.data() + y.size());
   }
-  const double exact_vs_targets = max_difference(e_exact, c.targets_um);
-  if (!(exact_vs_targets <= kReproduceTolUm)) {
-    throw Error(c.result_file.string() +
-                ": the exact step errors of the test segments differ from "
-                "the result's targets by " +
-                shortest_double(exact_vs_targets) + " µm: test indices and tool path do not match");
-  }
-  const double network_vs_result = max_difference(e_network, c.predictions_um);
-  if (!(network_vs_result <= kReproduceTolUm)) {
-    throw Error(c.result_file.string() +
-                ": the network's predictions from the surface differ from "
-                "the result's test predictions by " +
-                shortest_double(network_vs_result) + " µm");
-  }
+  const auto expect_reproduced = [&](const std::vector<double>& ours,
+                                     const std::vector<double>& stored, const std::string& what) {
+    const double difference = max_difference(ours, stored);
+    if (!(difference <= kReproduceTolUm)) {
+      throw Error(c.result_file.string() + ": " + what + " by " + shortest_double(difference) +
+                  " µm");
+    }
+  };
+  expect_reproduced(e_exact, c.targets_um,
+                    "the exact step errors of the test segments differ from the result's targets "
+                    "(test indices and tool path do not match)");
+  expect_reproduced(e_network, c.predictions_um,
+                    "the network's predictions from the surface differ from the result's test "
+                    "predictions");
   t.planning_s = median(planning);
   t.iterative_s = median(iterative);
   t.exact_s = median(exact);
