@@ -3,6 +3,7 @@
 // prediction.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -145,6 +146,61 @@ TEST(NarxTrial, MetricsAgreeWithTheStoredPrediction) {
       }
     }
   }
+}
+
+// fallback_horizon: a closed-loop stage that stops on mu_max is tried again
+// from its starting weights (windows of 50 steps, then the whole series, half
+// the epochs each), and the weights kept are those with the lower
+// whole-series SSE: checked against the closed-loop SSE of the stored
+// parameters, simulated here on the training half of the dataset.
+// mu_max = mu makes the first rejected step stop the stage.
+TEST(NarxTrial, SecondTryKeepsTheLowerWholeSeriesSse) {
+  register_metrics_once();
+  TempDir dir;
+  RunOptions options;
+  options.results_dir = dir.path() / "results";
+  options.datasets_dir = dir.path() / "datasets";
+  const std::string stages =
+      "[{mode: open_loop, type: trainbr, epochs: 30}, {mode: closed_loop, type: trainbr, "
+      "epochs: 6, mu: 1.0e-3, mu_max: 1.0e-3, fallback_horizon: 50}]";
+  std::size_t retried = 0;
+  for (const char* seed : {"seed: 1", "seed: 2", "seed: 3"}) {
+    std::string yaml = tiny_trial(stages);
+    yaml.replace(yaml.find("seed: 1"), 7, seed);
+    const RunOutcome o = run_experiment(parse_experiment(yaml, "t.yaml"), options);
+    ASSERT_TRUE(o.ok) << o.message;
+    const RunRecord r = read_result(o.result_file);
+    const Dataset d = read_dataset(r.dataset_file);
+    const Narx narx(r.narx->options);
+    const auto half = static_cast<Eigen::Index>(r.split.train.size());
+    for (std::size_t a = 0; a < r.narx->networks.size(); ++a) {
+      const NarxNetworkRecord& net = r.narx->networks[a];
+      ASSERT_GE(net.stages.size(), 2u);
+      const Summary& first = net.stages[1].summary;
+      const auto final_sse = [](const Summary& s) {
+        return s.lm_history.empty() ? s.lm_initial->sse : s.lm_history.back().sse;
+      };
+      const bool failed =
+          first.termination == Termination::mu_max || first.termination == Termination::diverged;
+      ASSERT_EQ(net.stages.size(), failed ? 4u : 2u) << seed << " " << net.axis;
+      if (!failed) continue;
+      ++retried;
+      EXPECT_TRUE(net.stages[2].fallback && net.stages[3].fallback);
+      EXPECT_EQ(net.stages[2].horizon, 50u);
+      EXPECT_EQ(net.stages[3].horizon, 0u);
+      EXPECT_LE(net.stages[2].summary.history.size(), 3u);
+      EXPECT_LE(net.stages[3].summary.history.size(), 3u);
+      const double kept = std::min(final_sse(first), final_sse(net.stages[3].summary));
+      const auto row = static_cast<Eigen::Index>(a);
+      const Eigen::VectorXd v = d.inputs.row(row).head(half).transpose();
+      const Eigen::VectorXd e = d.targets.row(row).head(half).transpose();
+      const double sse =
+          (narx.simulate_closed_loop(net.parameters, v, e) - e.tail(half - narx.first_step()))
+              .squaredNorm();
+      EXPECT_NEAR(sse, kept, 1e-9 * kept) << seed << " " << net.axis;
+    }
+  }
+  EXPECT_GT(retried, 0u) << "no closed-loop stage stopped on mu_max: the test checks nothing";
 }
 
 }  // namespace
