@@ -73,6 +73,14 @@ void expect_same_trials(const fs::path& a, const fs::path& b) {
   }
 }
 
+// `cnclab run` of one point of sweep_args (keep 0.9, learning rate 1e-2) into r/.
+Result run_one_point(const fs::path& dir) {
+  return sh(dir, kCnclab + " run " + kExperiment +
+                     " trainer.epochs=20 dataset.options.samples=300 "
+                     "model.hidden=[16,8] model.dropout.keep_probability=0.9 "
+                     "trainer.learning_rate=1e-2 --quiet --data-dir data --out r");
+}
+
 const std::string kNoTimes = " --exclude-path /provenance --exclude-path /history/wall_seconds ";
 
 TEST(SweepCli, TwoJobsGiveBitIdenticalTrialsToOneJob) {
@@ -93,11 +101,7 @@ TEST(SweepCli, TwoJobsGiveBitIdenticalTrialsToOneJob) {
   }
   // A trial is the plain run of its config: `cnclab run` with the same
   // overrides writes the same numbers.
-  const Result run =
-      sh(dir.path(), kCnclab + " run " + kExperiment +
-                         " trainer.epochs=20 dataset.options.samples=300 "
-                         "model.hidden=[16,8] model.dropout.keep_probability=0.9 "
-                         "trainer.learning_rate=1e-2 --quiet --data-dir data --out r");
+  const Result run = run_one_point(dir.path());
   ASSERT_EQ(run.code, 0) << run.err;
   const RunRecord plain = read_result(dir / run.out.substr(0, run.out.find('\n')));
   bool found = false;
@@ -169,11 +173,7 @@ TEST(SweepCli, RerunSkipsCompleteTrials) {
 // the same points (another sweep folder) trains nothing.
 TEST(SweepCli, TrialsShareResultsWithTheResultStore) {
   TempDir dir;
-  const Result run =
-      sh(dir.path(), kCnclab + " run " + kExperiment +
-                         " trainer.epochs=20 dataset.options.samples=300 "
-                         "model.hidden=[16,8] model.dropout.keep_probability=0.9 "
-                         "trainer.learning_rate=1e-2 --quiet --data-dir data --out r");
+  const Result run = run_one_point(dir.path());
   ASSERT_EQ(run.code, 0) << run.err;
   const fs::path plain = dir / run.out.substr(0, run.out.find('\n'));
   const std::string plain_bytes = slurp(plain);

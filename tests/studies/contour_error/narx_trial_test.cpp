@@ -44,6 +44,14 @@ std::string tiny_trial(const std::string& stages) {
          "trainer:\n  stages: " +
          stages + "\n";
 }
+// Results and datasets below `dir`.
+RunOptions run_options_in(const TempDir& dir) {
+  RunOptions options;
+  options.results_dir = dir.path() / "results";
+  options.datasets_dir = dir.path() / "datasets";
+  return options;
+}
+
 const char* kTwoStage =
     "[{mode: open_loop, type: trainbr, epochs: 30, min_gradient: 1.0e-8}, "
     "{mode: closed_loop, type: trainbr, epochs: 5, min_gradient: 1.0e-8}]";
@@ -106,9 +114,7 @@ double rms(const Eigen::VectorXd& v) {
 TEST(NarxTrial, MetricsAgreeWithTheStoredPrediction) {
   register_metrics_once();
   TempDir dir;
-  RunOptions options;
-  options.results_dir = dir.path() / "results";
-  options.datasets_dir = dir.path() / "datasets";
+  const RunOptions options = run_options_in(dir);
   const char* stages[] = {kTwoStage, kOpenOnly};
   for (std::size_t i = 0; i < 2; ++i) {
     const RunOutcome o = run_experiment(parse_experiment(tiny_trial(stages[i]), "t.yaml"), options);
@@ -157,9 +163,7 @@ TEST(NarxTrial, MetricsAgreeWithTheStoredPrediction) {
 TEST(NarxTrial, SecondTryKeepsTheLowerWholeSeriesSse) {
   register_metrics_once();
   TempDir dir;
-  RunOptions options;
-  options.results_dir = dir.path() / "results";
-  options.datasets_dir = dir.path() / "datasets";
+  const RunOptions options = run_options_in(dir);
   const std::string stages =
       "[{mode: open_loop, type: trainbr, epochs: 30}, {mode: closed_loop, type: trainbr, "
       "epochs: 6, mu: 1.0e-3, mu_max: 1.0e-3, fallback_horizon: 50}]";
