@@ -17,6 +17,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cnclab/experiment/command_options.hpp"
@@ -56,6 +57,23 @@ struct JobKind {
   // schema then says so and accepts any keys.
   std::function<nlohmann::json()> schema = {};
 };
+
+// A kind whose files load into a `Job` by `load(file, overrides, profile)`
+// (strict, as JobKind::run asks) and resolve by `to_yaml(job)`; `run(job,
+// context)` runs a loaded job and returns its report.
+template <class Load, class Run>
+JobKind job_kind(std::string kind, std::string summary, Load load, Run run) {
+  JobKind k;
+  k.kind = std::move(kind);
+  k.summary = std::move(summary);
+  k.run = [load, run](const std::filesystem::path& file, const JobContext& c) {
+    return run(load(file, c.overrides, c.options.profile), c);
+  };
+  k.resolved_yaml = [load](const std::filesystem::path& file, const JobContext& c) {
+    return to_yaml(load(file, c.overrides, c.options.profile));
+  };
+  return k;
+}
 
 // Registers a kind (src/cli/builtins.cpp, before any command runs).
 // std::logic_error for "train" or a kind registered twice.

@@ -15,11 +15,7 @@ namespace {
 // `kind: gcode` (trochoid_job.hpp). Takes seconds and writes text files:
 // always re-run.
 JobKind gcode_kind() {
-  JobKind k;
-  k.kind = "gcode";
-  k.summary = "trochoidal groove tool path and ISO 6983 program (seed 004)";
-  k.run = [](const fs::path& file, const JobContext& c) {
-    const TrochoidJob job = load_trochoid_job(file, c.overrides, c.options.profile);
+  const auto run = [](const TrochoidJob& job, const JobContext& c) {
     const TrochoidFiles written = write_trochoid_outputs(job, c.options.results_dir);
     char detail[160];
     std::snprintf(detail, sizeof detail,
@@ -33,10 +29,8 @@ JobKind gcode_kind() {
                      written.result.string(),
                      "== " + job.name + " ==\n" + written.outcome.report};
   };
-  k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
-    return to_yaml(load_trochoid_job(file, c.overrides, c.options.profile));
-  };
-  return k;
+  return job_kind("gcode", "trochoidal groove tool path and ISO 6983 program (seed 004)",
+                  load_trochoid_job, run);
 }
 
 }  // namespace

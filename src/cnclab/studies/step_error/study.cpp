@@ -13,11 +13,7 @@ namespace {
 // measurement: re-run every time; the standard result it writes (named by
 // the resolved job) is what Table 8 reads.
 JobKind step_error_timing_kind() {
-  JobKind k;
-  k.kind = "step_error_timing";
-  k.summary = "seed 000 Table 8: geometric vs exact vs network step-error time";
-  k.run = [](const fs::path& file, const JobContext& c) {
-    const StepErrorTimingJob job = load_step_error_timing_job(file, c.overrides, c.options.profile);
+  const auto run = [](const StepErrorTimingJob& job, const JobContext& c) {
     const StepErrorTimingResult result = run_step_error_timing(job, c.options.results_dir);
     const fs::path written =
         write_step_error_timing(job, result, ResultStore(c.options.results_dir, c.options.profile));
@@ -28,10 +24,9 @@ JobKind step_error_timing_kind() {
                      written.string(),
                      ""};
   };
-  k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
-    return to_yaml(load_step_error_timing_job(file, c.overrides, c.options.profile));
-  };
-  return k;
+  return job_kind("step_error_timing",
+                  "seed 000 Table 8: geometric vs exact vs network step-error time",
+                  load_step_error_timing_job, run);
 }
 
 }  // namespace
