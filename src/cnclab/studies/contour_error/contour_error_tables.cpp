@@ -24,6 +24,24 @@ constexpr const char* kRetryNote =
     "The open-loop weights of some seeds make a closed loop whose RTRL Jacobian grows to 1e20 "
     "along the 86,000 steps, and LM stops on mu_max (docs/narx_training.md)";
 
+// One note per run that is not stable: how its training ended, so that a
+// training stop (mu_max, diverged) is told from a network that trained to its
+// epoch cap and still predicts the validation half badly.
+std::vector<std::string> unstable_notes(const NarxStudyRuns& r) {
+  std::vector<std::string> notes;
+  for (const auto& run : r.runs) {
+    if (r.stable(run)) continue;
+    const bool stopped = run.stops.find("mu_max") != std::string::npos ||
+                         run.stops.find("diverged") != std::string::npos;
+    notes.push_back(
+        "not stable: " + run.method + " H=" + std::to_string(run.hidden) +
+        " D=" + std::to_string(run.input_delays) + " seed " + std::to_string(run.seed) +
+        ", training ended " + run.stops +
+        (stopped ? "" : " (no early stop: the error is in predicting the validation half)"));
+  }
+  return notes;
+}
+
 // "second tries: N of M networks (run ...)": who needed fallback_horizon.
 std::string second_try_note(const NarxStudyRuns& r) {
   std::size_t tried = 0, networks = 0;
@@ -136,12 +154,15 @@ void print_training_methods(const NarxStudyRuns& r, const ConfigReader& ref, Tab
   zero.push_back("-");
   t.rows.push_back(zero);
   t.print(out, f);
-  print_table_notes(
-      out, f,
-      {"Paper, two_stage: " + reference_text(ref, "training_methods", "two_stage"),
-       "Paper, closed_loop_only: " + reference_text(ref, "training_methods", "closed_loop_only"),
-       "Paper, open_loop_only: " + reference_text(ref, "training_methods", "open_loop_only"),
-       stable_note(), kRetryNote, second_try_note(r)});
+  std::vector<std::string> notes = {
+      "Paper, two_stage: " + reference_text(ref, "training_methods", "two_stage"),
+      "Paper, closed_loop_only: " + reference_text(ref, "training_methods", "closed_loop_only"),
+      "Paper, open_loop_only: " + reference_text(ref, "training_methods", "open_loop_only"),
+      stable_note(),
+      kRetryNote,
+      second_try_note(r)};
+  for (auto& n : unstable_notes(r)) notes.push_back(std::move(n));
+  print_table_notes(out, f, notes);
   print_table_sources(out, f, r.sources);
 }
 
@@ -186,13 +207,14 @@ void print_architecture(const NarxStudyRuns& r, const ConfigReader& ref, TableFo
     t.rows.push_back(row);
   }
   t.print(out, f);
-  print_table_notes(
-      out, f,
-      {"Paper: " + std::to_string(paper_h) + " tanh neurons, " + std::to_string(paper_d) +
-           " input and feedback delays: " + reference_text(ref, "architecture", "claim"),
-       "Training: " + (r.runs.empty() ? std::string("-") : r.runs.front().method) +
-           " (experiments/contour_error/architecture.yaml)",
-       stable_note(), kRetryNote, second_try_note(r)});
+  std::vector<std::string> notes = {
+      "Paper: " + std::to_string(paper_h) + " tanh neurons, " + std::to_string(paper_d) +
+          " input and feedback delays: " + reference_text(ref, "architecture", "claim"),
+      "Training: " + (r.runs.empty() ? std::string("-") : r.runs.front().method) +
+          " (experiments/contour_error/architecture.yaml)",
+      stable_note(), kRetryNote, second_try_note(r)};
+  for (auto& n : unstable_notes(r)) notes.push_back(std::move(n));
+  print_table_notes(out, f, notes);
   print_table_sources(out, f, r.sources);
 }
 

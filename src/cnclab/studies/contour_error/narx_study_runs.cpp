@@ -60,6 +60,10 @@ NarxStudyRun run_of(const RunRecord& r, const fs::path& file) {
     const bool retried = std::any_of(net.stages.begin(), net.stages.end(),
                                      [](const NarxStageRecord& st) { return st.fallback; });
     run.second_tries += retried ? 1 : 0;
+    if (!net.stages.empty()) {
+      run.stops += (run.stops.empty() ? "" : ", ") + net.axis + ": " +
+                   to_string(net.stages.back().summary.termination);
+    }
   }
   run.metrics = r.metrics;
   return run;

@@ -25,7 +25,8 @@ struct NarxStudyRun {
   std::size_t hidden = 0, input_delays = 0, feedback_delays = 0;
   std::uint64_t seed = 0;
   std::size_t open_epochs = 0, closed_epochs = 0;  // the first network's, per mode
-  std::size_t second_tries = 0;           // networks whose stage was tried again (fallback_horizon)
+  std::size_t second_tries = 0;  // networks whose stage was tried again (fallback_horizon)
+  std::string stops;             // "x: max_epochs, y: mu_max": how each network's last stage ended
   std::map<std::string, double> metrics;  // narx_metrics.hpp names, µm
   bool bounded() const;                   // metric "stable" is 1: the prediction stayed bounded
 };
