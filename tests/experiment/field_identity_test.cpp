@@ -18,76 +18,19 @@
 #include "cnclab/core/fields.hpp"
 #include "cnclab/core/hash.hpp"
 #include "cnclab/data/friedman1.hpp"
+#include "cnclab/data/ik_samples.hpp"
+#include "cnclab/data/step_error.hpp"
 #include "cnclab/experiment/narx_spec.hpp"
 #include "cnclab/experiment/sequence_metrics.hpp"
 #include "cnclab/experiment/spec.hpp"
 #include "cnclab/train/lm.hpp"
 #include "cnclab/train/sgdm.hpp"
 #include "cnclab/train/trainbr.hpp"
+#include "common/field_leaves.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
 namespace {
-
-// A valid value other than the default, as override text; "" when none.
-std::string other_value(const FieldInfo& f) {
-  const YAML::Node& d = f.default_value;
-  const bool has_default = d.IsDefined() && !d.IsNull();
-  switch (f.kind) {
-    case FieldKind::boolean:
-      return has_default && d.as<bool>() ? "false" : "true";
-    case FieldKind::integer: {
-      const double v = has_default ? d.as<double>() : 6;
-      for (double c : {v + 1, v - 1}) {
-        if (c >= 0 && f.rule.holds(c)) return std::to_string(static_cast<long long>(c));
-      }
-      return "";
-    }
-    case FieldKind::number: {
-      const double v = has_default ? d.as<double>() : 1;
-      for (double c : {v * 1.5, v * 0.5, v + 0.25, v - 0.25, 0.5, 2.0}) {
-        if (c != v && f.rule.holds(c)) return shortest_double(c);
-      }
-      return "";
-    }
-    case FieldKind::string:
-      for (const auto& c : f.rule.choices) {
-        if (!has_default || c != d.as<std::string>()) return c;
-      }
-      return f.rule.choices.empty() ? "other" : "";
-    case FieldKind::number_list:
-      return f.items == 2 ? "[0.25, 0.5]" : "";
-    case FieldKind::integer_list:
-      return "[3]";
-    case FieldKind::string_list:
-      return f.rule.choices.empty() ? "" : "[" + f.rule.choices.front() + "]";
-    default:
-      return "";  // sections and custom keys: covered by their own cases
-  }
-}
-
-struct Leaf {
-  std::string key;
-  FieldInfo info;
-  std::vector<std::string> setup;  // overrides that make the key apply
-};
-
-// Every scalar leaf of the declarations under `prefix`, with the overrides
-// its condition needs.
-void leaves(const std::vector<FieldInfo>& fields, const std::string& prefix,
-            std::vector<Leaf>& out) {
-  for (const auto& f : fields) {
-    if (f.kind == FieldKind::section) {
-      leaves(f.children, prefix + f.key + ".", out);
-      continue;
-    }
-    Leaf leaf{prefix + f.key, f, {}};
-    if (f.when && !f.when->values.empty()) {
-      leaf.setup.push_back(prefix + f.when->key + "=" + f.when->values.front());
-    }
-    out.push_back(leaf);
-  }
-}
 
 const std::string kBase =
     "name: t\nseed: 3\ndataset: {generator: friedman1, options: {samples: 50}}\nmodel: {}\n";
@@ -165,6 +108,22 @@ TEST(FieldIdentity, EveryExperimentKeyChangesTheIdentityAndRoundTrips) {
 TEST(FieldIdentity, GeneratorOptions) {
   expect_every_key_in_identity(kBase + "trainer: {type: sgdm}\n", "dataset.options.",
                                friedman1_fields().info());
+}
+
+TEST(FieldIdentity, StepErrorGeneratorOptions) {
+  const std::string base =
+      "name: t\nseed: 3\ndataset: {generator: step_error, options: {surface: " CNCLAB_SOURCE_DIR
+      "/configs/surfaces/surface1.yaml, lines: 3, points_per_line: 4}}\nmodel: {}\n"
+      "trainer: {type: sgdm}\n";
+  expect_every_key_in_identity(
+      base, "dataset.options.", step_error_fields().info(),
+      {{"dataset.options.surface", CNCLAB_SOURCE_DIR "/configs/surfaces/surface2.yaml"}});
+}
+
+TEST(FieldIdentity, IkSamplesGeneratorOptions) {
+  expect_every_key_in_identity(
+      "name: t\nseed: 3\ndataset: {generator: ik_samples}\nmodel: {}\ntrainer: {type: sgdm}\n",
+      "dataset.options.", ik_samples_fields().info());
 }
 
 // model.type narx (narx_spec.hpp): its model keys, each key of a training

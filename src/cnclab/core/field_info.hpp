@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cnclab {
@@ -87,5 +88,16 @@ struct FieldInfo {
   std::size_t items = 0;            // lists of a fixed length (e.g. [low, high]: 2); 0 = any
   std::optional<Condition> when;    // conditional key
 };
+
+// The declaration of a key read by its own code (FieldList::custom).
+inline FieldInfo custom_info(std::string key, std::string doc, FieldKind kind = FieldKind::any,
+                             Rule rule = {}) {
+  FieldInfo i;
+  i.key = std::move(key);
+  i.doc = std::move(doc);
+  i.kind = kind;
+  i.rule = std::move(rule);
+  return i;
+}
 
 }  // namespace cnclab

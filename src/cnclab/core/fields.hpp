@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -107,6 +108,12 @@ void read(const ConfigReader& r, const std::string& key, T& value) {
     const auto v = r.require<std::vector<double>>(key);
     if (v.size() != 2 || !(v[0] < v[1])) r.fail(key, "must be a list [low, high] with low < high");
     value = {v[0], v[1]};
+  } else if constexpr (std::is_same_v<T, int>) {  // read as 64 bits, range-checked
+    const std::int64_t v = r.get<std::int64_t>(key, value);
+    if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
+      r.fail(key, "is out of the range of an int");
+    }
+    value = static_cast<int>(v);
   } else {
     value = r.get<T>(key, static_cast<const T&>(value));
   }
@@ -146,7 +153,7 @@ void check(const std::string& key, const T& v, const Rule& r) {
 template <class S>
 class FieldList {
  public:
-  // A scalar or list member. T: double, bool, std::string, std::size_t,
+  // A scalar or list member. T: double, bool, std::string, int, std::size_t,
   // std::uint64_t, std::int64_t, a std::vector of double, std::string,
   // std::size_t, std::array<double, 2> ([low, high], low < high), or a
   // std::optional of a scalar (absent unless given; emitted only when set).

@@ -14,10 +14,10 @@ std::vector<GeneratorEntry> builtin_generators() {
        [] { return friedman1_fields().info(); }},
       {"step_error",
        "step errors of an iso-parametric ball-end tool path on a NURBS surface (seed 000)",
-       read_step_error},
+       read_step_error, [] { return step_error_fields().info(); }},
       {"ik_samples",
        "TTTRR five-axis inverse kinematics: tool poses -> joints X, Y, Z, A, C (seed 004)",
-       read_ik_samples},
+       read_ik_samples, [] { return ik_samples_fields().info(); }},
       {"following_error",
        "axis following errors of a simulated biaxial machine on a random NURBS path: reference "
        "velocity -> following error per axis, 10 runs averaged, csaps-smoothed (seed 002)",

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 #include <vector>
 
 #include "cnclab/core/error.hpp"
@@ -144,55 +145,48 @@ IkSamplesGenerator::IkSamplesGenerator(IkSamplesOptions options) : options_(std:
   options_.validate();
 }
 
+const FieldList<IkSamplesOptions>& ik_samples_fields() {
+  using O = IkSamplesOptions;
+  static const auto ranges = [] {
+    FieldList<O> f;
+    for (const auto& [key, member, doc] : {std::tuple{"px", &O::px, "P_x [mm]"},
+                                           {"py", &O::py, "P_y [mm]"},
+                                           {"pz", &O::pz, "P_z [mm]"},
+                                           {"oi", &O::oi, "O_i (Oi^2 + Oj^2 <= 1 at every corner)"},
+                                           {"oj", &O::oj, "O_j"}}) {
+      f = with_joint_range(std::move(f), key, member, 1.0, doc);
+    }
+    return f;
+  }();
+  static const auto fields =
+      FieldList<O>()
+          .choice("mode", &O::mode,
+                  {{"grid", SamplingMode::grid},
+                   {"uniform", SamplingMode::uniform},
+                   {"latin_hypercube", SamplingMode::latin_hypercube}},
+                  "how the input box is sampled (seed 004: a 5^5 grid)")
+          .field("values_per_input", &O::values_per_input,
+                 "grid: values per input (seed 004: 5, so 3125 samples)", Rule::at_least(2))
+          .when("mode", {"grid"})
+          .field("samples", &O::samples, "uniform / latin_hypercube: sample count",
+                 Rule::at_least(1))
+          .when("mode", {"uniform", "latin_hypercube"})
+          .group("ranges", ranges, "the input box, [min, max] per input (inclusive)")
+          .choice("a_branch", &O::branch,
+                  {{"positive", ABranch::positive}, {"negative", ABranch::negative}},
+                  "sign of A in the targets (seed 004 Eq. 5's +-)")
+          .section("machine", &O::machine, tttrr_fields(),
+                   "the TTTRR machine (configs/machines/tttrr_*.yaml keys)");
+  return fields;
+}
+
 std::string IkSamplesGenerator::options_yaml() const {
-  const IkSamplesOptions& o = options_;
-  std::string s = "mode: " + to_string(o.mode) + "\n";
-  if (o.mode == SamplingMode::grid) {
-    s += "values_per_input: " + std::to_string(o.values_per_input) + "\n";
-  } else {
-    s += "samples: " + std::to_string(o.samples) + "\n";
-  }
-  s += "ranges: {px: " + range_text(o.px) + ", py: " + range_text(o.py) +
-       ", pz: " + range_text(o.pz) + ", oi: " + range_text(o.oi) + ", oj: " + range_text(o.oj) +
-       "}\n";
-  s += "a_branch: " + to_string(o.branch) + "\nmachine:\n";
-  const std::string machine = tttrr_options_yaml(o.machine);
-  std::size_t start = 0;
-  while (start < machine.size()) {
-    const auto end = machine.find('\n', start);
-    s += "  " + machine.substr(start, end - start) + "\n";
-    start = end == std::string::npos ? machine.size() : end + 1;
-  }
-  return s;
+  return ik_samples_fields().yaml(options_);
 }
 
 std::shared_ptr<const DatasetGenerator> read_ik_samples(const ConfigReader& r) {
   IkSamplesOptions o;
-  const auto mode = r.get<std::string>("mode", to_string(o.mode));
-  if (mode == "grid") {
-    o.mode = SamplingMode::grid;
-    o.values_per_input = r.get<std::size_t>("values_per_input", o.values_per_input);
-  } else if (mode == "uniform" || mode == "latin_hypercube") {
-    o.mode = mode == "uniform" ? SamplingMode::uniform : SamplingMode::latin_hypercube;
-    o.samples = r.get<std::size_t>("samples", o.samples);
-  } else {
-    r.fail("mode", "must be one of: grid, uniform, latin_hypercube");
-  }
-  const ConfigReader ranges = r.section("ranges");
-  const char* keys[] = {"px", "py", "pz", "oi", "oj"};
-  JointRange* fields[] = {&o.px, &o.py, &o.pz, &o.oi, &o.oj};
-  for (int i = 0; i < kInputs; ++i) {
-    if (!ranges.has(keys[i])) continue;
-    const auto v = ranges.require<std::vector<double>>(keys[i]);
-    if (v.size() != 2) ranges.fail(keys[i], "must be a list [min, max]");
-    *fields[i] = {v[0], v[1]};
-  }
-  const auto branch = r.get<std::string>("a_branch", to_string(o.branch));
-  if (branch != "positive" && branch != "negative") {
-    r.fail("a_branch", "must be one of: positive, negative");
-  }
-  o.branch = branch == "positive" ? ABranch::positive : ABranch::negative;
-  o.machine = read_tttrr_options(r.section("machine"));
+  ik_samples_fields().read(r, o);
   r.validate([&] { o.validate(); });
   return std::make_shared<IkSamplesGenerator>(o);
 }

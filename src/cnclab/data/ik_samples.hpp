@@ -21,6 +21,7 @@
 #include <string>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/core/fields.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/kinematics/tttrr.hpp"
 
@@ -69,6 +70,9 @@ class IkSamplesGenerator : public DatasetGenerator {
 // options: {mode, values_per_input, samples, ranges: {px, py, pz: [min, max]
 // mm, oi, oj: [min, max]}, a_branch: positive|negative, machine: {...}
 // (kinematics/tttrr_config.hpp)}
+// dataset.options of `ik_samples`: {mode, values_per_input | samples, ranges, a_branch, machine}.
+const FieldList<IkSamplesOptions>& ik_samples_fields();
+
 std::shared_ptr<const DatasetGenerator> read_ik_samples(const ConfigReader& options);
 
 }  // namespace cnclab

@@ -81,15 +81,6 @@ StepErrorGenerator::StepErrorGenerator(StepErrorDatasetOptions options)
   options_.validate();
 }
 
-std::string StepErrorGenerator::options_yaml() const {
-  const ToolPathOptions& t = options_.tool_path;
-  return "surface:\n" + nurbs_surface_yaml(options_.surface, "  ") +
-         "lines: " + std::to_string(t.lines) +
-         "\npoints_per_line: " + std::to_string(t.points_per_line) +
-         "\ntool_radius: " + shortest_double(t.tool_radius) +
-         "\ncurve_points: " + std::to_string(options_.curve_points) + "\n";
-}
-
 namespace {
 
 // `surface:` as a file name (resolved like include:) or an inline map.
@@ -121,13 +112,40 @@ NurbsSurface read_surface(const ConfigReader& r) {
 
 }  // namespace
 
+const FieldList<StepErrorDatasetOptions>& step_error_fields() {
+  using O = StepErrorDatasetOptions;
+  using T = ToolPathOptions;
+  static const auto tool_path =
+      FieldList<T>()
+          .field("lines", &T::lines, "N, tool-path lines along v (seed 000: 200)",
+                 Rule::in(2, true, 1e6, true))
+          .field("points_per_line", &T::points_per_line,
+                 "M, CC points per line along u (seed 000: 100, so 99 segments)",
+                 Rule::in(2, true, 1e6, true))
+          .field("tool_radius", &T::tool_radius, "R, ball-end cutter radius [mm] (seed 000: 5)",
+                 Rule::positive());
+  static const auto fields =
+      FieldList<O>()
+          .custom(
+              custom_info("surface",
+                          "the machined NURBS surface (required): a configs/surfaces/*.yaml "
+                          "path or an inline map"),
+              [](const ConfigReader& r, O& o) { o.surface = read_surface(r); },
+              [](const O& o) { return YAML::Load(nurbs_surface_yaml(o.surface, "")); })
+          .flatten(&O::tool_path, tool_path)
+          .field("curve_points", &O::curve_points,
+                 "K, points per local CC curve given as inputs (3K + 13 inputs; 73 at 20)",
+                 Rule::in(1, true, 1e4, true));
+  return fields;
+}
+
+std::string StepErrorGenerator::options_yaml() const {
+  return step_error_fields().yaml(options_);
+}
+
 std::shared_ptr<const DatasetGenerator> read_step_error(const ConfigReader& r) {
   StepErrorDatasetOptions o;
-  o.surface = read_surface(r);
-  o.tool_path.lines = r.get<std::size_t>("lines", o.tool_path.lines);
-  o.tool_path.points_per_line = r.get<std::size_t>("points_per_line", o.tool_path.points_per_line);
-  o.tool_path.tool_radius = r.get<double>("tool_radius", o.tool_path.tool_radius);
-  o.curve_points = r.get<std::size_t>("curve_points", o.curve_points);
+  step_error_fields().read(r, o);
   r.validate([&] { o.validate(); });
   return std::make_shared<StepErrorGenerator>(std::move(o));
 }

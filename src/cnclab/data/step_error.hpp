@@ -22,6 +22,7 @@
 #include <string>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/core/fields.hpp"
 #include "cnclab/data/dataset.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/geometry/nurbs_surface.hpp"
@@ -78,6 +79,9 @@ class StepErrorGenerator : public DatasetGenerator {
  private:
   StepErrorDatasetOptions options_;
 };
+
+// dataset.options of `step_error`: {surface, lines, points_per_line, tool_radius, curve_points}.
+const FieldList<StepErrorDatasetOptions>& step_error_fields();
 
 std::shared_ptr<const DatasetGenerator> read_step_error(const ConfigReader& options);
 

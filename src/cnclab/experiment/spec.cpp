@@ -59,16 +59,6 @@ const FieldList<InitFromSpec>& init_from_fields() {
   return fields;
 }
 
-FieldInfo custom_info(std::string key, std::string doc, FieldKind kind = FieldKind::any,
-                      Rule rule = {}) {
-  FieldInfo i;
-  i.key = std::move(key);
-  i.doc = std::move(doc);
-  i.kind = kind;
-  i.rule = std::move(rule);
-  return i;
-}
-
 // model: model.type picks the declaration (model_types()); the key tables
 // show mlp's keys, the schema every type's.
 FieldInfo model_info() {

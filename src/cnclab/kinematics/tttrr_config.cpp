@@ -10,8 +10,10 @@ namespace {
 
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
-JointRange read_range(const ConfigReader& r, const std::string& key, const JointRange& fallback,
-                      double unit) {
+}  // namespace
+
+JointRange read_joint_range(const ConfigReader& r, const std::string& key,
+                            const JointRange& fallback, double unit) {
   if (!r.has(key)) return fallback;
   const auto v = r.require<std::vector<double>>(key);
   if (v.size() != 2) r.fail(key, "must be a list [min, max]");
@@ -19,40 +21,61 @@ JointRange read_range(const ConfigReader& r, const std::string& key, const Joint
   return {v[0] * unit, v[1] * unit};
 }
 
-std::string range_yaml(const JointRange& r, double unit) {
-  std::string text = "[";  // built by appending: gcc 12 -Wrestrict misfires on "[" + string
-  text += shortest_double(r.min / unit);
-  text += ", ";
-  text += shortest_double(r.max / unit);
-  return text += "]";
+YAML::Node joint_range_node(const JointRange& range, double unit) {
+  YAML::Node n(YAML::NodeType::Sequence);
+  n.push_back(YAML::Load(shortest_double(range.min / unit)));
+  n.push_back(YAML::Load(shortest_double(range.max / unit)));
+  n.SetStyle(YAML::EmitterStyle::Flow);
+  return n;
 }
 
-}  // namespace
+const FieldList<TttrrOptions>& tttrr_fields() {
+  using M = TttrrOptions;
+  static const auto limits = [] {
+    FieldList<M> f;
+    for (const auto& [key, member] : {std::pair{"x", &M::x}, {"y", &M::y}, {"z", &M::z}}) {
+      f = with_joint_range(std::move(f), key, member, 1.0, std::string(key) + " travel [mm]");
+    }
+    f = with_joint_range(std::move(f), "a", &M::a, kRadPerDeg,
+                         "A travel [deg], inside [-180, 180]");
+    return with_joint_range(std::move(f), "c", &M::c, kRadPerDeg,
+                            "C travel [deg]; may span more than one turn");
+  }();
+  static const auto fields =
+      FieldList<M>()
+          .field("offset_d", &M::offset_d,
+                 "d, A axis to workpiece origin along C [mm] (seed 004 Table 1; value ours)",
+                 Rule::finite_number())
+          .group("limits", limits, "axis travel, [min, max] with min < max")
+          .custom(
+              custom_info("c_at_singularity",
+                          "C at the A = 0 singularity without a previous C [deg]",
+                          FieldKind::number, Rule::finite_number()),
+              [](const ConfigReader& r, M& m) {
+                m.c_at_singularity =
+                    r.get<double>("c_at_singularity", m.c_at_singularity / kRadPerDeg) * kRadPerDeg;
+              },
+              [](const M& m) {
+                return YAML::Load(shortest_double(m.c_at_singularity / kRadPerDeg));
+              })
+          .field("singular_tolerance", &M::singular_tolerance,
+                 "|sin A| at or below this is the A = 0 singularity",
+                 Rule::in(0, false, 1e-3, false))
+          .field("unit_tolerance", &M::unit_tolerance,
+                 "largest accepted | |O| - 1 | of a pose's orientation vector",
+                 Rule::in(0, false, 1e-3, false));
+  return fields;
+}
 
 TttrrOptions read_tttrr_options(const ConfigReader& r) {
   TttrrOptions m;
-  m.offset_d = r.get<double>("offset_d", m.offset_d);
-  const ConfigReader l = r.section("limits");
-  m.x = read_range(l, "x", m.x, 1.0);
-  m.y = read_range(l, "y", m.y, 1.0);
-  m.z = read_range(l, "z", m.z, 1.0);
-  m.a = read_range(l, "a", m.a, kRadPerDeg);
-  m.c = read_range(l, "c", m.c, kRadPerDeg);
-  m.c_at_singularity =
-      r.get<double>("c_at_singularity", m.c_at_singularity / kRadPerDeg) * kRadPerDeg;
-  m.singular_tolerance = r.get<double>("singular_tolerance", m.singular_tolerance);
-  m.unit_tolerance = r.get<double>("unit_tolerance", m.unit_tolerance);
+  tttrr_fields().read(r, m);
   r.validate([&] { m.validate(); });
   return m;
 }
 
 std::string tttrr_options_yaml(const TttrrOptions& m) {
-  return "offset_d: " + shortest_double(m.offset_d) + "\nlimits: {x: " + range_yaml(m.x, 1.0) +
-         ", y: " + range_yaml(m.y, 1.0) + ", z: " + range_yaml(m.z, 1.0) +
-         ", a: " + range_yaml(m.a, kRadPerDeg) + ", c: " + range_yaml(m.c, kRadPerDeg) +
-         "}\nc_at_singularity: " + shortest_double(m.c_at_singularity / kRadPerDeg) +
-         "\nsingular_tolerance: " + shortest_double(m.singular_tolerance) +
-         "\nunit_tolerance: " + shortest_double(m.unit_tolerance) + "\n";
+  return tttrr_fields().yaml(m);
 }
 
 }  // namespace cnclab

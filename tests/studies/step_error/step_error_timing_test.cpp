@@ -15,6 +15,7 @@
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/report/tables.hpp"
+#include "common/field_leaves.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
@@ -98,6 +99,27 @@ TEST(StepErrorTiming, TimesTheResultsTestSegmentsAndRoundTrips) {
   // Another config (repeats) is another result: not found.
   const StepErrorTimingJob other = load_step_error_timing_job(dir / "job.yaml", {"repeats=1"});
   EXPECT_THROW(store.get(step_error_timing_key(other)), MissingResults);
+}
+
+// Issue 16 item 6: every declared key of the job file changes the job's
+// identity (its resolved config) and reads back from it.
+TEST(StepErrorTiming, EveryJobKeyChangesTheIdentityAndRoundTrips) {
+  TempDir dir;
+  std::ofstream(dir / "small.yaml") << small_experiment();
+  std::ofstream(dir / "job.yaml") << kJob;
+  const std::string base = to_yaml(load_step_error_timing_job(dir / "job.yaml"));
+  std::vector<Leaf> keys;
+  leaves(step_error_timing_fields().info(), "", keys);
+  ASSERT_EQ(keys.size(), 4u);
+  for (const auto& leaf : keys) {
+    const std::string value = other_value(leaf.info);
+    ASSERT_FALSE(value.empty()) << leaf.key;
+    const std::string changed =
+        to_yaml(load_step_error_timing_job(dir / "job.yaml", {leaf.key + "=" + value}));
+    EXPECT_NE(changed, base) << leaf.key;
+    std::ofstream(dir / "again.yaml") << changed;
+    EXPECT_EQ(to_yaml(load_step_error_timing_job(dir / "again.yaml")), changed) << leaf.key;
+  }
 }
 
 TEST(StepErrorTiming, StrictJobFile) {

@@ -24,15 +24,80 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-EntryOptions read_entry(const ConfigReader& r) {
-  EntryOptions e;
-  const auto mode = r.get<std::string>("mode", to_string(e.mode));
-  if (mode != "helix" && mode != "outside") r.fail("mode", "must be one of: helix, outside");
-  e.mode = mode == "helix" ? EntryMode::helix : EntryMode::outside;
-  e.ramp_angle = r.get<double>("ramp_angle", e.ramp_angle);
-  e.clearance = r.get<double>("clearance", e.clearance);
-  r.validate([&] { e.validate(); });
-  return e;
+const FieldList<TrochoidGrooveOptions>& groove_fields() {
+  using G = TrochoidGrooveOptions;
+  static const auto fields =
+      FieldList<G>()
+          .field("cutter_diameter", &G::cutter_diameter, "D [mm] (seed 004 Table 2: 20)",
+                 Rule::positive())
+          .field("groove_width", &G::groove_width, "W [mm], > D (Table 2: 28)", Rule::positive())
+          .field("groove_length", &G::groove_length, "L [mm], >= W (Table 2: 120)",
+                 Rule::positive())
+          .field("step", &G::step, "largest advance per loop [mm], <= W - D (Table 2: 1.5)",
+                 Rule::positive())
+          .field("chord_tolerance", &G::chord_tolerance,
+                 "largest deviation of a G01 chord from Eq. 6 [mm], < (W - D)/2", Rule::positive());
+  return fields;
+}
+
+const FieldList<GcodeOptions>& program_fields() {
+  using C = GcodeOptions;
+  static const auto fields =
+      FieldList<C>()
+          .field("program_number", &C::program_number, "O-word", Rule::in(1, true, 9999, true))
+          .field("title", &C::title, "comment after the O-word (no parentheses)")
+          .field("feed", &C::feed, "G01 feed in the plane [mm/min]", Rule::positive())
+          .field("plunge_feed", &C::plunge_feed, "G01 feed of the entry moves [mm/min]",
+                 Rule::positive())
+          .field("spindle_speed", &C::spindle_speed, "S-word [rpm]", Rule::positive())
+          .field("safe_z", &C::safe_z, "retract height above the part top (z = 0) [mm]",
+                 Rule::finite_number())
+          .field("cut_z", &C::cut_z, "cutting depth [mm], below safe_z", Rule::finite_number())
+          .field("line_increment", &C::line_increment, "N-word step", Rule::at_least(1))
+          .field("decimals", &C::decimals, "coordinate decimals", Rule::in(0, true, 6, true));
+  return fields;
+}
+
+const FieldList<EntryOptions>& entry_fields() {
+  using E = EntryOptions;
+  static const auto fields =
+      FieldList<E>()
+          .choice("mode", &E::mode, {{"helix", EntryMode::helix}, {"outside", EntryMode::outside}},
+                  "helix: helical ramp about the start circle; outside: straight in from "
+                  "outside the stock (an open groove end)")
+          .field("ramp_angle", &E::ramp_angle, "helix descent angle [deg]",
+                 Rule::in(0, false, 45, true))
+          .field("clearance", &E::clearance,
+                 "helix: ramp start above the stock top; outside: from the edge [mm]",
+                 Rule::positive());
+  return fields;
+}
+
+const FieldList<TrochoidReportOptions>& report_fields() {
+  using R = TrochoidReportOptions;
+  static const auto fields =
+      FieldList<R>()
+          .field("table_rows", &R::table_rows, "point-table rows printed (Table 3 shows 12)")
+          .field("engagement_spacing", &R::engagement_spacing,
+                 "path resampling for the engagement [mm]", Rule::positive())
+          .field("engagement_every", &R::engagement_every,
+                 "evaluate the engagement every this much path [mm], >= engagement_spacing",
+                 Rule::positive())
+          .custom(
+              custom_info("compare_with",
+                          "Table 3 transcribed (CSV), relative to the working directory; "
+                          "absent: no comparison",
+                          FieldKind::string),
+              [](const ConfigReader& r, R& rep) {
+                if (const auto path = r.optional<std::string>("compare_with")) {
+                  rep.compare_with = *path;
+                }
+              },
+              [](const R& rep) {
+                return rep.compare_with ? YAML::Node(rep.compare_with->string()) : YAML::Node();
+              },
+              [](const R& rep) { return rep.compare_with.has_value(); });
+  return fields;
 }
 
 std::string entry_report(const TrochoidJob& job, const TrochoidOutcome& res) {
@@ -70,6 +135,17 @@ void TrochoidReportOptions::validate() const {
   }
 }
 
+const FieldList<TrochoidJob>& trochoid_job_fields() {
+  using J = TrochoidJob;
+  static const auto fields =
+      FieldList<J>()
+          .section("trochoid", &J::groove, groove_fields(), "the groove (seed 004 Table 2)")
+          .section("program", &J::program, program_fields(), "the G-code program")
+          .section("entry", &J::entry, entry_fields(), "how the cutter enters the stock")
+          .section("report", &J::report, report_fields(), "the report and Table 3");
+  return fields;
+}
+
 TrochoidJob load_trochoid_job(const fs::path& file, const std::vector<std::string>& overrides,
                               const std::string& profile) {
   ConfigDocument doc = ConfigDocument::load(file, profile);
@@ -84,37 +160,11 @@ TrochoidJob load_trochoid_job(const fs::path& file, const std::vector<std::strin
     root.fail("toolpath", "must be one of: trochoid");
   }
 
-  const ConfigReader g = root.section("trochoid");
-  TrochoidGrooveOptions& o = job.groove;
-  o.cutter_diameter = g.get<double>("cutter_diameter", o.cutter_diameter);
-  o.groove_width = g.get<double>("groove_width", o.groove_width);
-  o.groove_length = g.get<double>("groove_length", o.groove_length);
-  o.step = g.get<double>("step", o.step);
-  o.chord_tolerance = g.get<double>("chord_tolerance", o.chord_tolerance);
-  g.validate([&] { o.validate(); });
-
-  const ConfigReader p = root.section("program");
-  GcodeOptions& c = job.program;
-  c.program_number = static_cast<int>(p.get<std::int64_t>("program_number", c.program_number));
-  c.title = p.get<std::string>("title", c.title);
-  c.feed = p.get<double>("feed", c.feed);
-  c.plunge_feed = p.get<double>("plunge_feed", c.plunge_feed);
-  c.spindle_speed = p.get<double>("spindle_speed", c.spindle_speed);
-  c.safe_z = p.get<double>("safe_z", c.safe_z);
-  c.cut_z = p.get<double>("cut_z", c.cut_z);
-  c.line_increment = static_cast<int>(p.get<std::int64_t>("line_increment", c.line_increment));
-  c.decimals = static_cast<int>(p.get<std::int64_t>("decimals", c.decimals));
-  p.validate([&] { c.validate(); });
-
-  job.entry = read_entry(root.section("entry"));
-
-  const ConfigReader r = root.section("report");
-  TrochoidReportOptions& rep = job.report;
-  rep.table_rows = r.get<std::size_t>("table_rows", rep.table_rows);
-  rep.engagement_spacing = r.get<double>("engagement_spacing", rep.engagement_spacing);
-  rep.engagement_every = r.get<double>("engagement_every", rep.engagement_every);
-  if (const auto path = r.optional<std::string>("compare_with")) rep.compare_with = *path;
-  r.validate([&] { rep.validate(); });
+  trochoid_job_fields().read(root, job);
+  root.section("trochoid").validate([&] { job.groove.validate(); });
+  root.section("program").validate([&] { job.program.validate(); });
+  root.section("entry").validate([&] { job.entry.validate(); });
+  root.section("report").validate([&] { job.report.validate(); });
   doc.check_all_consumed();
   return job;
 }
@@ -124,35 +174,8 @@ std::string to_yaml(const TrochoidJob& job) {
   YAML::Emitter out;
   out << BeginMap << Key << "kind" << Value << "gcode" << Key << "name" << Value << job.name << Key
       << "description" << Value << job.description << Key << "toolpath" << Value << "trochoid";
-  const auto& g = job.groove;
-  out << Key << "trochoid" << Value << BeginMap;
-  out << Key << "cutter_diameter" << Value << shortest_double(g.cutter_diameter);
-  out << Key << "groove_width" << Value << shortest_double(g.groove_width);
-  out << Key << "groove_length" << Value << shortest_double(g.groove_length);
-  out << Key << "step" << Value << shortest_double(g.step);
-  out << Key << "chord_tolerance" << Value << shortest_double(g.chord_tolerance) << EndMap;
-  const auto& p = job.program;
-  out << Key << "program" << Value << BeginMap;
-  out << Key << "program_number" << Value << p.program_number;
-  out << Key << "title" << Value << p.title;
-  out << Key << "feed" << Value << shortest_double(p.feed);
-  out << Key << "plunge_feed" << Value << shortest_double(p.plunge_feed);
-  out << Key << "spindle_speed" << Value << shortest_double(p.spindle_speed);
-  out << Key << "safe_z" << Value << shortest_double(p.safe_z);
-  out << Key << "cut_z" << Value << shortest_double(p.cut_z);
-  out << Key << "line_increment" << Value << p.line_increment;
-  out << Key << "decimals" << Value << p.decimals << EndMap;
-  out << Key << "entry" << Value << BeginMap;
-  out << Key << "mode" << Value << to_string(job.entry.mode);
-  out << Key << "ramp_angle" << Value << shortest_double(job.entry.ramp_angle);
-  out << Key << "clearance" << Value << shortest_double(job.entry.clearance) << EndMap;
-  const auto& r = job.report;
-  out << Key << "report" << Value << BeginMap;
-  out << Key << "table_rows" << Value << r.table_rows;
-  out << Key << "engagement_spacing" << Value << shortest_double(r.engagement_spacing);
-  out << Key << "engagement_every" << Value << shortest_double(r.engagement_every);
-  if (r.compare_with) out << Key << "compare_with" << Value << r.compare_with->string();
-  out << EndMap << EndMap;
+  trochoid_job_fields().emit(out, job);
+  out << EndMap;
   return std::string(out.c_str()) + "\n";
 }
 

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "cnclab/core/fields.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/kinematics/gcode.hpp"
 #include "cnclab/kinematics/tool_entry.hpp"
@@ -49,6 +50,10 @@ struct TrochoidJob {
   TrochoidReportOptions report;
   std::filesystem::path source_file;
 };
+
+// The declared keys of a `kind: gcode` file below its kind, name,
+// description and toolpath: trochoid, program, entry, report.
+const FieldList<TrochoidJob>& trochoid_job_fields();
 
 // Reads a `kind: gcode` file strictly (unknown keys are errors), applying
 // the profile (core/config.hpp), then `key=value` overrides, first.

@@ -194,6 +194,26 @@ void StepErrorTimingOptions::validate() const {
   iterative.validate();
 }
 
+const FieldList<StepErrorTimingOptions>& step_error_timing_fields() {
+  using O = StepErrorTimingOptions;
+  using I = IterativeStepErrorOptions;
+  static const auto iterative =
+      FieldList<I>()
+          .field("points_per_pass", &I::points_per_pass, "CC-curve points per pass, ends included",
+                 Rule::at_least(3))
+          .field("relative_tolerance", &I::relative_tolerance,
+                 "stop when the bracket is below this fraction of the segment's u length",
+                 Rule::positive())
+          .field("max_passes", &I::max_passes, "passes at most", Rule::at_least(1));
+  static const auto fields =
+      FieldList<O>()
+          .field("repeats", &O::repeats, "timings per method; the median is reported",
+                 Rule::in(1, true, 1000, true))
+          .section("iterative", &O::iterative, iterative,
+                   "the iterative geometric method Table 8 compares against");
+  return fields;
+}
+
 StepErrorTimingJob load_step_error_timing_job(const fs::path& file,
                                               const std::vector<std::string>& overrides,
                                               const std::string& profile) {
@@ -214,17 +234,9 @@ StepErrorTimingJob load_step_error_timing_job(const fs::path& file,
     job.experiments_as_written[surface] = text;
     job.experiments[surface] = resolve_config_path(e.location(surface).file, text);
   }
-  StepErrorTimingOptions& o = job.options;
-  o.repeats = root.get<std::size_t>("repeats", o.repeats);
-  const ConfigReader it = root.section("iterative");
-  o.iterative.points_per_pass =
-      static_cast<int>(it.get<std::int64_t>("points_per_pass", o.iterative.points_per_pass));
-  o.iterative.relative_tolerance =
-      it.get<double>("relative_tolerance", o.iterative.relative_tolerance);
-  o.iterative.max_passes =
-      static_cast<int>(it.get<std::int64_t>("max_passes", o.iterative.max_passes));
-  it.validate([&] { o.iterative.validate(); });
-  root.validate([&] { o.validate(); });
+  step_error_timing_fields().read(root, job.options);
+  root.section("iterative").validate([&] { job.options.iterative.validate(); });
+  root.validate([&] { job.options.validate(); });
   doc.check_all_consumed();
   return job;
 }
@@ -339,12 +351,9 @@ std::string to_yaml(const StepErrorTimingJob& job) {
   out << Key << "experiments" << Value << BeginMap;
   for (const auto& [surface, text] : job.experiments_as_written)
     out << Key << surface << Value << text;
-  out << EndMap << Key << "repeats" << Value << job.options.repeats;
-  const auto& it = job.options.iterative;
-  out << Key << "iterative" << Value << BeginMap;
-  out << Key << "points_per_pass" << Value << it.points_per_pass;
-  out << Key << "relative_tolerance" << Value << shortest_double(it.relative_tolerance);
-  out << Key << "max_passes" << Value << it.max_passes << EndMap << EndMap;
+  out << EndMap;
+  step_error_timing_fields().emit(out, job.options);
+  out << EndMap;
   return std::string(out.c_str()) + "\n";
 }
 

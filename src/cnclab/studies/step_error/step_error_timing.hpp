@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "cnclab/core/fields.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/geometry/step_error.hpp"
 
@@ -48,6 +49,10 @@ struct StepErrorTimingOptions {
   IterativeStepErrorOptions iterative;
   void validate() const;
 };
+
+// A timing file's keys below kind, name, description and experiments:
+// repeats and iterative.
+const FieldList<StepErrorTimingOptions>& step_error_timing_fields();
 
 struct StepErrorTimingJob {
   std::string name;  // file-name-safe; results/<name>/
