@@ -48,7 +48,7 @@ RC = {
     "mathtext.default": "regular",
     "pdf.fonttype": 42,  # TrueType: text stays text (searchable, editable)
     "svg.fonttype": "none",
-    "savefig.bbox": "tight",
+    "savefig.bbox": None,  # constrained layout already fits; "tight" would lay out twice
     "savefig.pad_inches": 0.03,
 }
 

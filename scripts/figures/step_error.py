@@ -2,7 +2,7 @@
 
 Usage: /usr/bin/python3 scripts/figures/step_error.py [--format png|pdf|svg]
        [--dpi N] [--out DIR] [--no-title] RESULTS_DIR
-(scripts/figures/run calls it; run from the repository root).
+(scripts/figures/run calls it).
 
 Reads configs/studies/step_error_tables.yaml (which experiment made what, per
 variant) and, for each experiment, the newest complete result file
@@ -34,7 +34,9 @@ from matplotlib.ticker import LogLocator, NullFormatter
 from paper_style import (DOUBLE, SINGLE, Output, add_arguments, apply, density, plt,
                          share_clim)
 
-MANIFEST = "configs/studies/step_error_tables.yaml"
+# The repository's manifest, wherever the script is run from.
+REPOSITORY = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+MANIFEST = os.path.join(REPOSITORY, "configs", "studies", "step_error_tables.yaml")
 
 
 class Missing(Exception):
@@ -147,11 +149,15 @@ def panels(out, runs, stem, title):
     bottoms[0].set_ylim(0, 1.45 * bottoms[0].get_ylim()[1])  # room for the numbers
     tops[0].set_ylabel("predicted (µm)")
     bottoms[0].set_ylabel("share of test set (%)")
-    # One x label per row: under the middle panel (n odd) or under each (n = 2).
+    # One x label per row: under the middle panel (n odd); for n even under
+    # each top panel and once below the figure (too long for each bottom one).
     for ax in ([tops[n // 2]] if n % 2 else tops):
         ax.set_xlabel("theoretical step error (µm)")
-    for ax in ([bottoms[n // 2]] if n % 2 else bottoms):
-        ax.set_xlabel("|predicted − theoretical| (µm); dotted: 1 µm")
+    error_label = "|predicted − theoretical| (µm); dotted: 1 µm"
+    if n % 2:
+        bottoms[n // 2].set_xlabel(error_label)
+    else:
+        fig.supxlabel(error_label, fontsize=plt.rcParams["axes.labelsize"])
     share_clim(fig, hexbins, tops.tolist())
     out.title(fig, title)
     out.save(fig, stem)
