@@ -369,8 +369,24 @@ def zoom_centre(t, y):
 
 def series_figure(out, stem, t, curves, centre, ylabel, title):
     """Upper panel: the whole series, the zoom window shaded; lower panel: the
-    ZOOM_SECONDS around `centre`, y limits fitted to what it shows. Double
-    column; the whole-series lines are rasterised in vector output."""
+    ZOOM_SECONDS around `centre`, y limits fitted to what it shows (one panel
+    when the series is short). Double column; the whole-series lines are
+    rasterised in vector output."""
+    if float(t[-1] - t[0]) <= 1.5 * ZOOM_SECONDS:
+        # Short (the quick profile): the whole series is readable, no zoom.
+        fig, ax = plt.subplots(figsize=(DOUBLE, 2.2), layout="constrained")
+        for y, style in curves:
+            (line,) = ax.plot(t, y, lw=0.8, **style)
+            rasterize_large(line, len(t))
+        ax.set_xlim(t[0], t[-1])
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel(ylabel)
+        if any("label" in style for _, style in curves):
+            ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False,
+                      borderaxespad=0.1)
+        out.title(fig, title)
+        out.save(fig, stem)
+        return
     lo = max(float(t[0]), centre - ZOOM_SECONDS / 2)
     hi = min(float(t[-1]), lo + ZOOM_SECONDS)
     lo = max(float(t[0]), hi - ZOOM_SECONDS)

@@ -27,6 +27,7 @@ import numpy as np
 import yaml
 from contour_error import Missing, newest_sweep, resolved_yaml, text
 from matplotlib.lines import Line2D
+from matplotlib.ticker import MaxNLocator
 from paper_style import DOUBLE, ERROR, Output, add_arguments, apply, plt
 
 STUDIES = ["contour_error_training_methods", "contour_error_architecture"]
@@ -162,6 +163,7 @@ def closed_loop_figure(out, closed):
             ax.text(0.5, 0.5, "not recorded", transform=ax.transAxes, ha="center", va="center")
     # The bottom panel of each column carries the epoch axis (the eighth
     # panel is the legend's).
+    axs[0][0].xaxis.set_major_locator(MaxNLocator(integer=True))  # shared by all
     for ax in (axs[-1][0], axs[-2][1]):
         ax.tick_params(labelbottom=True)
         ax.set_xlabel("epoch (0: before the first step)")

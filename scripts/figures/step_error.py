@@ -180,9 +180,10 @@ def loss_curve(out, run, stem):
     fig, ax = plt.subplots(figsize=(SINGLE, 2.5), layout="constrained")
     epochs = np.arange(1, run["train_loss"].size + 1)
     train = "training" + (f" (Dropout p = {run['keep']:g} active)" if run["keep"] < 1 else "")
-    ax.plot(epochs, run["train_loss"], label=train)
+    # Training on top: the noisier test curve would hide it.
+    ax.plot(epochs, run["train_loss"], label=train, zorder=3)
     if np.isfinite(run["test_loss"]).any():
-        ax.plot(epochs, run["test_loss"], label="test")
+        ax.plot(epochs, run["test_loss"], label="test", lw=0.7)
     ax.axhline(0.001, color="k", ls=":", lw=0.8, label="0.001: the paper after 2000 epochs")
     ax.set_yscale("log")
     ax.set_xlabel("epoch")

@@ -87,7 +87,7 @@ def stage(group, mode, termination, epochs, rng):
         g.attrs["initial_" + name] = 2.0
 
 
-def contour_error_results(results, root, rng, steps=6000):
+def contour_error_results(results, root, rng, steps=10000):
     """The training-methods sweep with one finished two-stage trial (seed 1,
     networks x and y; y's closed-loop stage stopped at mu_max) whose dataset
     path is relative to the folder above RESULTS_DIR, and its contour_rms
@@ -170,7 +170,8 @@ def main():
                          for n in files if ".partial." in n]
             check(not leftovers, f"{fmt}: no temporary files left: {leftovers}")
         # SVG: text stays text (svg.fonttype none); the 2500-point hexbins and
-        # the 3000-step series are embedded raster images, not vector points.
+        # the 5000-step series (5 s: two panels) are embedded raster images,
+        # not vector points.
         svg = os.path.join(tmp, "svg")
         fig7 = open(os.path.join(svg, "step_error", f"fig7_surface2_{variants[0]}.svg")).read()
         check("<text" in fig7 and fig7.count("<image") >= 5,
