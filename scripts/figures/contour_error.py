@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Figures like seed 002's Figs. 4, 5, 8-11, 13 and 14 from the NARX study.
 
-Usage: /usr/bin/python3 scripts/figures/contour_error.py [RESULTS_DIR]
-(scripts/figures/run calls it from the repository root, against which a
-relative dataset path in a result file is resolved).
+Usage: /usr/bin/python3 scripts/figures/contour_error.py [--format png|pdf|svg]
+       [--dpi N] [--out DIR] [--no-title] [RESULTS_DIR]
+(scripts/figures/run calls it from the repository root; a relative dataset
+path in a result file is taken from there, else from RESULTS_DIR/..).
 
 Reads the sweep of experiments/contour_error/training_methods.yaml
 (RESULTS_DIR/contour_error_training_methods/sweep-<plan hash>/, written by
@@ -16,8 +17,11 @@ pick_trial), its closed-loop validation prediction
 and the dataset file it names. The contour error is predicted from that with
 the Taylor estimate the C++ metric uses (studies/contour_error/narx_metrics.cpp),
 and its RMS against the exact one is checked against the trial's contour_rms
-metric. Writes PNGs to RESULTS_DIR/figures/contour_error/ (each written to a
-temporary name, then renamed).
+metric. Writes fig04_toolpath, fig05_velocities, fig08/09_following_error_<axis>,
+fig10/11_prediction_error_<axis>, fig13_contour_error and
+fig14_contour_prediction_error to RESULTS_DIR/figures/contour_error/ (or
+--out DIR/contour_error/; each to a temporary name, then renamed) in the
+style of paper_style.py, titled with seed 002's captions.
 """
 import argparse
 import glob
@@ -25,12 +29,10 @@ import os
 import sys
 
 import h5py
-import matplotlib
+import numpy as np
 import yaml
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from paper_style import (ACTUAL, DOUBLE, ERROR, PREDICTED, SINGLE, Output, add_arguments,
+                         apply, plt, rasterize_large)
 
 STUDY = "contour_error_training_methods"
 MAKE = "cnclab reproduce experiments/contour_error/training_methods.yaml"
@@ -159,12 +161,18 @@ def read_trial(path):
     return trial
 
 
-def read_metadata(dataset_file, trial_file):
-    """The dataset's metadata columns (physical units, data/following_error.hpp)."""
-    if not os.path.exists(dataset_file):
+def read_metadata(dataset_file, trial_file, results):
+    """The dataset's metadata columns (physical units, data/following_error.hpp).
+    A relative path is the run's: taken from the working directory, else from
+    the folder holding RESULTS_DIR (where `cnclab reproduce` ran)."""
+    candidates = [dataset_file]
+    if not os.path.isabs(dataset_file):
+        candidates.append(os.path.join(os.path.dirname(os.path.abspath(results)), dataset_file))
+    found = [c for c in candidates if os.path.exists(c)]
+    if not found:
         raise Missing(f"{trial_file} names the dataset {dataset_file}, which is not there "
-                      f"(relative paths are taken from {os.getcwd()})")
-    with h5py.File(dataset_file, "r") as d:
+                      f"(looked in {' and '.join(candidates)})")
+    with h5py.File(found[0], "r") as d:
         names = [text(n) for n in d["metadata_names"][()]]
         return {n: d["metadata"][:, i] for i, n in enumerate(names)}
 
@@ -260,7 +268,7 @@ def load(results):
     try:
         sweep_dir, trials = newest_sweep(results)
         trial = read_trial(pick_trial(trials))
-        meta = read_metadata(trial["dataset"], trial["file"])
+        meta = read_metadata(trial["dataset"], trial["file"], results)
     except Missing as e:
         # Exit 3: inputs missing (scripts/figures/run skips the figure with this note).
         print(f"contour_error.py: {e}; run `{MAKE}` (with --out {results}) first",
@@ -273,44 +281,17 @@ def load(results):
     return series, meta
 
 
-def save(fig, out_dir, name):
-    path = os.path.join(out_dir, name)
-    tmp = os.path.join(out_dir, "." + name + ".partial.png")
-    fig.savefig(tmp, dpi=120, bbox_inches="tight")
-    plt.close(fig)
-    os.replace(tmp, path)
-    print("wrote", path)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("results", nargs="?", default="results", help="results folder")
-    results = parser.parse_args().results
-    series, meta = load(results)
-    out_dir = os.path.join(results, "figures", "contour_error")
-    os.makedirs(out_dir, exist_ok=True)
-
-    # Fig. 4: the random NURBS tool path (reference positions).
-    fig, ax = plt.subplots(figsize=(6, 6))
-    ax.plot(meta["ref_x"], meta["ref_y"], lw=0.4)
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    ax.set_aspect("equal")
-    ax.set_title("Random NURBS tool path (cf. seed 002 Fig. 4)")
-    save(fig, out_dir, "fig04_toolpath.png")
-
-    # Fig. 5: axis reference velocities, training and validation halves.
-    t = meta["time"]
-    fig, axes = plt.subplots(2, 1, figsize=(10, 5), sharex=True)
-    half = t[len(t) // 2]
-    for ax, axis in zip(axes, "xy"):
-        ax.plot(t, meta["v_ref_" + axis], lw=0.3)
-        ax.axvline(half, color="k", ls="--", lw=0.8)
-        ax.set_ylabel(f"v_{axis} [mm/s]")
-    axes[-1].set_xlabel("time [s] (dashed: training | validation)")
-    axes[0].set_title("Axial reference velocities, NARX inputs (cf. Fig. 5)")
-    save(fig, out_dir, "fig05_velocities.png")
+    add_arguments(parser)
+    args = parser.parse_args()
+    series, meta = load(args.results)
+    apply()
+    out = Output(args, args.results, "contour_error")
+    toolpath_figure(out, meta)
+    velocity_figure(out, meta)
 
     tv = series["time"]
     for axis, (fig_pred, fig_err) in zip("xy", [(8, 10), (9, 11)]):
@@ -318,28 +299,60 @@ def main():
             continue
         e, e_hat = series["e_" + axis], series["e_hat_" + axis]
         centre = zoom_centre(tv, e)
-        series_figure(out_dir, f"fig{fig_pred:02d}_following_error_{axis}.png", tv,
-                      [(e, dict(color="tab:blue", label="actual (simulated)")),
-                       (e_hat, dict(color="tab:green", label="predicted (closed loop)"))],
-                      centre, f"following error {axis.upper()} [µm]",
-                      f"Predicted and actual following error, {axis.upper()} axis "
-                      f"(cf. Fig. {fig_pred})")
-        series_figure(out_dir, f"fig{fig_err:02d}_prediction_error_{axis}.png", tv,
-                      [(e_hat - e, dict(color="tab:red"))], centre, "prediction error [µm]",
-                      f"Following error prediction error, {axis.upper()} axis "
-                      f"(cf. Fig. {fig_err})")
+        series_figure(out, f"fig{fig_pred:02d}_following_error_{axis}", tv,
+                      [(e, dict(color=ACTUAL, label="actual")),
+                       (e_hat, dict(color=PREDICTED, label="predicted"))],
+                      centre, "following error (µm)",
+                      f"Predicted and actual following error in the {axis.upper()} axis")
+        series_figure(out, f"fig{fig_err:02d}_prediction_error_{axis}", tv,
+                      [(e_hat - e, dict(color=ERROR))], centre, "prediction error (µm)",
+                      f"Following error prediction error in the {axis.upper()} axis")
 
     if "contour_hat" in series and np.isfinite(series["contour_hat"]).any():
         c, c_hat = series["contour_exact"], series["contour_hat"]
         centre = zoom_centre(tv, c)
-        series_figure(out_dir, "fig13_contour_error.png", tv,
-                      [(c, dict(color="tab:green", label="actual (exact, simulated)")),
-                       (c_hat, dict(color="tab:blue", label="predicted (Taylor, NARX)"))],
-                      centre, "contour error [µm]",
-                      "Predicted and actual contour error, validation set (cf. Fig. 13)")
-        series_figure(out_dir, "fig14_contour_prediction_error.png", tv,
-                      [(c_hat - c, dict(color="tab:red"))], centre, "prediction error [µm]",
-                      "Contour error prediction error, validation set (cf. Fig. 14)")
+        # Seed 002's Fig. 13 swaps the colours: predicted blue, actual green.
+        series_figure(out, "fig13_contour_error", tv,
+                      [(c, dict(color=PREDICTED, label="actual")),
+                       (c_hat, dict(color=ACTUAL, label="predicted"))],
+                      centre, "contour error (µm)",
+                      "Predicted and actual contour error for the validation set")
+        series_figure(out, "fig14_contour_prediction_error", tv,
+                      [(c_hat - c, dict(color=ERROR))], centre, "prediction error (µm)",
+                      "Contour error prediction error for the validation set")
+
+
+def toolpath_figure(out, meta):
+    """Seed 002's Fig. 4: the random NURBS tool path (reference positions)."""
+    fig, ax = plt.subplots(figsize=(SINGLE, SINGLE), layout="constrained")
+    (line,) = ax.plot(meta["ref_x"], meta["ref_y"], lw=0.4)
+    rasterize_large(line, len(meta["ref_x"]))
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_aspect("equal")
+    out.title(fig, "Randomly generated NURBS toolpath")
+    out.save(fig, "fig04_toolpath")
+
+
+def velocity_figure(out, meta):
+    """Seed 002's Fig. 5: axial reference velocities (the NARX inputs), the
+    training half, then the validation half."""
+    t = meta["time"]
+    half = t[len(t) // 2]
+    fig, axes = plt.subplots(2, 1, figsize=(DOUBLE, 3.0), sharex=True, sharey=True,
+                             layout="constrained")
+    for ax, axis in zip(axes, "xy"):
+        (line,) = ax.plot(t, meta["v_ref_" + axis], lw=0.3)
+        rasterize_large(line, len(t))
+        ax.axvline(half, color="k", ls="--", lw=0.8)
+        ax.set_ylabel(f"$v_{axis}$ (mm/s)")
+        ax.set_xlim(t[0], t[-1])
+    for x, text_, ha in ((half, "training ", "right"), (half, " validation", "left")):
+        axes[0].text(x, 1.02, text_, transform=axes[0].get_xaxis_transform(), ha=ha,
+                     va="bottom", fontsize=7)
+    axes[-1].set_xlabel("time (s)")
+    out.title(fig, "Axial velocity profiles used as NARX network inputs")
+    out.save(fig, "fig05_velocities")
 
 
 # Seconds shown in the lower, zoomed panel of the time-series figures: the
@@ -354,28 +367,50 @@ def zoom_centre(t, y):
     return float(t[int(np.argmax(finite))])
 
 
-def series_figure(out_dir, name, t, curves, centre, ylabel, title):
+def series_figure(out, stem, t, curves, centre, ylabel, title):
     """Upper panel: the whole series, the zoom window shaded; lower panel: the
-    ZOOM_SECONDS around `centre`, y limits fitted to what it shows."""
+    ZOOM_SECONDS around `centre`, y limits fitted to what it shows (one panel
+    when the series is short). Double column; the whole-series lines are
+    rasterised in vector output."""
+    if float(t[-1] - t[0]) <= 1.5 * ZOOM_SECONDS:
+        # Short (the quick profile): the whole series is readable, no zoom.
+        fig, ax = plt.subplots(figsize=(DOUBLE, 2.2), layout="constrained")
+        for y, style in curves:
+            (line,) = ax.plot(t, y, lw=0.8, **style)
+            rasterize_large(line, len(t))
+        ax.set_xlim(t[0], t[-1])
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel(ylabel)
+        if any("label" in style for _, style in curves):
+            ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False,
+                      borderaxespad=0.1)
+        out.title(fig, title)
+        out.save(fig, stem)
+        return
     lo = max(float(t[0]), centre - ZOOM_SECONDS / 2)
     hi = min(float(t[-1]), lo + ZOOM_SECONDS)
     lo = max(float(t[0]), hi - ZOOM_SECONDS)
     window = (t >= lo) & (t <= hi)
-    fig, (ax_all, ax_zoom) = plt.subplots(2, 1, figsize=(10, 6.5))
+    fig, (ax_all, ax_zoom) = plt.subplots(2, 1, figsize=(DOUBLE, 3.6), layout="constrained")
     for y, style in curves:
-        ax_all.plot(t, y, lw=0.3, **style)
-        ax_zoom.plot(t[window], y[window], lw=0.9, **style)
+        (line,) = ax_all.plot(t, y, lw=0.3, **style)
+        rasterize_large(line, len(t))
+        (line,) = ax_zoom.plot(t[window], y[window], lw=0.8, **style)
+        rasterize_large(line, int(window.sum()))
     ax_all.axvspan(lo, hi, color="0.5", alpha=0.25, lw=0)
+    ax_all.set_xlim(t[0], t[-1])
     ax_all.set_ylabel(ylabel)
-    ax_all.set_title(title)
+    ax_all.set_xlabel("time (s); shaded: the zoom below")
     ax_zoom.set_xlim(lo, hi)
-    ax_zoom.set_xlabel("time [s]")
+    ax_zoom.set_xlabel("time (s)")
     ax_zoom.set_ylabel(ylabel)
-    ax_zoom.set_title(f"zoom: {lo:.1f}-{hi:.1f} s (shaded above)", fontsize=9)
     if any("label" in style for _, style in curves):
-        ax_zoom.legend(loc="upper right")
-    fig.tight_layout()
-    save(fig, out_dir, name)
+        # Above the panels: inside, it would hide the curves it names.
+        ax_all.legend(*ax_zoom.get_legend_handles_labels(), loc="lower right",
+                      bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False,
+                      borderaxespad=0.1)
+    out.title(fig, title)
+    out.save(fig, stem)
 
 
 if __name__ == "__main__":

@@ -2,7 +2,8 @@
 """What Levenberg-Marquardt did in each NARX training stage of seed 002's two
 studies: the data for docs/narx_training.md.
 
-Usage: /usr/bin/python3 scripts/figures/narx_training.py [RESULTS_DIR]
+Usage: /usr/bin/python3 scripts/figures/narx_training.py [--format png|pdf|svg]
+       [--dpi N] [--out DIR] [--no-title] [RESULTS_DIR]
 
 Reads the finished sweeps of experiments/contour_error/training_methods.yaml
 and architecture.yaml (RESULTS_DIR/<study>/sweep-<plan hash>/, chosen as
@@ -14,24 +15,34 @@ termination, SSE before -> after, mu and the curvature scale
 beta max diag(J^T J) at the start and the end) and the closed-loop validation
 RMS of the network, and draws the closed-loop stage's series per epoch
 (epoch 0: the initial state), failed stages (mu_max) in red, to
-RESULTS_DIR/figures/narx_training/closed_loop_stage.png.
+RESULTS_DIR/figures/narx_training/closed_loop_stage.png (or --out
+DIR/narx_training/, --format; style of paper_style.py).
 """
 import argparse
 import os
 import sys
 
 import h5py
-import matplotlib
 import numpy as np
 import yaml
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-from contour_error import Missing, newest_sweep, resolved_yaml, save, text  # noqa: E402
+from contour_error import Missing, newest_sweep, resolved_yaml, text
+from matplotlib.lines import Line2D
+from matplotlib.ticker import MaxNLocator
+from paper_style import DOUBLE, ERROR, Output, add_arguments, apply, plt
 
 STUDIES = ["contour_error_training_methods", "contour_error_architecture"]
 SERIES = ["sse", "mu", "curvature", "alpha", "beta", "gamma", "gradient"]
+# Panel titles: the symbols of the Levenberg-Marquardt / Bayesian
+# regularisation update (MacKay; Foresee and Hagan), as docs/narx_training.md.
+TITLES = {
+    "sse": "sum of squared errors $E_D$",
+    "mu": "damping $\\mu$",
+    "curvature": "curvature scale $\\beta\\,\\max\\,\\mathrm{diag}(J^TJ)$",
+    "alpha": "weight prior $\\alpha$",
+    "beta": "noise precision $\\beta$",
+    "gamma": "effective parameters $\\gamma$",
+    "gradient": "gradient norm",
+}
 
 
 def stage_record(group):
@@ -55,6 +66,9 @@ def trial_records(path):
         model = config.get("model") or {}
         label = (f"{'+'.join(s['mode'] for s in stages)} seed {config.get('seed')} "
                  f"H={model.get('hidden')} D={model.get('input_delays')}")
+        # The same in seed 002's words, for the figure's legend.
+        words = (f"seed {config.get('seed')}, {model.get('hidden')} hidden, "
+                 f"{model.get('input_delays')} delays")
         axes = [text(a) for a in h["model/networks"][()]]
         first = int(h["validation"].attrs["first_step"])
         pred, target = h["validation/predictions"][()], h["validation/targets"][()]
@@ -64,8 +78,24 @@ def trial_records(path):
             rms = float(np.sqrt(np.mean(err**2))) if np.all(np.isfinite(err)) else float("inf")
             g = h[f"history/{axis}"]
             recs = [stage_record(g[f"stage{k}"]) for k in range(len(g)) if f"stage{k}" in g]
-            out.append((label, axis, rms, recs))
+            out.append((label, axis, rms, recs, f"{words}, {axis.upper()} axis"))
         return out
+
+
+def fit_limits(ax, finished, stopped, decades=3):
+    """y limits that show every finished stage and the stopped ones up to
+    `decades` above the finished ones: a diverging stage (1e100) would
+    flatten every other line; it leaves the panel at the top instead."""
+    def positive(series):
+        v = np.abs(np.concatenate([np.ravel(x) for x in series])) if series else np.array([])
+        return v[np.isfinite(v) & (v > 0)]
+
+    done, bad = positive(finished), positive(stopped)
+    if not done.size:
+        return
+    everything = np.concatenate([done, bad])
+    top = min(everything.max() * 2.0, done.max() * 10.0**decades)
+    ax.set_ylim(everything.min() / 2.0, top)
 
 
 def fmt(x):
@@ -73,8 +103,10 @@ def fmt(x):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("results", nargs="?", default="results")
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("results", nargs="?", default="results", help="results folder")
+    add_arguments(parser)
     args = parser.parse_args()
     rows = []
     for study in STUDIES:
@@ -90,7 +122,7 @@ def main():
         return 3
     print("trial | axis | val RMS | stage: epochs termination SSE0 -> SSE, mu0 -> mu, "
           "curvature0 -> curvature")
-    for label, axis, rms, stages in rows:
+    for label, axis, rms, stages, _ in rows:
         parts = []
         for s in stages:
             parts.append(f"{s['mode']}: {len(s['sse']) - 1} {s['termination']} "
@@ -99,27 +131,53 @@ def main():
                          f"{fmt(s['curvature'][-1])}")
         print(f"{label} | {axis} | {fmt(rms)} | " + "; ".join(parts))
 
-    closed = [(label, axis, s) for label, axis, _, stages in rows for s in stages
-              if s["mode"] == "closed_loop" and "open_loop" in label]
-    if not closed:
-        return 0
-    fig, axs = plt.subplots(len(SERIES), 1, figsize=(8, 2.2 * len(SERIES)), sharex=True)
-    for label, axis, s in closed:
-        failed = s["termination"] == "mu_max"
-        for ax, name in zip(axs, SERIES):
-            ax.semilogy(np.arange(len(s[name])), np.abs(s[name]),
-                        color="tab:red" if failed else "tab:blue", alpha=0.8 if failed else 0.35,
-                        lw=1.2 if failed else 0.8, label=f"{label} {axis}" if failed else None)
-    for ax, name in zip(axs, SERIES):
-        ax.set_ylabel(name)
-    axs[0].set_title("two-stage trials, closed-loop stage (red: stopped on mu_max)")
-    axs[-1].set_xlabel("epoch (0: before the first step)")
-    if any(s["termination"] == "mu_max" for _, _, s in closed):
-        axs[0].legend(fontsize=6)
-    out_dir = os.path.join(args.results, "figures", "narx_training")
-    os.makedirs(out_dir, exist_ok=True)
-    save(fig, out_dir, "closed_loop_stage.png")
+    closed = [(f"{words}, stage {k + 1}", s) for label, _, _, stages, words in rows
+              for k, s in enumerate(stages) if s["mode"] == "closed_loop" and "open_loop" in label]
+    if closed:
+        apply()
+        closed_loop_figure(Output(args, args.results, "narx_training"), closed)
     return 0
+
+
+def closed_loop_figure(out, closed):
+    """The closed-loop (parallel) stage of every two-stage trial, per
+    network: one panel per series of SERIES (log scale, shared epoch axis),
+    the stages that stopped at mu_max in red and named in the legend."""
+    fig, axs = plt.subplots(4, 2, figsize=(DOUBLE, 6.4), sharex=True, layout="constrained")
+    panels = axs.ravel()
+    failed = {}  # legend label -> how many networks
+    for words, s in closed:
+        stopped = s["termination"] == "mu_max"
+        if stopped:
+            failed[words] = failed.get(words, 0) + 1
+        for ax, name in zip(panels, SERIES):
+            y = np.abs(s[name])
+            if np.isfinite(y).any():
+                ax.semilogy(np.arange(len(y)), y, color=ERROR if stopped else "tab:blue",
+                            alpha=0.9 if stopped else 0.35, lw=1.0 if stopped else 0.6)
+    for ax, name in zip(panels, SERIES):
+        ax.set_title(TITLES[name])
+        fit_limits(ax, [s[name] for _, s in closed if s["termination"] != "mu_max"],
+                   [s[name] for _, s in closed if s["termination"] == "mu_max"])
+        if not ax.lines:
+            ax.text(0.5, 0.5, "not recorded", transform=ax.transAxes, ha="center", va="center")
+    # The bottom panel of each column carries the epoch axis (the eighth
+    # panel is the legend's).
+    axs[0][0].xaxis.set_major_locator(MaxNLocator(integer=True))  # shared by all
+    for ax in (axs[-1][0], axs[-2][1]):
+        ax.tick_params(labelbottom=True)
+        ax.set_xlabel("epoch (0: before the first step)")
+    legend_ax = axs[-1][1]
+    legend_ax.axis("off")
+    n_failed = sum(failed.values())
+    handles = [Line2D([], [], color="tab:blue", alpha=0.6, lw=1.0,
+                      label=f"finished ({len(closed) - n_failed} stages)")]
+    handles += [Line2D([], [], color=ERROR, lw=1.0,
+                       label=f"stopped at $\\mu_{{max}}$: {w}" + (f" (×{n})" if n > 1 else ""))
+                for w, n in failed.items()]
+    legend_ax.legend(handles=handles, loc="center", frameon=False)
+    out.title(fig, "Parallel (closed-loop) stage of the two-stage training, per network")
+    out.save(fig, "closed_loop_stage")
 
 
 if __name__ == "__main__":
