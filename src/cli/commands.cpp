@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iomanip>
 
+#include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -10,7 +11,9 @@
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/report/sweep_report.hpp"
 #include "cnclab/studies/five_axis/trochoid_job.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -47,6 +50,19 @@ std::optional<std::pair<JobKind, JobContext>> job_of(const fs::path& experiment,
   return std::pair{std::move(*kind), std::move(context)};
 }
 
+// `validate`'s resolved config, large arrays abbreviated unless --full (then
+// it is the config as it is, usable as an experiment file).
+void print_config_text(const std::string& resolved, const CommandOptions& options,
+                       std::ostream& out) {
+  const AbbreviatedConfig shown =
+      options.full ? AbbreviatedConfig{resolved, 0} : abbreviate_config(resolved);
+  if (shown.abbreviated > 0) {
+    out << "# " << shown.abbreviated << " array(s) of more than " << kAbbreviateScalars
+        << " numbers shown as shape and hash; --full prints them\n";
+  }
+  out << shown.text;
+}
+
 }  // namespace
 
 int run_command(const fs::path& experiment, const std::vector<std::string>& overrides,
@@ -77,6 +93,8 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
     return 1;
   }
   if (!options.quiet) out << loaded.spec.name << ": " << metrics_line(outcome.metrics) << "\n";
+  for (const auto& w : outcome.warnings)
+    log << "warning: " << loaded.spec.name << ": " << w << "\n";
   out << outcome.result_file.string() << "\n";
   return 0;
 }
@@ -87,20 +105,47 @@ int validate_command(const fs::path& experiment, const std::vector<std::string>&
   if (const auto job = job_of(experiment, overrides, seed, options, nullptr)) {
     // Resolved before anything is printed: an invalid file prints no "valid".
     const std::string resolved = job->first.resolved_yaml(experiment, job->second);
-    out << "# " << experiment.string() << ": valid; resolved configuration:\n" << resolved;
+    out << "# " << experiment.string() << ": valid; resolved configuration:\n";
+    print_config_text(resolved, options, out);
     return 0;
   }
   const LoadedExperiment loaded = load_experiment(experiment, overrides, seed, options.profile);
   out << "# " << experiment.string() << ": valid; resolved configuration:\n";
   for (const auto& note : loaded.notes) out << "# note: " << note << "\n";
-  out << loaded.resolved_yaml;
+  print_config_text(loaded.resolved_yaml, options, out);
   return 0;
 }
 
-int show_command(const std::vector<std::string>& result_files, std::ostream& out) {
+namespace {
+
+// A sweep's summary.h5 as `sweep merge` prints it (its trials as the summary
+// recorded them; the "best trial" path is beside the summary, as merge's).
+void show_summary(const fs::path& file, std::ostream& out) {
+  const StoredSummary stored = read_summary(file);
+  const SweepSummary summary = summarize(stored.plan, stored.outcomes);
+  print_summary(out, stored.plan, stored.outcomes, summary, file.parent_path());
+  const std::string best = summary.best_trial >= 0
+                               ? stored.plan.trials[static_cast<std::size_t>(summary.best_trial)].id
+                               : "";
+  if (best != stored.best_trial) {
+    out << "note: the file records best trial '" << stored.best_trial
+        << "' (chosen by an older rule); `cnclab sweep merge` rewrites it\n";
+  }
+}
+
+}  // namespace
+
+int show_command(const std::vector<std::string>& result_files, const CommandOptions& options,
+                 std::ostream& out) {
+  ShowOptions show;
+  show.full_config = options.full;
   for (std::size_t i = 0; i < result_files.size(); ++i) {
     if (i) out << "\n";
-    print_result(read_result(result_files[i]), out);
+    if (is_sweep_summary(result_files[i])) {
+      show_summary(result_files[i], out);
+    } else {
+      print_result(read_result(result_files[i]), out, show);
+    }
   }
   return 0;
 }

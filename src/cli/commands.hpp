@@ -21,7 +21,11 @@ int run_command(const std::filesystem::path& experiment, const std::vector<std::
 int validate_command(const std::filesystem::path& experiment,
                      const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed,
                      const CommandOptions& options, std::ostream& out);
-int show_command(const std::vector<std::string>& result_files, std::ostream& out);
+// Result files (print_result) and sweep summaries (summary.h5: the ranking as
+// `cnclab sweep merge` prints it, read from the file alone; nothing written).
+// options.full: configs with every array in full.
+int show_command(const std::vector<std::string>& result_files, const CommandOptions& options,
+                 std::ostream& out);
 // Runs the experiments under `paths` and the ones they need, upstream first
 // (experiment_graph.hpp); reuses every result whose resolved config and
 // upstream results are unchanged; prints per experiment ran/reused and why.

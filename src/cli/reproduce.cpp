@@ -221,7 +221,11 @@ class GraphRun {
     if (log_) {
       *log_ << "[done " << ++finished_ << "/" << started_ << "] " << display_name(i) << " "
             << s.row->action << " in " << std::fixed << std::setprecision(1) << seconds << " s"
-            << std::defaultfloat << "\n";
+            << std::defaultfloat;
+      if (s.record) {
+        for (const auto& w : s.record->warnings) *log_ << " (warning: " << w << ")";
+      }
+      *log_ << "\n";
       last_log_ = std::chrono::steady_clock::now();
     }
   }
@@ -250,7 +254,10 @@ class GraphRun {
     const RunRecord& r = *state_[i].record;
     const fs::path path = result_path(*graph_[i].experiment, options_.results_dir);
     if (r.provenance.status == "complete") {
-      finish(i, {display_name(i), action, why, metrics_line(r.metrics), path.string()});
+      // A degenerate network (run_warnings.hpp) is complete, but says so first.
+      std::string detail = metrics_line(r.metrics);
+      for (const auto& w : r.warnings) detail = "WARNING " + w + "; " + detail;
+      finish(i, {display_name(i), action, why, detail, path.string()});
     } else if (graph_[i].experiment->spec.may_diverge) {
       finish(i, {display_name(i), action + ", diverged", why,
                  r.provenance.failure_reason + " (allowed: may_diverge)", path.string()});

@@ -5,11 +5,18 @@
 
 #include "cli/cli_wiring.hpp"
 #include "cli/commands.hpp"
+#include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/report/compare.hpp"
 
 namespace cnclab {
 namespace {
+
+const std::string kFullHelp =
+    "Print every array of the config in full; without it, an array of more than " +
+    std::to_string(kAbbreviateScalars) +
+    " numbers in total (nested lists counted through, e.g. a NURBS surface's control points) "
+    "prints as its shape and a hash: control_points: 16 × 16 × 3, hash 1a2b3c4d";
 
 // What `run` and `validate` read.
 struct ExperimentArgs {
@@ -58,6 +65,7 @@ void add_validate(CLI::App& app, CommandAction& action) {
   validate->add_option("--seed", a->seed_text, "Master seed (overrides the YAML's seed)")
       ->type_name("UINT");
   validate->add_option("--profile", a->common.profile, kProfileHelp);
+  validate->add_flag("--full", a->common.full, kFullHelp);
   validate->footer(
       "Example:\n  cnclab validate experiments/friedman/friedman1_mlp.yaml trainer.momentum=0.9");
   validate->callback([a, &action] {
@@ -70,12 +78,19 @@ void add_validate(CLI::App& app, CommandAction& action) {
 
 void add_show(CLI::App& app, CommandAction& action) {
   auto paths = std::make_shared<std::vector<std::string>>();
-  auto* show =
-      app.add_subcommand("show", "Print a result file: config, provenance, metrics, training");
-  show->add_option("result", *paths, "Result HDF5 file(s)")->required();
-  show->footer("Example:\n  cnclab show results/friedman1_mlp/friedman1_mlp-seed42-*.h5");
-  show->callback(
-      [paths, &action] { action = [paths] { return show_command(*paths, std::cout); }; });
+  auto options = std::make_shared<CommandOptions>();
+  auto* show = app.add_subcommand(
+      "show",
+      "Print a result file (config, provenance, metrics, training) or a sweep's summary.h5");
+  show->add_option("result", *paths, "Result HDF5 file(s) or a sweep's summary.h5")->required();
+  show->add_flag("--full", options->full, kFullHelp);
+  show->footer(
+      "Examples:\n  cnclab show results/friedman1_mlp/friedman1_mlp-seed42-*.h5\n"
+      "  cnclab show results/friedman1_mlp/sweep-1a2b3c4d/summary.h5   # the ranking, as "
+      "`cnclab sweep merge` prints it; nothing rewritten");
+  show->callback([paths, options, &action] {
+    action = [paths, options] { return show_command(*paths, *options, std::cout); };
+  });
 }
 
 struct ReproduceArgs {

@@ -291,6 +291,80 @@ TEST_F(Cli, RunWritesCompleteResultReadableByShowAndH5dump) {
   EXPECT_NE(dump.out.find("\"rmse\""), std::string::npos);
 }
 
+// Issue 22 item 5: an inlined NURBS surface (step-error datasets) prints as
+// shapes and hashes in `validate` and `show`; --full prints it all, and that
+// text is an experiment that resolves to the same config.
+TEST_F(Cli, ValidateAndShowAbbreviateLargeArraysFullPrintsThem) {
+  const std::string exp = CNCLAB_SOURCE_DIR "/experiments/step_error/surface1.yaml";
+  const std::string small = " dataset.options.lines=4 dataset.options.points_per_line=6 ";
+  const Result brief = cnclab("validate " + exp + small);
+  ASSERT_EQ(brief.code, 0) << brief.err;
+  EXPECT_NE(brief.out.find("control_points: 16 × 16 × 3, hash "), std::string::npos) << brief.out;
+  EXPECT_NE(brief.out.find("knots_u: 20 values, hash "), std::string::npos) << brief.out;
+  EXPECT_NE(brief.out.find("--full prints them"), std::string::npos) << brief.out;
+  const Result full = cnclab("validate " + exp + small + "--full");
+  ASSERT_EQ(full.code, 0) << full.err;
+  EXPECT_EQ(full.out.find(", hash "), std::string::npos);
+  EXPECT_GT(std::count(full.out.begin(), full.out.end(), '\n'),
+            std::count(brief.out.begin(), brief.out.end(), '\n') + 30);
+  write("full.yaml", full.out);
+  const Result again = cnclab("validate full.yaml --full");
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_EQ(again.out.substr(again.out.find('\n')), full.out.substr(full.out.find('\n')));
+
+  const Result r = cnclab("run " + exp + small + "trainer.epochs=1 --quiet --out r --data-dir d");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string file = r.out.substr(0, r.out.find('\n'));
+  const Result shown = cnclab("show " + file);
+  ASSERT_EQ(shown.code, 0) << shown.err;
+  EXPECT_NE(shown.out.find("control_points: 16 × 16 × 3, hash "), std::string::npos) << shown.out;
+  EXPECT_LT(std::count(shown.out.begin(), shown.out.end(), '\n'), 80) << shown.out;
+  const Result shown_full = cnclab("show --full " + file);
+  EXPECT_EQ(shown_full.out.find("control_points: 16"), std::string::npos) << shown_full.out;
+  EXPECT_NE(shown_full.out.find("control_points:\n"), std::string::npos) << shown_full.out;
+  // Each metric with its own unit (step error: µm).
+  for (const char* line : {"  mse ", "  rmse ", "  r2 "}) {
+    const auto at = shown.out.find(line);
+    ASSERT_NE(at, std::string::npos) << line << shown.out;
+    const std::string text = shown.out.substr(at, shown.out.find('\n', at) - at);
+    const std::string unit = std::string(line) == "  mse "    ? "µm²"
+                             : std::string(line) == "  rmse " ? "µm"
+                                                              : "1 (dimensionless)";
+    EXPECT_EQ(text.substr(text.size() - unit.size()), unit) << text;
+  }
+  EXPECT_EQ(shown.out.find("(test split, µm)"), std::string::npos) << shown.out;
+}
+
+// Issue 22 item 4: a network that provably predicts a constant (no training
+// step, all weights 0) is complete, and `run`, `show`, `compare` and
+// `reproduce` say "constant predictions".
+TEST_F(Cli, ConstantNetworkIsWarnedInRunShowCompareAndReproduce) {
+  write("dead.yaml", "include: " + kExperiment +
+                         "\nname: dead\ndataset: {options: {samples: 200}}\ntrainer: {epochs: "
+                         "0}\nmodel: {init: {weights: {type: normal, mean: 0, std: 0}}}\n");
+  const Result dead = cnclab("run dead.yaml --out r --data-dir d");
+  ASSERT_EQ(dead.code, 0) << dead.err;
+  EXPECT_NE(dead.err.find("warning: dead: constant predictions"), std::string::npos) << dead.err;
+  const std::string file = dead.out.substr(dead.out.find('\n') + 1);
+  const std::string dead_file = file.substr(0, file.find('\n'));
+  const Result shown = cnclab("show " + dead_file);
+  EXPECT_NE(shown.out.find("status       complete; warning: constant predictions"),
+            std::string::npos)
+      << shown.out;
+  const Result alive = cnclab(quick("--out r --data-dir d"));
+  ASSERT_EQ(alive.code, 0) << alive.err;
+  EXPECT_EQ(alive.err.find("constant predictions"), std::string::npos) << alive.err;
+  const Result compared =
+      cnclab("compare " + alive.out.substr(0, alive.out.find('\n')) + " " + dead_file);
+  ASSERT_EQ(compared.code, 0) << compared.err;
+  EXPECT_NE(compared.out.find("complete; warning: constant predictions"), std::string::npos)
+      << compared.out;
+  const Result reproduced = cnclab("reproduce dead.yaml --out r --data-dir d --jobs 1");
+  ASSERT_EQ(reproduced.code, 0) << reproduced.err;
+  EXPECT_NE(reproduced.out.find("WARNING constant predictions; mae "), std::string::npos)
+      << reproduced.out;
+}
+
 TEST_F(Cli, SameSeedGivesIdenticalResultApartFromProvenance) {
   // The second run reuses the cached dataset the first one wrote.
   const Result a = cnclab(quick("--out a --data-dir d"));

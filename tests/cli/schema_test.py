@@ -68,7 +68,8 @@ def check(validator, document, what):
 
 
 def resolved(path, profile):
-    args = ["validate", str(path)] + (["--profile", profile] if profile else [])
+    # --full: the config itself (validate abbreviates large arrays for people).
+    args = ["validate", "--full", str(path)] + (["--profile", profile] if profile else [])
     r = run(*args)
     if r.returncode != 0:
         failures.append(f"cnclab {' '.join(args)} failed: {r.stderr.strip()}")

@@ -12,7 +12,16 @@ for script in "$src"/scripts/* "$src"/scripts/figures/*; do
   [[ -f "$script" ]] || continue
   case $script in
     *.py) cmd=(/usr/bin/python3 "$script") ;;
-    *) [[ -x "$script" ]] || continue; cmd=("$script") ;;
+    *)
+      # A script without .py runs by itself: not executable, it could not
+      # answer --help (and would be skipped unnoticed).
+      if [[ ! -x "$script" ]]; then
+        echo "FAIL ${script#"$src"/}: not executable"
+        status=1
+        continue
+      fi
+      cmd=("$script")
+      ;;
   esac
   for flag in --help -h; do
     out=$(cd "$work" && "${cmd[@]}" "$flag" 2>&1)

@@ -233,6 +233,19 @@ def check_trivial_predictor(results, source):
             dataset = f["dataset"].attrs["file"]
             dataset = dataset.decode() if isinstance(dataset, bytes) else dataset
             pred, y = np.ravel(f["test/predictions"][:]), np.ravel(f["test/targets"][:])
+            # README's h5py example: /metrics holds numbers only, units apart
+            # (issue 22 item 5); recompute mse from the stored arrays.
+            metrics = {k: float(v) for k, v in f["metrics"].attrs.items()}
+            units = {k: (v.decode() if isinstance(v, bytes) else v)
+                     for k, v in f["metrics/units"].attrs.items()}
+        check(set(units) == set(metrics), f"{name}: a unit per metric ({units})")
+        expected = {"mse": "µm²", "rmse": "µm", "mae": "µm", "max_abs_error": "µm", "r2": "1"}
+        for metric, unit in units.items():
+            if metric in expected:
+                check(unit == expected[metric], f"{name}: {metric} in {unit!r}")
+        if "mse" in metrics:
+            check(abs(metrics["mse"] - np.mean((pred - y) ** 2)) <= 1e-9 * max(1.0, metrics["mse"]),
+                  f"{name}: stored mse {metrics['mse']} against the stored predictions")
         if not os.path.isabs(dataset):
             dataset = os.path.join(source, dataset)
         with h5py.File(dataset, "r") as d:

@@ -414,6 +414,31 @@ TEST(SweepCli, ShardsThenMergeEqualAnUnshardedSweep) {
       << c.out;
 }
 
+// Issue 22 item 5: `cnclab show summary.h5` prints the ranking as `sweep
+// merge` prints it (without the merge's "summary:" line), rewriting nothing.
+// One point has all weights 0 and no training step: its trials are complete
+// and warned (issue 22 item 4).
+TEST(SweepCli, ShowSummaryPrintsTheMergeRankingAndWritesNothing) {
+  TempDir dir;
+  const Result sweep = sh(dir.path(), kCnclab + " sweep " + kExperiment +
+                                          " trainer.epochs=0 dataset.options.samples=200 "
+                                          "model.init.weights.type=normal "
+                                          "model.init.weights.std=0,1 --quiet --data-dir data "
+                                          "--dir s");
+  ASSERT_EQ(sweep.code, 0) << sweep.err << sweep.out;
+  EXPECT_NE(sweep.out.find("): constant predictions\n"), std::string::npos) << sweep.out;
+  EXPECT_NE(sweep.out.find("1/1, 1 warning"), std::string::npos) << sweep.out;
+  const Result merge = sh(dir.path(), kCnclab + " sweep merge s");
+  ASSERT_EQ(merge.code, 0) << merge.err;
+  const std::string before = slurp(dir / "s/summary.h5");
+  const auto mtime = fs::last_write_time(dir / "s/summary.h5");
+  const Result show = sh(dir.path(), kCnclab + " show s/summary.h5");
+  ASSERT_EQ(show.code, 0) << show.err;
+  EXPECT_EQ(show.out + "summary: s/summary.h5\n", merge.out);
+  EXPECT_EQ(slurp(dir / "s/summary.h5"), before);
+  EXPECT_EQ(fs::last_write_time(dir / "s/summary.h5"), mtime);
+}
+
 TEST(SweepCli, MergeReportsMissingShards) {
   TempDir dir;
   ASSERT_EQ(sh(dir.path(), kCnclab + " sweep " + sweep_args("--dir s --shard 1/2")).code, 0);

@@ -43,6 +43,16 @@ TEST(DatasetCache, SeedIsPartOfTheKeyOnlyForGeneratorsThatUseIt) {
   EXPECT_EQ(dataset_cache_file(step, 1, dir.path()), dataset_cache_file(step, 2, dir.path()));
   EXPECT_NE(dataset_cache_file(friedman(10), 1, dir.path()),
             dataset_cache_file(friedman(10), 2, dir.path()));
+  // Through the cache itself: the second seed reads the first one's file,
+  // and no second file is written.
+  const fs::path data = dir / "data";
+  const CachedDataset first = obtain_dataset(step, 1, data, nullptr);
+  const CachedDataset second = obtain_dataset(step, 2, data, nullptr);
+  EXPECT_FALSE(first.reused);
+  EXPECT_TRUE(second.reused);
+  EXPECT_EQ(second.path, first.path);
+  EXPECT_EQ(second.dataset.targets, first.dataset.targets);
+  EXPECT_EQ(files_in(data), 1u);
 }
 
 TEST(DatasetCache, HitMissAndRegenerate) {

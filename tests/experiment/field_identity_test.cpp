@@ -139,9 +139,11 @@ const std::string kNarxBase =
 const std::vector<std::string>& identity_test_sequence_metrics() {
   static const std::vector<std::string> names = [] {
     const std::vector<std::string> mine = {"identity_test_rms", "identity_test_max"};
-    register_sequence_metrics({"field_identity_test", mine, [](const SequencePrediction&) {
-                                 return std::map<std::string, double>{};
-                               }});
+    register_sequence_metrics(
+        {"field_identity_test",
+         mine,
+         [](const SequencePrediction&) { return std::map<std::string, double>{}; },
+         {}});
     return mine;
   }();
   return names;

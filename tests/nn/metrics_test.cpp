@@ -78,5 +78,23 @@ TEST(ErrorSummary, PercentileMeanMaxByHand) {
   EXPECT_THROW(summarize_errors({1.0, std::nan("")}), Error);
 }
 
+// Issue 22 item 5: each metric its own unit (metrics.hpp's table).
+TEST(Metrics, EachMetricHasItsOwnUnit) {
+  const std::vector<std::string> um = {"µm"};
+  EXPECT_EQ(metric_unit("mse", um), "µm²");
+  EXPECT_EQ(metric_unit("rmse", um), "µm");
+  EXPECT_EQ(metric_unit("mae", um), "µm");
+  EXPECT_EQ(metric_unit("max_abs_error", um), "µm");
+  EXPECT_EQ(metric_unit("r2", um), "1");
+  EXPECT_EQ(metric_unit("normalised_mse", um), "scaled²");
+  EXPECT_EQ(metric_unit("normalised_validation_mse", um), "scaled²");
+  EXPECT_EQ(metric_unit("mse", {"1"}), "1");
+  // Pooled outputs of different units (seed 004's x, y, z in mm, a, c in rad).
+  EXPECT_EQ(metric_unit("mse", {"mm", "mm", "rad"}), "(mm, rad)²");
+  EXPECT_EQ(metric_unit("rmse", {"mm", "mm", "rad"}), "(mm, rad)");
+  for (const auto& name : known_metrics()) EXPECT_FALSE(metric_unit(name, um).empty()) << name;
+  EXPECT_EQ(metric_unit("accuracy", um), "");
+}
+
 }  // namespace
 }  // namespace cnclab

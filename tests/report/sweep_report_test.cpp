@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/sweep_fixtures.hpp"
+#include "common/temp_dir.hpp"
 
 namespace cnclab {
 namespace {
@@ -35,6 +36,40 @@ TEST(SweepReport, RankedMeanStdAndFailedTrials) {
   EXPECT_NE(text.find("1.25 ± 0.353553"), std::string::npos) << text;
   EXPECT_NE(text.find("FAILED trial"), std::string::npos) << text;
   EXPECT_LT(text.find("0.01 "), text.find("0.1 ")) << text;  // ranked
+}
+
+// Issue 22 item 4: a complete trial with a warning is counted in its point's
+// row and listed under the table; the best trial's line carries its warning.
+TEST(SweepReport, WarnedTrialsAreMarkedAndListed) {
+  const SweepPlan plan = plan_of(false);
+  auto o = outcomes();
+  o[2].warnings = {"constant predictions"};  // point 1 (rank 1), repeat 0
+  std::ostringstream table;
+  print_summary(table, plan, o, summarize(plan, o), "sweep");
+  const std::string text = table.str();
+  EXPECT_NE(text.find("2/2, 1 warning"), std::string::npos) << text;
+  EXPECT_NE(text.find("WARNING trial " + plan.trials[2].id +
+                      " (trainer.learning_rate=0.01, repeat 0): constant predictions"),
+            std::string::npos)
+      << text;
+  // Best trial: of point 1's repeats (rmse 1.0 and 1.5) the better one, trial 2.
+  EXPECT_NE(text.find("complete); warning: constant predictions\n"), std::string::npos) << text;
+}
+
+// `cnclab show summary.h5` prints, from the file alone, what `sweep merge`
+// printed from the trials.
+TEST(SweepReport, StoredSummaryPrintsTheSameTable) {
+  testing::TempDir dir;
+  const SweepPlan plan = plan_of(false);
+  auto o = outcomes();
+  o[1].warnings = {"constant predictions"};
+  const SweepSummary s = summarize(plan, o);
+  write_summary(dir / "summary.h5", plan, o, s);
+  std::ostringstream merged, shown;
+  print_summary(merged, plan, o, s, dir.path());
+  const StoredSummary back = read_summary(dir / "summary.h5");
+  print_summary(shown, back.plan, back.outcomes, summarize(back.plan, back.outcomes), dir.path());
+  EXPECT_EQ(shown.str(), merged.str());
 }
 
 }  // namespace

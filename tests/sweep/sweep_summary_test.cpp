@@ -3,9 +3,11 @@
 #include "cnclab/sweep/sweep_summary.hpp"
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <cmath>
 
+#include "cnclab/core/error.hpp"
 #include "cnclab/io/h5.hpp"
 #include "common/sweep_fixtures.hpp"
 #include "common/temp_dir.hpp"
@@ -93,6 +95,57 @@ TEST(SweepSummary, FileHoldsTheTableInPlanAndRankOrder) {
   EXPECT_EQ(f.read_vector("/trials/parameters/trainer.learning_rate")[2], 0.01);
   EXPECT_EQ(f.read_int64s("/points/point"), (std::vector<std::int64_t>{1, 0, 2}));
   EXPECT_NEAR(f.read_vector("/points/metrics/rmse/std")[1], std::sqrt(2.0), kTol);
+}
+
+// Issue 22 item 5: `cnclab show summary.h5` reads the summary back alone:
+// the plan and every trial's outcome as written (warnings included), so
+// summarize() gives the same ranking and best trial.
+TEST(SweepSummary, ReadBackGivesThePlanOutcomesAndRanking) {
+  testing::TempDir dir;
+  const SweepPlan plan = plan_of(false);
+  auto o = outcomes();
+  o[1].warnings = {"constant predictions"};
+  o[4].reason = "diverged at epoch 3";
+  const SweepSummary s = summarize(plan, o);
+  write_summary(dir / "summary.h5", plan, o, s);
+  EXPECT_TRUE(is_sweep_summary(dir / "summary.h5"));
+  const StoredSummary back = read_summary(dir / "summary.h5");
+  EXPECT_EQ(back.plan.to_yaml(), plan.to_yaml());
+  EXPECT_EQ(back.best_trial, plan.trials[2].id);
+  ASSERT_EQ(back.outcomes.size(), o.size());
+  for (std::size_t i = 0; i < o.size(); ++i) {
+    EXPECT_EQ(back.outcomes[i].status, o[i].status) << i;
+    EXPECT_EQ(back.outcomes[i].reason, o[i].reason) << i;
+    EXPECT_EQ(back.outcomes[i].result_file, o[i].result_file) << i;
+    EXPECT_EQ(back.outcomes[i].metrics, o[i].metrics) << i;
+    EXPECT_EQ(back.outcomes[i].warnings, o[i].warnings) << i;
+  }
+  const SweepSummary again = summarize(back.plan, back.outcomes);
+  EXPECT_EQ(again.best_trial, s.best_trial);
+  ASSERT_EQ(again.points.size(), s.points.size());
+  for (std::size_t p = 0; p < s.points.size(); ++p) {
+    EXPECT_EQ(again.points[p].point, s.points[p].point);
+  }
+}
+
+TEST(SweepSummary, SummariesWithoutWarningsStillReadAndResultsAreNotSummaries) {
+  testing::TempDir dir;
+  const SweepPlan plan = plan_of(false);
+  const auto o = outcomes();
+  write_summary(dir / "summary.h5", plan, o, summarize(plan, o));
+  // As written before warnings existed.
+  const hid_t old = H5Fopen((dir / "summary.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(H5Ldelete(old, "/trials/warnings", H5P_DEFAULT), 0);
+  H5Fclose(old);
+  const StoredSummary back = read_summary(dir / "summary.h5");
+  for (const auto& t : back.outcomes) EXPECT_TRUE(t.warnings.empty());
+  EXPECT_EQ(back.outcomes[3].metrics, o[3].metrics);
+  {
+    H5File f = H5File::create(dir / "other.h5");
+    f.set_attribute("/", "format", "cnclab-result");
+  }
+  EXPECT_FALSE(is_sweep_summary(dir / "other.h5"));
+  EXPECT_THROW(read_summary(dir / "other.h5"), IoError);
 }
 
 }  // namespace

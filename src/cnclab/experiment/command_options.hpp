@@ -19,6 +19,10 @@ struct CommandOptions {
   // reproduce --jobs N: experiments trained at once, each in its own process
   // (0 = the cores this process may use).
   std::size_t jobs = 0;
+  // validate/show --full: configs with every array in full (else arrays of
+  // more than kAbbreviateScalars numbers print as shape and hash,
+  // core/config_abbreviate.hpp).
+  bool full = false;
 };
 
 }  // namespace cnclab

@@ -7,6 +7,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
 #include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/run_warnings.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
@@ -33,8 +34,7 @@ void write_job_result(const fs::path& path, const RunRecord& r) {
   try {
     H5File f = H5File::create(out.temp_path());
     write_result_header(f, r);
-    f.create_group("/metrics");
-    for (const auto& [name, value] : r.metrics) f.set_attribute("/metrics", name, value);
+    write_metrics(f, r.metrics, r.metric_units);
     write_result_upstream(f, r.upstream);
     std::vector<std::string> roles, files;
     for (const auto& o : r.outputs) {
@@ -63,6 +63,8 @@ RunRecord read_job_result(const H5File& f) {
   r.resolved_yaml = f.read_string("/config");
   r.provenance = read_provenance(f, "/provenance");
   r.metrics = read_metrics(f);
+  r.metric_units = read_metric_units(f);
+  r.warnings = read_warnings(f);
   r.upstream = read_upstream(f);
   if (f.exists("/outputs")) {
     const auto roles = f.read_strings("/outputs/roles");
@@ -80,11 +82,11 @@ RunRecord read_job_result(const H5File& f) {
   return r;
 }
 
-void print_job_result(const RunRecord& r, std::ostream& out) {
+void print_job_result(const RunRecord& r, std::ostream& out, const ShowOptions& options) {
   const Provenance& p = r.provenance;
   out << "experiment   " << r.experiment << " (kind: " << r.kind << ")\n"
-      << "status       " << p.status << (p.failure_reason.empty() ? "" : ": " + p.failure_reason)
-      << "\n"
+      << "status       " << status_text(p.status, r.warnings)
+      << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n"
       << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
       << "run          " << p.start_utc << " -> " << p.end_utc << " ("
       << format_metric(p.wall_seconds) << " s) on " << p.host << "\n";
@@ -93,14 +95,8 @@ void print_job_result(const RunRecord& r, std::ostream& out) {
   }
   for (const auto& o : r.outputs) out << "output       " << o.role << ": " << o.file << "\n";
   for (const auto& [name, text] : r.facts) out << "fact         " << name << ": " << text << "\n";
-  std::size_t width = 14;
-  for (const auto& [name, value] : r.metrics) width = std::max(width, name.size() + 2);
-  out << "metrics\n";
-  for (const auto& [name, value] : r.metrics) {
-    out << "  " << std::left << std::setw(static_cast<int>(width)) << name << format_metric(value)
-        << "\n";
-  }
-  print_result_config(r.resolved_yaml, out);
+  print_metrics(r, "", out);
+  print_result_config(r.resolved_yaml, out, options);
 }
 
 fs::path output_path(const RunRecord& record, const fs::path& result_file,

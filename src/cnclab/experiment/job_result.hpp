@@ -21,6 +21,7 @@
 namespace cnclab {
 
 class H5File;
+struct ShowOptions;
 
 // A job record: kind, name, resolved config and its hash, provenance
 // (version, host, start time; status complete) filled in.
@@ -34,7 +35,7 @@ void write_job_result(const std::filesystem::path& path, const RunRecord& record
 RunRecord read_job_result(const H5File& file);
 
 // `cnclab show` of a job result.
-void print_job_result(const RunRecord& record, std::ostream& out);
+void print_job_result(const RunRecord& record, std::ostream& out, const ShowOptions& options);
 
 // The output with this role, as a path beside `result_file`; IoError naming
 // the role when the record has none.

@@ -13,6 +13,7 @@
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/run_warnings.hpp"
 #include "cnclab/experiment/sequence_metrics.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/provenance.hpp"
@@ -261,6 +262,7 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
   rec.provenance.end_utc = utc_now_iso8601();
   rec.provenance.wall_seconds = seconds_since(wall_start);
   rec.provenance.status = ok ? "complete" : "failed";
+  if (ok) rec.warnings = prediction_warnings(rec);
   rec.provenance.failure_reason = ok ? "" : message;
 
   RunOutcome outcome;
@@ -270,6 +272,7 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
   outcome.ok = ok;
   outcome.message = message;
   outcome.metrics = rec.metrics;
+  outcome.warnings = rec.warnings;
   return outcome;
 }
 

@@ -5,11 +5,14 @@
 #include <cstdio>
 #include <iomanip>
 
+#include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_lm_history.hpp"
 #include "cnclab/experiment/result_narx.hpp"
+#include "cnclab/experiment/run_warnings.hpp"
+#include "cnclab/experiment/sequence_metrics.hpp"
 #include "cnclab/experiment/trainer_spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/eigen_std.hpp"
@@ -131,11 +134,7 @@ void write_result(const fs::path& path, const RunRecord& r) {
       write_mlp_sections(f, r);
     }
 
-    f.create_group("/metrics");
-    f.set_attribute("/metrics", "units",
-                    r.narx ? std::string("per metric: the registered sequence metrics' units")
-                           : join(r.target_units, ",") + " (squared for mse; r2 is 1)");
-    for (const auto& [name, value] : r.metrics) f.set_attribute("/metrics", name, value);
+    write_metrics(f, r.metrics, training_metric_units(r));
 
     write_result_upstream(f, r.upstream);
 
@@ -154,16 +153,45 @@ void write_result_header(H5File& f, const RunRecord& r) {
   f.set_attribute("/", "experiment", r.experiment);
   f.set_attribute("/", "config_hash", r.config_hash);
   f.set_attribute("/", "status", r.provenance.status);
+  if (!r.warnings.empty()) f.set_attribute("/", "warnings", join_warnings(r.warnings));
   f.write_string("/config", r.resolved_yaml);
   write_provenance(f, "/provenance", r.provenance);
 }
 
-void print_result_config(const std::string& resolved_yaml, std::ostream& out) {
-  out << "config\n";
+void print_metrics(const RunRecord& r, const std::string& note, std::ostream& out) {
+  std::size_t name_width = 14, value_width = 0;
+  for (const auto& [name, value] : r.metrics) {
+    name_width = std::max(name_width, name.size() + 2);
+    value_width = std::max(value_width, format_metric(value).size() + 2);
+  }
+  out << "metrics" << (note.empty() ? "" : "      (" + note + ")") << "\n";
+  for (const auto& [name, value] : r.metrics) {
+    const auto it = r.metric_units.find(name);
+    const std::string unit = it == r.metric_units.end() ? "" : it->second;
+    std::string line = "  " + name + std::string(name_width - name.size(), ' ') +
+                       format_metric(value) +
+                       std::string(value_width - format_metric(value).size(), ' ') +
+                       (unit == "1" ? "1 (dimensionless)" : unit);
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out << line << "\n";
+  }
+}
+
+void print_result_config(const std::string& resolved_yaml, std::ostream& out,
+                         const ShowOptions& options) {
+  const AbbreviatedConfig shown =
+      options.full_config ? AbbreviatedConfig{resolved_yaml, 0} : abbreviate_config(resolved_yaml);
+  out << "config";
+  if (shown.abbreviated > 0) {
+    out << " (" << shown.abbreviated << " array(s) of more than " << kAbbreviateScalars
+        << " numbers abbreviated; --full prints them)";
+  }
+  out << "\n";
+  const std::string& text = shown.text;
   std::size_t start = 0;
-  while (start < resolved_yaml.size()) {
-    const auto end = resolved_yaml.find('\n', start);
-    out << "  " << resolved_yaml.substr(start, end - start) << "\n";
+  while (start < text.size()) {
+    const auto end = text.find('\n', start);
+    out << "  " << text.substr(start, end - start) << "\n";
     if (end == std::string::npos) break;
     start = end + 1;
   }
@@ -182,12 +210,47 @@ void write_result_upstream(H5File& f, const std::vector<UpstreamRef>& upstream) 
   f.write_strings("/upstream/identities", identities);
 }
 
+void write_metrics(H5File& f, const std::map<std::string, double>& metrics,
+                   const std::map<std::string, std::string>& units) {
+  // Numbers only in /metrics, so {k: float(v) for k, v in f["metrics"].attrs.items()}
+  // works in h5py; the units beside them.
+  f.create_group("/metrics");
+  for (const auto& [name, value] : metrics) f.set_attribute("/metrics", name, value);
+  f.create_group("/metrics/units");
+  for (const auto& [name, value] : metrics) {
+    const auto it = units.find(name);
+    f.set_attribute("/metrics/units", name, it == units.end() ? "" : it->second);
+  }
+}
+
+std::map<std::string, std::string> read_metric_units(const H5File& f) {
+  std::map<std::string, std::string> units;
+  if (!f.is_group("/metrics/units")) return units;
+  for (const auto& name : f.attribute_names("/metrics/units")) {
+    units[name] = f.attribute_string("/metrics/units", name);
+  }
+  return units;
+}
+
+std::map<std::string, std::string> training_metric_units(const RunRecord& r) {
+  std::map<std::string, std::string> units;
+  for (const auto& [name, value] : r.metrics) {
+    units[name] = r.narx ? sequence_metric_unit(name) : metric_unit(name, r.target_units);
+  }
+  return units;
+}
+
 std::map<std::string, double> read_metrics(const H5File& f) {
   std::map<std::string, double> metrics;
   for (const auto& name : f.attribute_names("/metrics")) {
     if (name != "units") metrics[name] = f.attribute_double("/metrics", name);
   }
   return metrics;
+}
+
+std::vector<std::string> read_warnings(const H5File& f) {
+  if (!f.has_attribute("/", "warnings")) return {};
+  return split_warnings(f.attribute_string("/", "warnings"));
 }
 
 std::vector<UpstreamRef> read_upstream(const H5File& f) {
@@ -216,6 +279,7 @@ ResultStatus read_status_in_process(const std::filesystem::path& path) {
   s.status = f.attribute_string("/", "status");
   s.failure_reason = f.attribute_string("/provenance", "failure_reason");
   s.metrics = read_metrics(f);
+  s.warnings = read_warnings(f);
   s.upstream = read_upstream(f);
   return s;
 }
@@ -311,6 +375,9 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
     read_mlp_sections(f, r);
   }
   r.metrics = read_metrics(f);
+  r.metric_units = read_metric_units(f);
+  if (r.metric_units.empty()) r.metric_units = training_metric_units(r);  // older files
+  r.warnings = read_warnings(f);
   r.upstream = read_upstream(f);
   return r;
 }
@@ -351,15 +418,15 @@ void print_mlp_model(const RunRecord& r, std::ostream& out) {
 
 }  // namespace
 
-void print_result(const RunRecord& r, std::ostream& out) {
+void print_result(const RunRecord& r, std::ostream& out, const ShowOptions& options) {
   if (r.kind != "train") {
-    print_job_result(r, out);
+    print_job_result(r, out, options);
     return;
   }
   const Provenance& p = r.provenance;
   out << "experiment   " << r.experiment << "\n"
-      << "status       " << p.status << (p.failure_reason.empty() ? "" : ": " + p.failure_reason)
-      << "\n"
+      << "status       " << status_text(p.status, r.warnings)
+      << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n"
       << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
       << "run          " << p.start_utc << " -> " << p.end_utc << " ("
       << format_metric(p.wall_seconds) << " s) on " << p.host << "\n"
@@ -381,21 +448,14 @@ void print_result(const RunRecord& r, std::ostream& out) {
   } else {
     print_mlp_model(r, out);
   }
-  std::size_t width = 14;
   bool normalised = false;
-  for (const auto& [name, value] : r.metrics) {
-    width = std::max(width, name.size() + 2);
+  for (const auto& [name, value] : r.metrics)
     normalised = normalised || name.starts_with("normalised_");
-  }
-  out << "metrics      ("
-      << (r.narx ? "validation part, closed loop; units: the metric's own (sequence_metrics.hpp)"
-                 : "test split, " + join(r.target_units, ", "))
-      << (normalised ? "; normalised_*: the network's scaled units" : "") << ")\n";
-  for (const auto& [name, value] : r.metrics) {
-    out << "  " << std::left << std::setw(static_cast<int>(width)) << name << format_metric(value)
-        << "\n";
-  }
-  print_result_config(r.resolved_yaml, out);
+  print_metrics(r,
+                std::string(r.narx ? "validation part, closed loop" : "test split") +
+                    (normalised ? "; scaled: the network's scaled target units" : ""),
+                out);
+  print_result_config(r.resolved_yaml, out, options);
 }
 
 }  // namespace cnclab

@@ -29,22 +29,45 @@ struct ResultStatus {
   std::string status;          // "complete" | "failed"
   std::string failure_reason;  // failed only
   std::map<std::string, double> metrics;
+  std::vector<std::string> warnings;  // complete only (run_warnings.hpp)
   std::vector<UpstreamRef> upstream;  // the upstream results it was made from
 };
 ResultStatus read_result_status(const std::filesystem::path& path);
 
 // The parts every result has, shared with job results (job_result.hpp):
 // root attributes format, kind (jobs only), experiment, config_hash, status,
-// then /config and /provenance (write_result_header); /metrics (one
-// attribute each, plus `units`); /upstream; and `show`'s config block.
+// warnings (when any), then /config and /provenance (write_result_header);
+// /metrics (one number attribute per metric, nothing else) and /metrics/units
+// (one text attribute per metric, its unit); /upstream; and `show`'s config
+// block.
 class H5File;
 void write_result_header(H5File& file, const RunRecord& record);
-void print_result_config(const std::string& resolved_yaml, std::ostream& out);
+void write_metrics(H5File& file, const std::map<std::string, double>& metrics,
+                   const std::map<std::string, std::string>& units);
+// /metrics/units; empty for files written before it existed.
+std::map<std::string, std::string> read_metric_units(const H5File& file);
+// The units of a training record's metrics: mlp, metric_unit (nn/metrics.hpp)
+// over its target units; narx, the units its study registered
+// (sequence_metrics.hpp).
+std::map<std::string, std::string> training_metric_units(const RunRecord& record);
+// What `cnclab show` prints of a result.
+struct ShowOptions {
+  bool full_config = false;  // every array of the config (else abbreviate_config)
+};
+// The "config" block: the resolved YAML indented, large arrays abbreviated
+// unless options.full_config (core/config_abbreviate.hpp).
+void print_result_config(const std::string& resolved_yaml, std::ostream& out,
+                         const ShowOptions& options = {});
+// "metrics      (note)" then one line per metric: name, value, unit
+// (record.metric_units; "1" shown as "1 (dimensionless)").
+void print_metrics(const RunRecord& record, const std::string& note, std::ostream& out);
 void write_result_upstream(H5File& file, const std::vector<UpstreamRef>& upstream);
+// Every /metrics attribute but a `units` text (files before /metrics/units).
 std::map<std::string, double> read_metrics(const H5File& file);
 std::vector<UpstreamRef> read_upstream(const H5File& file);
+std::vector<std::string> read_warnings(const H5File& file);  // none when absent (older files)
 
 // Human-readable summary for `cnclab show` (job results: print_job_result).
-void print_result(const RunRecord& record, std::ostream& out);
+void print_result(const RunRecord& record, std::ostream& out, const ShowOptions& options = {});
 
 }  // namespace cnclab

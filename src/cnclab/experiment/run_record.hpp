@@ -81,6 +81,13 @@ struct RunRecord {
   Eigen::MatrixXd test_predictions;  // physical units, one sample per column
   Eigen::MatrixXd test_targets;
   std::map<std::string, double> metrics;
+  // Each metric's unit ("µm²", "1"; "" unknown), stored apart from the values
+  // (/metrics/units). Training records: training_metric_units (result_file.hpp)
+  // when written; jobs: what the job sets.
+  std::map<std::string, std::string> metric_units;
+  // Complete results that are not useful ones ("constant predictions";
+  // run_warnings.hpp); root attribute `warnings`.
+  std::vector<std::string> warnings;
   std::vector<UpstreamRef> upstream;  // empty without needs / init_from
 
   // Job results only.

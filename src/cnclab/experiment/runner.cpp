@@ -12,6 +12,7 @@
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/narx_runner.hpp"
 #include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/run_warnings.hpp"
 #include "cnclab/experiment/training.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/provenance.hpp"
@@ -207,6 +208,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   rec.provenance.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   rec.provenance.status = ok ? "complete" : "failed";
+  if (ok) rec.warnings = prediction_warnings(rec);
   rec.provenance.failure_reason = ok ? "" : rec.training.message;
 
   RunOutcome outcome;
@@ -216,6 +218,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   outcome.ok = ok;
   outcome.message = rec.training.message;
   outcome.metrics = rec.metrics;
+  outcome.warnings = rec.warnings;
   return outcome;
 }
 

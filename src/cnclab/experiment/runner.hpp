@@ -31,6 +31,7 @@ struct RunOutcome {
   bool ok = false;      // false: training diverged (result written with status "failed")
   std::string message;  // termination message
   std::map<std::string, double> metrics;
+  std::vector<std::string> warnings;  // a complete result that is not a useful one
 };
 
 // Runs one experiment. Bad configuration or I/O problems throw; a run whose

@@ -30,6 +30,13 @@ std::vector<std::string> sequence_metric_names() {
   return names;
 }
 
+std::string sequence_metric_unit(const std::string& name) {
+  for (const auto& g : sequence_metric_groups()) {
+    if (const auto it = g.units.find(name); it != g.units.end()) return it->second;
+  }
+  return "";
+}
+
 std::map<std::string, double> sequence_metrics(const SequencePrediction& prediction,
                                                const std::vector<std::string>& wanted) {
   std::map<std::string, double> out;

@@ -34,12 +34,15 @@ struct SequenceMetricGroup {
   std::vector<std::string> metrics;  // the names it computes
   // Every name of `metrics` (NaN where it does not apply).
   std::function<std::map<std::string, double>(const SequencePrediction&)> compute;
+  std::map<std::string, std::string> units;  // per metric ("µm", "1"); absent: unknown
 };
 
 // std::logic_error when a name is registered twice.
 void register_sequence_metrics(SequenceMetricGroup group);
 // Every registered name, in registration order.
 std::vector<std::string> sequence_metric_names();
+// The unit a group registered for `name`; "" when none did.
+std::string sequence_metric_unit(const std::string& name);
 // The metrics `wanted` (registered names) of one prediction.
 std::map<std::string, double> sequence_metrics(const SequencePrediction& prediction,
                                                const std::vector<std::string>& wanted);

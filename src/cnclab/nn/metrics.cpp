@@ -43,6 +43,21 @@ const std::vector<std::string>& known_metrics() {
   return names;
 }
 
+std::string metric_unit(const std::string& name, const std::vector<std::string>& target_units) {
+  std::vector<std::string> units;
+  for (const auto& u : target_units) {
+    if (!contains(units, u)) units.push_back(u);
+  }
+  std::string u;
+  for (const auto& x : units) u += (u.empty() ? "" : ", ") + x;
+  if (units.size() > 1) u = "(" + u + ")";
+  if (name == "mse") return u == "1" || u.empty() ? u : u + "²";
+  if (name == "rmse" || name == "mae" || name == "max_abs_error") return u;
+  if (name == "r2") return "1";
+  if (contains(normalised_metrics(), name)) return "scaled²";
+  return "";
+}
+
 double mean_squared_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   check_shapes(a, b);
   if (a.size() == 0) return NAN;

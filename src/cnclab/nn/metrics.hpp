@@ -47,6 +47,16 @@ std::map<std::string, double> regression_metrics(const Eigen::MatrixXd& predicti
                                                  const Eigen::MatrixXd& targets,
                                                  const std::vector<std::string>& names);
 
+// The unit of a metric of known_metrics() for targets in `target_units`
+// (one per output; the metrics pool all outputs). With u the targets' unit
+// ("µm"; several different ones: "(mm, rad)"):
+//   mse                          u²   (a lone "1" stays "1")
+//   rmse, mae, max_abs_error     u
+//   r2                           1    (dimensionless)
+//   normalised_mse, normalised_validation_mse   "scaled²" (the network's scaled target units)
+// "" for another name.
+std::string metric_unit(const std::string& name, const std::vector<std::string>& target_units);
+
 // Summary of a sample of non-negative errors (tool-tip distances, ...).
 struct ErrorSummary {
   std::size_t count = 0;

@@ -11,6 +11,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/run_warnings.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/report/text_table.hpp"
@@ -131,6 +132,7 @@ void print_json(const std::vector<ComparedRun>& runs, const Comparison& c, std::
         << ", \"file\": " << json_string(runs[i].file.string())
         << ", \"experiment\": " << json_string(r.experiment)
         << ", \"status\": " << json_string(r.provenance.status)
+        << ", \"warnings\": " << json_string(join_warnings(r.warnings))
         << ", \"config_hash\": " << json_string(r.config_hash) << "}"
         << (i + 1 < runs.size() ? "," : "") << "\n";
   }
@@ -185,7 +187,8 @@ TextTable display_table(const std::vector<ComparedRun>& runs, const Comparison& 
   t.header = {""};
   for (const auto& l : c.labels) t.header.push_back(l);
   std::vector<std::string> status = {"status"};
-  for (const auto& r : runs) status.push_back(r.record.provenance.status);
+  for (const auto& r : runs)
+    status.push_back(status_text(r.record.provenance.status, r.record.warnings));
   t.rows.push_back(std::move(status));
   for (const auto& [key, v] : c.config) {
     std::vector<std::string> row = {key};

@@ -17,6 +17,25 @@ std::string mean_std_text(const PointStats& p, const std::string& metric) {
   return format_metric(mean) + (std::isnan(sd) ? "" : " ± " + format_metric(sd));
 }
 
+// "2/2", or "2/2, 1 warning" when complete trials of the point carry warnings
+// (listed below the table).
+std::string ok_runs_text(const PointStats& p, const std::vector<TrialOutcome>& outcomes) {
+  std::size_t warned = 0;
+  for (std::size_t i : p.trials) warned += outcomes[i].warnings.empty() ? 0 : 1;
+  std::string s = std::to_string(p.complete) + "/" + std::to_string(p.trials.size());
+  if (warned > 0) s += ", " + std::to_string(warned) + (warned == 1 ? " warning" : " warnings");
+  return s;
+}
+
+// "lr=0.05 momentum=0.5": a trial's swept values.
+std::string values_text(const SweepPlan& plan, std::size_t trial) {
+  std::string values;
+  for (std::size_t k = 0; k < plan.keys.size(); ++k) {
+    values += (k ? " " : "") + plan.keys[k] + "=" + plan.trials[trial].values[k];
+  }
+  return values;
+}
+
 }  // namespace
 
 void print_summary(std::ostream& out, const SweepPlan& plan,
@@ -36,7 +55,7 @@ void print_summary(std::ostream& out, const SweepPlan& plan,
     std::vector<std::string> row = {std::to_string(r + 1)};
     row.insert(row.end(), p.values.begin(), p.values.end());
     row.push_back(mean_std_text(p, objective));
-    row.push_back(std::to_string(p.complete) + "/" + std::to_string(p.trials.size()));
+    row.push_back(ok_runs_text(p, outcomes));
     for (const auto& m : plan.metrics) {
       if (m != objective) row.push_back(mean_std_text(p, m));
     }
@@ -51,19 +70,23 @@ void print_summary(std::ostream& out, const SweepPlan& plan,
   for (std::size_t i = 0; i < plan.trials.size(); ++i) {
     const auto st = outcomes[i].status;
     if (st == TrialOutcome::Status::failed || st == TrialOutcome::Status::error) {
-      std::string values;
-      for (std::size_t k = 0; k < plan.keys.size(); ++k) {
-        values += (k ? " " : "") + plan.keys[k] + "=" + plan.trials[i].values[k];
-      }
-      out << "FAILED trial " << plan.trials[i].id << " (" << values << ", repeat "
+      out << "FAILED trial " << plan.trials[i].id << " (" << values_text(plan, i) << ", repeat "
           << plan.trials[i].repeat << "): " << outcomes[i].reason << "\n";
+    }
+  }
+  for (std::size_t i = 0; i < plan.trials.size(); ++i) {
+    for (const auto& w : outcomes[i].warnings) {
+      out << "WARNING trial " << plan.trials[i].id << " (" << values_text(plan, i) << ", repeat "
+          << plan.trials[i].repeat << "): " << w << "\n";
     }
   }
   if (s.best_trial >= 0) {
     const auto i = static_cast<std::size_t>(s.best_trial);
     out << "best trial: " << (dir / outcomes[i].result_file).string() << "  " << objective << " "
         << format_metric(metric_or_nan(outcomes[i].metrics, objective)) << " (" << kBestTrialRule
-        << ", " << s.points.front().complete << " complete)\n";
+        << ", " << s.points.front().complete << " complete)";
+    for (const auto& w : outcomes[i].warnings) out << "; warning: " << w;
+    out << "\n";
   }
 }
 

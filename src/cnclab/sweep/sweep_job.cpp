@@ -66,6 +66,7 @@ RunRecord selection_record(const SweepJob& job, const SweepJobState& s, const fs
   rec.metrics["sweep.complete"] = static_cast<double>(s.summary.complete);
   rec.metrics["sweep.failed"] = static_cast<double>(s.summary.failed + s.summary.errors);
   rec.metrics["sweep.points"] = static_cast<double>(s.summary.points.size());
+  for (const auto& [name, value] : rec.metrics) rec.metric_units[name] = "1";  // counts
   rec.facts["objective"] =
       s.plan.objective.metric + " (" + (s.plan.objective.maximize ? "max" : "min") + ")";
   rec.outputs.push_back({"summary", beside(s.dir / "summary.h5")});
@@ -79,10 +80,15 @@ RunRecord selection_record(const SweepJob& job, const SweepJobState& s, const fs
   const fs::path trial = s.selected_result();
   rec.facts["selected_trial"] = t.id;
   rec.facts["selected_point"] = point_text(s.plan.keys, t.values);
-  for (const auto& [name, v] : s.outcomes[*s.selected].metrics) rec.metrics[name] = v;
+  const RunRecord selected = read_result(trial);
+  for (const auto& [name, v] : s.outcomes[*s.selected].metrics) {
+    rec.metrics[name] = v;
+    rec.metric_units[name] =
+        selected.metric_units.contains(name) ? selected.metric_units.at(name) : "";
+  }
+  rec.warnings = selected.warnings;  // the selection is as degenerate as its trial
   rec.outputs.push_back({"selected_trial", beside(trial)});
-  rec.upstream.push_back(
-      {job.experiment.string(), trial.string(), result_identity(read_result(trial))});
+  rec.upstream.push_back({job.experiment.string(), trial.string(), result_identity(selected)});
   return rec;
 }
 

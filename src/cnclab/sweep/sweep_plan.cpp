@@ -227,10 +227,11 @@ void store_plan(const fs::path& dir, const SweepPlan& plan) {
   out.commit();
 }
 
-SweepPlan load_plan(const fs::path& dir) {
-  const fs::path path = dir / "sweep.yaml";
+namespace {
+
+// The plan in a sweep.yaml document (load_plan, parse_plan).
+SweepPlan plan_from(const ConfigDocument& doc, const std::string& origin) {
   try {
-    ConfigDocument doc = ConfigDocument::load(path);
     const ConfigReader r = doc.root();
     if (r.get<std::string>("format", "") != kPlanFormat) {
       r.fail("format", std::string("not a sweep plan (expected ") + kPlanFormat + ")");
@@ -264,7 +265,30 @@ SweepPlan load_plan(const fs::path& dir) {
   } catch (const ConfigError& e) {
     throw IoError(std::string("sweep plan unreadable: ") + e.what());
   } catch (const YAML::Exception& e) {
+    throw IoError(origin + ": sweep plan unreadable: " + e.msg);
+  }
+}
+
+}  // namespace
+
+SweepPlan load_plan(const fs::path& dir) {
+  const fs::path path = dir / "sweep.yaml";
+  try {
+    return plan_from(ConfigDocument::load(path), path.string());
+  } catch (const ConfigError& e) {
+    throw IoError(std::string("sweep plan unreadable: ") + e.what());
+  } catch (const YAML::Exception& e) {
     throw IoError(path.string() + ": sweep plan unreadable: " + e.msg);
+  }
+}
+
+SweepPlan parse_plan(const std::string& yaml_text, const std::string& origin) {
+  try {
+    return plan_from(ConfigDocument::parse(yaml_text, origin), origin);
+  } catch (const ConfigError& e) {
+    throw IoError(std::string("sweep plan unreadable: ") + e.what());
+  } catch (const YAML::Exception& e) {
+    throw IoError(origin + ": sweep plan unreadable: " + e.msg);
   }
 }
 

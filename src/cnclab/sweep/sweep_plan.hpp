@@ -72,6 +72,9 @@ std::pair<std::size_t, std::size_t> parse_shard(const std::string& text);
 void store_plan(const std::filesystem::path& dir, const SweepPlan& plan);
 // Reads dir/sweep.yaml; IoError / ConfigError naming the file.
 SweepPlan load_plan(const std::filesystem::path& dir);
+// The same from the text of a sweep.yaml (summary.h5's /plan); `origin` names
+// it in errors (IoError).
+SweepPlan parse_plan(const std::string& yaml_text, const std::string& origin);
 
 std::filesystem::path trial_result_path(const std::filesystem::path& dir, const std::string& id);
 std::filesystem::path trial_error_path(const std::filesystem::path& dir, const std::string& id);

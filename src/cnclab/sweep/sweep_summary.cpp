@@ -8,9 +8,11 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/result_file.hpp"
+#include "cnclab/experiment/run_warnings.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
+#include "cnclab/io/isolated_read.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/sweep/trial_pool.hpp"
 
@@ -18,7 +20,6 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr const char* kSummaryFormat = "cnclab-sweep-summary";
 constexpr int kSummaryVersion = 1;
 const double kNaN = std::nan("");
 
@@ -128,6 +129,7 @@ TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) 
       if (r.status == "complete") {
         o.status = TrialOutcome::Status::complete;
         o.metrics = std::move(r.metrics);
+        o.warnings = std::move(r.warnings);
       } else {
         o.status = TrialOutcome::Status::failed;
         o.reason = r.failure_reason;
@@ -235,7 +237,7 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
     }
     f.write_string("/plan", plan.to_yaml());
 
-    std::vector<std::string> id, status, reason, result, seed;
+    std::vector<std::string> id, status, reason, result, seed, warnings;
     std::vector<std::int64_t> point, repeat;
     for (std::size_t i = 0; i < plan.trials.size(); ++i) {
       const PlannedTrial& t = plan.trials[i];
@@ -243,6 +245,7 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
       status.push_back(to_string(outcomes[i].status));
       reason.push_back(outcomes[i].reason);
       result.push_back(outcomes[i].result_file);
+      warnings.push_back(join_warnings(outcomes[i].warnings));
       seed.push_back(std::to_string(t.seed));
       point.push_back(static_cast<std::int64_t>(t.point));
       repeat.push_back(static_cast<std::int64_t>(t.repeat));
@@ -251,6 +254,7 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
     f.write_strings("/trials/status", status);
     f.write_strings("/trials/reason", reason);
     f.write_strings("/trials/result_file", result);
+    f.write_strings("/trials/warnings", warnings);
     f.write_strings("/trials/seed", seed);
     f.write_int64s("/trials/point", point);
     f.write_int64s("/trials/repeat", repeat);
@@ -289,6 +293,75 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
   } catch (const IoError& e) {
     throw IoError(file.string() + ": sweep summary not written: " + std::string(e.what()));
   }
+}
+
+namespace {
+
+TrialOutcome::Status parse_status(const std::string& text, const fs::path& file) {
+  for (const auto s : {TrialOutcome::Status::complete, TrialOutcome::Status::failed,
+                       TrialOutcome::Status::error, TrialOutcome::Status::missing}) {
+    if (to_string(s) == text) return s;
+  }
+  throw IoError(file.string() + ": /trials/status: unknown status '" + text + "'");
+}
+
+StoredSummary read_summary_in_process(const fs::path& file) {
+  const H5File f = H5File::open_read(file);
+  require_format(f, kSummaryFormat, kSummaryVersion);
+  StoredSummary s;
+  s.plan = parse_plan(f.read_string("/plan"), file.string() + ":/plan");
+  const std::size_t n = s.plan.trials.size();
+  const auto ids = f.read_strings("/trials/id");
+  const auto status = f.read_strings("/trials/status");
+  const auto reason = f.read_strings("/trials/reason");
+  const auto result = f.read_strings("/trials/result_file");
+  // Summaries written before warnings existed have none.
+  const auto warnings = f.exists("/trials/warnings") ? f.read_strings("/trials/warnings")
+                                                     : std::vector<std::string>(n);
+  for (const auto* column : {&ids, &status, &reason, &result, &warnings}) {
+    if (column->size() != n) {
+      throw IoError(file.string() + ": /trials: " + std::to_string(column->size()) +
+                    " rows for the plan's " + std::to_string(n) + " trials");
+    }
+  }
+  std::map<std::string, std::vector<double>> metrics;
+  for (const auto& m : s.plan.metrics) {
+    metrics[m] = f.read_vector("/trials/metrics/" + m);
+    if (metrics[m].size() != n) throw IoError(file.string() + ": /trials/metrics/" + m + ": size");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (ids[i] != s.plan.trials[i].id) {
+      throw IoError(file.string() + ": /trials/id: trial " + std::to_string(i) + " is " + ids[i] +
+                    ", the plan says " + s.plan.trials[i].id);
+    }
+    TrialOutcome o;
+    o.status = parse_status(status[i], file);
+    o.reason = reason[i];
+    o.result_file = result[i];
+    if (o.status == TrialOutcome::Status::complete) {
+      for (const auto& [m, v] : metrics) o.metrics[m] = v[i];
+      o.warnings = split_warnings(warnings[i]);
+    }
+    s.outcomes.push_back(std::move(o));
+  }
+  if (f.has_attribute("/", "best_trial")) s.best_trial = f.attribute_string("/", "best_trial");
+  return s;
+}
+
+}  // namespace
+
+bool is_sweep_summary(const fs::path& file) {
+  const auto read = [&] {
+    const H5File f = H5File::open_read(file);
+    return f.has_attribute("/", "format") && f.attribute_string("/", "format") == kSummaryFormat;
+  };
+  probe_in_child(file, [&] { read(); });
+  return read();
+}
+
+StoredSummary read_summary(const fs::path& file) {
+  probe_in_child(file, [&] { read_summary_in_process(file); });
+  return read_summary_in_process(file);
 }
 
 }  // namespace cnclab

@@ -12,6 +12,8 @@
 //                      (written last)
 //   /plan              the sweep plan (sweep.yaml text)
 //   /trials/{id, status, reason, result_file, seed}   strings, one per trial (plan order)
+//   /trials/warnings           strings, a complete trial's warnings ("; "-separated, "" none;
+//                              absent in summaries written before warnings existed)
 //   /trials/{point, repeat}                           int64
 //   /trials/parameters/<key>   float64 when every value is a number, else strings (YAML)
 //   /trials/metrics/<metric>   float64, NaN where the trial has no metrics
@@ -40,8 +42,9 @@ struct TrialOutcome {
   Status status = Status::missing;
   std::string reason;                     // failed/error: why; missing: unreadable result
   std::map<std::string, double> metrics;  // complete only
-  std::string result_file;                // relative to the sweep folder; "" if none
-  std::vector<UpstreamRef> upstream;      // upstream results the trial was made from
+  std::vector<std::string> warnings;  // complete only ("constant predictions", run_warnings.hpp)
+  std::string result_file;            // relative to the sweep folder; "" if none
+  std::vector<UpstreamRef> upstream;  // upstream results the trial was made from
 
   // Complete or failed: resume skips it (failed ones run again with
   // --retry-failed).
@@ -84,5 +87,22 @@ SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& o
 // Written atomically (layout above).
 void write_summary(const std::filesystem::path& file, const SweepPlan& plan,
                    const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary);
+
+// What a summary.h5 records, read back without touching the sweep folder:
+// the plan and each trial's outcome as the summary saw it (status, reason,
+// result file, warnings, and for complete trials the plan's metrics;
+// upstream is not stored). summarize(plan, outcomes) gives its ranking again.
+struct StoredSummary {
+  SweepPlan plan;
+  std::vector<TrialOutcome> outcomes;
+  std::string best_trial;  // the recorded best trial's id ("" if none)
+};
+inline constexpr const char* kSummaryFormat = "cnclab-sweep-summary";
+// IoError naming the file when it is not a complete summary or its trials do
+// not match its plan.
+StoredSummary read_summary(const std::filesystem::path& file);
+// True for an HDF5 file whose root `format` is kSummaryFormat (IoError when
+// it is not a readable HDF5 file).
+bool is_sweep_summary(const std::filesystem::path& file);
 
 }  // namespace cnclab

@@ -144,7 +144,10 @@ std::map<std::string, double> compute(const SequencePrediction& p) {
 }  // namespace
 
 void register_contour_error_metrics() {
-  register_sequence_metrics({"contour_error (seed 002)", metric_names(), compute});
+  // Every metric is a distance in µm but `stable`, a 0/1 flag.
+  std::map<std::string, std::string> units;
+  for (const auto& name : metric_names()) units[name] = name == "stable" ? "1" : "µm";
+  register_sequence_metrics({"contour_error (seed 002)", metric_names(), compute, units});
 }
 
 }  // namespace cnclab

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <string_view>
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
@@ -292,9 +293,14 @@ fs::path write_step_error_timing(const StepErrorTimingJob& job, const StepErrorT
   rec.provenance.end_utc = utc_now_iso8601();
   rec.provenance.wall_seconds = r.wall_seconds;
   for (const auto& s : r.surfaces) {
-    for (const auto& [name, field] : kSeconds) rec.metrics[s.surface + "." + name] = s.*field;
+    for (const auto& [name, field] : kSeconds) {
+      const std::string key = s.surface + "." + name;
+      rec.metrics[key] = s.*field;
+      rec.metric_units[key] = std::string_view(name).ends_with("_um") ? "µm" : "s";
+    }
     rec.metrics[s.surface + ".test_samples"] = static_cast<double>(s.test_samples);
     rec.metrics[s.surface + ".lines"] = static_cast<double>(s.lines);
+    rec.metric_units[s.surface + ".test_samples"] = rec.metric_units[s.surface + ".lines"] = "1";
     // In surface order (kSurfaces); read_step_error_timing relies on it.
     rec.upstream.push_back({s.experiment_file, s.result_file, s.identity});
     rec.facts[s.surface + ".experiment"] = s.experiment;
