@@ -7,6 +7,7 @@
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/resources.hpp"
 #include "cnclab/core/units.hpp"
+#include "cnclab/data/named_config_file.hpp"
 #include "cnclab/motion/contour_error.hpp"
 #include "cnclab/motion/interpolator.hpp"
 #include "cnclab/motion/smoothing_spline.hpp"
@@ -250,15 +251,7 @@ MachineOptions read_machine_option(const ConfigReader& r) {
   if (!r.has("machine")) return MachineOptions{};
   const YAML::Node node = r.raw("machine");
   if (node.IsMap()) return read_machine(r.section("machine"));
-  if (!node.IsScalar()) r.fail("machine", "expected a file name or a map");
-  const SourceLocation where = r.location("machine");
-  std::filesystem::path file(node.Scalar());
-  if (where.line > 0) {
-    const ConfigLookup lookup =
-        lookup_config_path(where.file, node.Scalar(), ConfigSearch::from_environment());
-    if (!lookup.found) r.fail("machine", lookup.not_found_message());
-    file = *lookup.found;
-  }
+  const std::filesystem::path file = named_config_file(r, "machine");
   try {
     return load_machine(file);
   } catch (const ConfigError& e) {

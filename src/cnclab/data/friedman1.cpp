@@ -6,6 +6,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/resources.hpp"
+#include "cnclab/data/declared_generator.hpp"
 
 namespace cnclab {
 
@@ -72,10 +73,7 @@ std::string Friedman1Generator::options_yaml() const {
 }
 
 std::shared_ptr<const DatasetGenerator> read_friedman1(const ConfigReader& r) {
-  Friedman1Options f;
-  friedman1_fields().read(r, f);
-  r.validate([&] { f.validate(); });
-  return std::make_shared<Friedman1Generator>(f);
+  return read_declared_generator<Friedman1Generator>(r, friedman1_fields());
 }
 
 }  // namespace cnclab

@@ -9,6 +9,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/resources.hpp"
+#include "cnclab/data/declared_generator.hpp"
 #include "cnclab/kinematics/tttrr_config.hpp"
 
 namespace cnclab {
@@ -185,10 +186,7 @@ std::string IkSamplesGenerator::options_yaml() const {
 }
 
 std::shared_ptr<const DatasetGenerator> read_ik_samples(const ConfigReader& r) {
-  IkSamplesOptions o;
-  ik_samples_fields().read(r, o);
-  r.validate([&] { o.validate(); });
-  return std::make_shared<IkSamplesGenerator>(o);
+  return read_declared_generator<IkSamplesGenerator>(r, ik_samples_fields());
 }
 
 }  // namespace cnclab

@@ -4,6 +4,8 @@
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/resources.hpp"
 #include "cnclab/core/units.hpp"
+#include "cnclab/data/declared_generator.hpp"
+#include "cnclab/data/named_config_file.hpp"
 #include "cnclab/geometry/surface_config.hpp"
 
 namespace cnclab {
@@ -88,17 +90,7 @@ NurbsSurface read_surface(const ConfigReader& r) {
   if (!r.has("surface")) r.fail("surface", "is required (a configs/surfaces/*.yaml path or a map)");
   const YAML::Node node = r.raw("surface");
   if (node.IsMap()) return read_nurbs_surface(r.section("surface"));
-  if (!node.IsScalar()) r.fail("surface", "expected a file name or a map");
-  // A command-line override has no file position: its path is relative to
-  // the working directory.
-  const SourceLocation where = r.location("surface");
-  std::filesystem::path file(node.Scalar());
-  if (where.line > 0) {
-    const ConfigLookup lookup =
-        lookup_config_path(where.file, node.Scalar(), ConfigSearch::from_environment());
-    if (!lookup.found) r.fail("surface", lookup.not_found_message());
-    file = *lookup.found;
-  }
+  const std::filesystem::path file = named_config_file(r, "surface");
   ConfigDocument doc;
   try {
     doc = ConfigDocument::load(file);
@@ -144,10 +136,7 @@ std::string StepErrorGenerator::options_yaml() const {
 }
 
 std::shared_ptr<const DatasetGenerator> read_step_error(const ConfigReader& r) {
-  StepErrorDatasetOptions o;
-  step_error_fields().read(r, o);
-  r.validate([&] { o.validate(); });
-  return std::make_shared<StepErrorGenerator>(std::move(o));
+  return read_declared_generator<StepErrorGenerator>(r, step_error_fields());
 }
 
 }  // namespace cnclab
