@@ -105,6 +105,18 @@ std::string stable_note() {
          "as in the paper); mean ± std are over the bounded runs, stable or not";
 }
 
+// `notes`, then the notes both study tables end with (what "stable" means,
+// the second try, each run that is not stable), then the files read.
+void print_training_notes(const NarxStudyRuns& r, std::vector<std::string> notes, TableFormat f,
+                          std::ostream& out) {
+  notes.push_back(stable_note());
+  notes.push_back(kRetryNote);
+  notes.push_back(second_try_note(r));
+  for (auto& n : unstable_notes(r)) notes.push_back(std::move(n));
+  print_table_notes(out, f, notes);
+  print_table_sources(out, f, r.sources);
+}
+
 std::string reference_text(const ConfigReader& root, const std::string& section,
                            const std::string& key) {
   const ConfigReader s = root.section(section).section(key);
@@ -157,13 +169,8 @@ void print_training_methods(const NarxStudyRuns& r, const ConfigReader& ref, Tab
   std::vector<std::string> notes = {
       "Paper, two_stage: " + reference_text(ref, "training_methods", "two_stage"),
       "Paper, closed_loop_only: " + reference_text(ref, "training_methods", "closed_loop_only"),
-      "Paper, open_loop_only: " + reference_text(ref, "training_methods", "open_loop_only"),
-      stable_note(),
-      kRetryNote,
-      second_try_note(r)};
-  for (auto& n : unstable_notes(r)) notes.push_back(std::move(n));
-  print_table_notes(out, f, notes);
-  print_table_sources(out, f, r.sources);
+      "Paper, open_loop_only: " + reference_text(ref, "training_methods", "open_loop_only")};
+  print_training_notes(r, std::move(notes), f, out);
 }
 
 void print_architecture(const NarxStudyRuns& r, const ConfigReader& ref, TableFormat f,
@@ -211,11 +218,8 @@ void print_architecture(const NarxStudyRuns& r, const ConfigReader& ref, TableFo
       "Paper: " + std::to_string(paper_h) + " tanh neurons, " + std::to_string(paper_d) +
           " input and feedback delays: " + reference_text(ref, "architecture", "claim"),
       "Training: " + (r.runs.empty() ? std::string("-") : r.runs.front().method) +
-          " (experiments/contour_error/architecture.yaml)",
-      stable_note(), kRetryNote, second_try_note(r)};
-  for (auto& n : unstable_notes(r)) notes.push_back(std::move(n));
-  print_table_notes(out, f, notes);
-  print_table_sources(out, f, r.sources);
+          " (experiments/contour_error/architecture.yaml)"};
+  print_training_notes(r, std::move(notes), f, out);
 }
 
 void print_estimates(const NarxStudyRuns& r, const ConfigReader& ref, TableFormat f,
