@@ -17,6 +17,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/fields.hpp"
 #include "cnclab/core/hash.hpp"
+#include "cnclab/data/following_error.hpp"
 #include "cnclab/data/friedman1.hpp"
 #include "cnclab/data/ik_samples.hpp"
 #include "cnclab/data/step_error.hpp"
@@ -118,6 +119,18 @@ TEST(FieldIdentity, StepErrorGeneratorOptions) {
   expect_every_key_in_identity(
       base, "dataset.options.", step_error_fields().info(),
       {{"dataset.options.surface", CNCLAB_SOURCE_DIR "/configs/surfaces/surface2.yaml"}});
+}
+
+TEST(FieldIdentity, FollowingErrorGeneratorOptions) {
+  expect_every_key_in_identity(
+      "name: t\nseed: 3\ndataset: {generator: following_error}\nmodel: {}\n"
+      "trainer: {type: sgdm}\n",
+      "dataset.options.", following_error_fields().info(),
+      // weight_min 1.5 would exceed weight_max 1; velocity 450 would outrun the
+      // planner's window overlap (stopping distance)
+      {{"dataset.options.path.weight_min", "0.5"}, {"dataset.options.limits.velocity", "200"}},
+      {{"dataset.options.machine",
+        "a file name or a map read by read_machine (motion/machine_config.hpp)"}});
 }
 
 TEST(FieldIdentity, IkSamplesGeneratorOptions) {

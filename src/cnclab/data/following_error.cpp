@@ -7,6 +7,7 @@
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/resources.hpp"
 #include "cnclab/core/units.hpp"
+#include "cnclab/data/declared_generator.hpp"
 #include "cnclab/data/named_config_file.hpp"
 #include "cnclab/motion/contour_error.hpp"
 #include "cnclab/motion/interpolator.hpp"
@@ -221,29 +222,6 @@ FollowingErrorGenerator::FollowingErrorGenerator(FollowingErrorOptions options)
   options_.validate();
 }
 
-std::string FollowingErrorGenerator::options_yaml() const {
-  const FollowingErrorOptions& o = options_;
-  const RandomNurbsPathOptions& p = o.path;
-  const AxisLimits& l = o.planner.limits.axes[0];
-  std::ostringstream out;
-  out << "path:\n  degree: " << p.degree << "\n  control_points: " << p.control_points
-      << "\n  x_min: " << shortest_double(p.x_min) << "\n  x_max: " << shortest_double(p.x_max)
-      << "\n  y_min: " << shortest_double(p.y_min) << "\n  y_max: " << shortest_double(p.y_max)
-      << "\n  step_min: " << shortest_double(p.step_min)
-      << "\n  step_max: " << shortest_double(p.step_max)
-      << "\n  max_turn: " << shortest_double(p.max_turn)
-      << "\n  weight_min: " << shortest_double(p.weight_min)
-      << "\n  weight_max: " << shortest_double(p.weight_max)
-      << "\n  min_curvature_radius: " << shortest_double(p.min_curvature_radius)
-      << "\nlimits:\n  velocity: " << shortest_double(l.velocity)
-      << "\n  acceleration: " << shortest_double(l.acceleration)
-      << "\n  jerk: " << shortest_double(l.jerk)
-      << "\ngrid_spacing: " << shortest_double(o.planner.grid_spacing) << "\nmachine:\n"
-      << machine_yaml(o.machine, "  ") << "runs: " << o.runs
-      << "\nsmoothing: " << shortest_double(o.smoothing) << "\nsamples: " << o.samples << "\n";
-  return out.str();
-}
-
 namespace {
 
 MachineOptions read_machine_option(const ConfigReader& r) {
@@ -261,37 +239,82 @@ MachineOptions read_machine_option(const ConfigReader& r) {
 
 }  // namespace
 
+const FieldList<FollowingErrorOptions>& following_error_fields() {
+  using O = FollowingErrorOptions;
+  using P = RandomNurbsPathOptions;
+  using L = AxisLimits;
+  using F = FeedratePlannerOptions;
+  static const auto path =
+      FieldList<P>()
+          .field("degree", &P::degree,
+                 "curve degree p (4: C''' continuous, so the jerk limit holds between nodes)",
+                 Rule::in(1, true, 15, true))
+          .field("control_points", &P::control_points, "control points, >= degree + 1",
+                 Rule::at_least(2))
+          .field("x_min", &P::x_min, "work area [mm]", Rule::finite_number())
+          .field("x_max", &P::x_max, "work area [mm], > x_min", Rule::finite_number())
+          .field("y_min", &P::y_min, "work area [mm]", Rule::finite_number())
+          .field("y_max", &P::y_max, "work area [mm], > y_min", Rule::finite_number())
+          .field("step_min", &P::step_min, "random-walk step between control points [mm]",
+                 Rule::positive())
+          .field("step_max", &P::step_max,
+                 "[mm], >= step_min and <= half the smaller side of the area", Rule::positive())
+          .field("max_turn", &P::max_turn, "largest heading change per step [deg]",
+                 Rule::in(0, true, 180, true))
+          .field("weight_min", &P::weight_min, "NURBS weights uniform in [min, max]",
+                 Rule::positive())
+          .field("weight_max", &P::weight_max, ">= weight_min; both 1: a B-spline",
+                 Rule::positive())
+          .field("min_curvature_radius", &P::min_curvature_radius,
+                 "smallest radius of curvature on the curve [mm] (seed 002 Eq. 5); 0: no check",
+                 Rule::non_negative());
+  static const auto limits =
+      FieldList<L>()
+          .field("velocity", &L::velocity, "max |axis velocity| [mm/s] (seed 002: 300)",
+                 Rule::positive())
+          .field("acceleration", &L::acceleration,
+                 "max |axis acceleration| [mm/s²] (seed 002: 2000)", Rule::positive())
+          .field("jerk", &L::jerk, "max |axis jerk| [mm/s³] (seed 002: 50000)", Rule::positive());
+  static const auto planner = FieldList<F>().field(
+      "grid_spacing", &F::grid_spacing, "planning grid along the path [mm]", Rule::positive());
+  static const auto fields = [] {
+    FieldInfo limits_info =
+        custom_info("limits", "per-axis limits, the same for x and y", FieldKind::section);
+    limits_info.children = limits.info();
+    return FieldList<O>()
+        .section("path", &O::path, path, "the random NURBS tool path")
+        .custom(
+            limits_info,
+            [](const ConfigReader& r, O& o) {
+              L l = o.planner.limits.axes[0];
+              limits.read(r.section("limits"), l);
+              r.section("limits").validate([&] { l.validate(); });
+              o.planner.limits.axes = {l, l};
+            },
+            [](const O& o) { return limits.to_node(o.planner.limits.axes[0]); })
+        .flatten(&O::planner, planner)
+        .custom(
+            custom_info("machine",
+                        "the simulated machine: a configs/machines/*.yaml path or a map "
+                        "(motion/machine_config.hpp); absent: biaxial_router's values"),
+            [](const ConfigReader& r, O& o) { o.machine = read_machine_option(r); },
+            [](const O& o) { return YAML::Load(machine_yaml(o.machine, "")); })
+        .field("runs", &O::runs, "simulated runs averaged (seed 002: 10)",
+               Rule::in(1, true, 1000, true))
+        .field("smoothing", &O::smoothing, "csaps p on the sample index (seed 002: 0.05)",
+               Rule::in(0, true, 1, true))
+        .field("samples", &O::samples,
+               "samples kept from the start (seed 002: over 170000); 0: the whole run");
+  }();
+  return fields;
+}
+
+std::string FollowingErrorGenerator::options_yaml() const {
+  return following_error_fields().yaml(options_);
+}
+
 std::shared_ptr<const DatasetGenerator> read_following_error(const ConfigReader& r) {
-  FollowingErrorOptions o;
-  const ConfigReader p = r.section("path");
-  RandomNurbsPathOptions& path = o.path;
-  path.degree = static_cast<int>(p.get<std::int64_t>("degree", path.degree));
-  path.control_points = p.get<std::size_t>("control_points", path.control_points);
-  path.x_min = p.get<double>("x_min", path.x_min);
-  path.x_max = p.get<double>("x_max", path.x_max);
-  path.y_min = p.get<double>("y_min", path.y_min);
-  path.y_max = p.get<double>("y_max", path.y_max);
-  path.step_min = p.get<double>("step_min", path.step_min);
-  path.step_max = p.get<double>("step_max", path.step_max);
-  path.max_turn = p.get<double>("max_turn", path.max_turn);
-  path.weight_min = p.get<double>("weight_min", path.weight_min);
-  path.weight_max = p.get<double>("weight_max", path.weight_max);
-  path.min_curvature_radius = p.get<double>("min_curvature_radius", path.min_curvature_radius);
-  p.validate([&] { path.validate(); });
-  const ConfigReader l = r.section("limits");
-  AxisLimits limits;
-  limits.velocity = l.get<double>("velocity", limits.velocity);
-  limits.acceleration = l.get<double>("acceleration", limits.acceleration);
-  limits.jerk = l.get<double>("jerk", limits.jerk);
-  l.validate([&] { limits.validate(); });
-  o.planner.limits.axes = {limits, limits};
-  o.planner.grid_spacing = r.get<double>("grid_spacing", o.planner.grid_spacing);
-  o.machine = read_machine_option(r);
-  o.runs = r.get<std::size_t>("runs", o.runs);
-  o.smoothing = r.get<double>("smoothing", o.smoothing);
-  o.samples = r.get<std::size_t>("samples", o.samples);
-  r.validate([&] { o.validate(); });
-  return std::make_shared<FollowingErrorGenerator>(std::move(o));
+  return read_declared_generator<FollowingErrorGenerator>(r, following_error_fields());
 }
 
 }  // namespace cnclab

@@ -30,6 +30,7 @@
 #include <string>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/core/fields.hpp"
 #include "cnclab/data/dataset.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/nurbs_path.hpp"
@@ -123,6 +124,10 @@ class FollowingErrorGenerator : public DatasetGenerator {
  private:
   FollowingErrorOptions options_;
 };
+
+// dataset.options of `following_error`: {path, limits, grid_spacing, machine, runs,
+// smoothing, samples}.
+const FieldList<FollowingErrorOptions>& following_error_fields();
 
 std::shared_ptr<const DatasetGenerator> read_following_error(const ConfigReader& options);
 

@@ -21,7 +21,7 @@ std::vector<GeneratorEntry> builtin_generators() {
       {"following_error",
        "axis following errors of a simulated biaxial machine on a random NURBS path: reference "
        "velocity -> following error per axis, 10 runs averaged, csaps-smoothed (seed 002)",
-       read_following_error},
+       read_following_error, [] { return following_error_fields().info(); }},
   };
 }
 
