@@ -160,6 +160,24 @@ for where, mutate in [
     if not errors(validator, bad):
         failures.append(f"{where} passes the schema")
 
+# The job kinds whose keys are declared (gcode, step_error_timing) reject
+# misspelt keys too.
+for path, where, mutate in [
+    ("experiments/trochoid/groove_table2.yaml", "gcode program",
+     lambda d: d["program"].__setitem__("feeed", 1)),
+    ("experiments/trochoid/groove_table2.yaml", "gcode entry mode spiral",
+     lambda d: d["entry"].__setitem__("mode", "spiral")),
+    ("experiments/step_error/table8_timing.yaml", "step_error_timing iterative",
+     lambda d: d["iterative"].__setitem__("max_pass", 3)),
+]:
+    job = resolved(path, "")
+    assert job is not None, path
+    check(validator, job, path)
+    bad = copy.deepcopy(job)
+    mutate(bad)
+    if not errors(validator, bad):
+        failures.append(f"{where} passes the schema")
+
 # --kind gives one kind's schema; an unknown kind is a usage error.
 check(schema_of("--kind", "train"), train_example, "train example against --kind train")
 if run("schema", "--kind", "trian").returncode != 2:

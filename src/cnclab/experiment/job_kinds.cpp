@@ -5,6 +5,7 @@
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/experiment/spec.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -49,6 +50,16 @@ std::string experiment_kind(const fs::path& file) {
     root.fail("kind", "unknown kind; known: " + known_kinds());
   }
   return kind;
+}
+
+std::vector<FieldInfo> job_file_fields(const std::string& kind) {
+  FieldInfo k = custom_info("kind", "this job's kind", FieldKind::string, Rule::one_of({kind}));
+  k.required = true;
+  std::vector<FieldInfo> fields = {k};
+  for (const auto& f : experiment_fields().info()) {
+    if (f.key == "name" || f.key == "description") fields.push_back(f);
+  }
+  return fields;
 }
 
 }  // namespace cnclab

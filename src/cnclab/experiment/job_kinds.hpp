@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "cnclab/core/field_info.hpp"
 #include "cnclab/experiment/command_options.hpp"
 
 namespace cnclab {
@@ -80,6 +81,10 @@ JobKind job_kind(std::string kind, std::string summary, Load load, Run run) {
 void register_job_kind(JobKind kind);
 // The registered kinds, in registration order.
 const std::vector<JobKind>& registered_job_kinds();
+
+// The keys a job file starts with, for its kind's schema: `kind` (this one,
+// required), `name` and `description` as a training experiment declares them.
+std::vector<FieldInfo> job_file_fields(const std::string& kind);
 
 // The `kind:` of an experiment file: "train" (absent key) or a job kind.
 // ConfigError for unreadable YAML or an unknown kind, listing the known ones.

@@ -1,8 +1,10 @@
 #include "cnclab/studies/five_axis/study.hpp"
 
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "cnclab/core/field_schema.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/report/tables.hpp"
 #include "cnclab/studies/five_axis/ik_tables.hpp"
@@ -29,8 +31,13 @@ JobKind gcode_kind() {
                      written.result.string(),
                      "== " + job.name + " ==\n" + written.outcome.report};
   };
-  return job_kind("gcode", "trochoidal groove tool path and ISO 6983 program (seed 004)",
-                  load_trochoid_job, run);
+  JobKind kind = job_kind("gcode", "trochoidal groove tool path and ISO 6983 program (seed 004)",
+                          load_trochoid_job, run);
+  kind.schema = [] {
+    return object_schema(trochoid_file_fields(),
+                         "kind gcode: a trochoidal groove and its G-code program");
+  };
+  return kind;
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/units.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/spec.hpp"
 #include "cnclab/io/atomic_file.hpp"
@@ -143,6 +144,14 @@ const FieldList<TrochoidJob>& trochoid_job_fields() {
           .section("program", &J::program, program_fields(), "the G-code program")
           .section("entry", &J::entry, entry_fields(), "how the cutter enters the stock")
           .section("report", &J::report, report_fields(), "the report and Table 3");
+  return fields;
+}
+
+std::vector<FieldInfo> trochoid_file_fields() {
+  std::vector<FieldInfo> fields = job_file_fields("gcode");
+  fields.push_back(custom_info("toolpath", "the tool path (default trochoid)", FieldKind::string,
+                               Rule::one_of({"trochoid"})));
+  for (auto& f : trochoid_job_fields().info()) fields.push_back(std::move(f));
   return fields;
 }
 

@@ -54,6 +54,9 @@ struct TrochoidJob {
 // The declared keys of a `kind: gcode` file below its kind, name,
 // description and toolpath: trochoid, program, entry, report.
 const FieldList<TrochoidJob>& trochoid_job_fields();
+// Every key of a gcode file, for its schema: kind, name, description,
+// toolpath, then the sections above.
+std::vector<FieldInfo> trochoid_file_fields();
 
 // Reads a `kind: gcode` file strictly (unknown keys are errors), applying
 // the profile (core/config.hpp), then `key=value` overrides, first.

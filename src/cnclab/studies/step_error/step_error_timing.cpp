@@ -14,6 +14,7 @@
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/units.hpp"
 #include "cnclab/data/step_error.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/spec.hpp"
@@ -212,6 +213,22 @@ const FieldList<StepErrorTimingOptions>& step_error_timing_fields() {
                  Rule::in(1, true, 1000, true))
           .section("iterative", &O::iterative, iterative,
                    "the iterative geometric method Table 8 compares against");
+  return fields;
+}
+
+std::vector<FieldInfo> step_error_timing_file_fields() {
+  std::vector<FieldInfo> fields = job_file_fields("step_error_timing");
+  FieldInfo experiments =
+      custom_info("experiments", "the timed experiment per surface (files, relative to this one)",
+                  FieldKind::section);
+  experiments.required = true;
+  for (const auto& surface : kSurfaces) {
+    FieldInfo f = custom_info(surface, "experiment file", FieldKind::string);
+    f.required = true;
+    experiments.children.push_back(f);
+  }
+  fields.push_back(experiments);
+  for (auto& f : step_error_timing_fields().info()) fields.push_back(std::move(f));
   return fields;
 }
 

@@ -53,6 +53,9 @@ struct StepErrorTimingOptions {
 // A timing file's keys below kind, name, description and experiments:
 // repeats and iterative.
 const FieldList<StepErrorTimingOptions>& step_error_timing_fields();
+// Every key of a timing file, for its schema: kind, name, description,
+// experiments, then the options above.
+std::vector<FieldInfo> step_error_timing_file_fields();
 
 struct StepErrorTimingJob {
   std::string name;  // file-name-safe; results/<name>/

@@ -1,5 +1,8 @@
 #include "cnclab/studies/step_error/study.hpp"
 
+#include <nlohmann/json.hpp>
+
+#include "cnclab/core/field_schema.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/report/tables.hpp"
 #include "cnclab/studies/step_error/step_error_tables.hpp"
@@ -24,9 +27,14 @@ JobKind step_error_timing_kind() {
                      written.string(),
                      ""};
   };
-  return job_kind("step_error_timing",
-                  "seed 000 Table 8: geometric vs exact vs network step-error time",
-                  load_step_error_timing_job, run);
+  JobKind kind = job_kind("step_error_timing",
+                          "seed 000 Table 8: geometric vs exact vs network step-error time",
+                          load_step_error_timing_job, run);
+  kind.schema = [] {
+    return object_schema(step_error_timing_file_fields(),
+                         "kind step_error_timing: seed 000 Table 8's timing");
+  };
+  return kind;
 }
 
 }  // namespace
