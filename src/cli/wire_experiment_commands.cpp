@@ -103,6 +103,9 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
                    "upstream results are ready (default: the number of cores this process "
                    "may use; 1 shows each run's progress)")
       ->check(count_validator());
+  reproduce->add_flag("--check", a->common.check,
+                      "Check each printed table's declared targets (configs/studies/*.yaml "
+                      "targets:); PASS/FAIL per target, exit 1 on any FAIL");
   reproduce->add_flag("--quick", a->quick,
                       "Same as --profile quick: fewer epochs and samples, same code paths "
                       "(about a minute per study; results/quick)");
@@ -111,7 +114,8 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
       "experiments/friedman\n"
       "Experiments run upstream first (needs:, init_from:); a result whose resolved config and "
       "upstream results are unchanged is reused. Each line says ran/reused and why.\n"
-      "  cnclab reproduce --quick experiments/step_error   # the quick profile");
+      "  cnclab reproduce --quick experiments/step_error   # the quick profile\n"
+      "  cnclab reproduce --check   # and check the studies' targets (exit 1 on a FAIL)");
   reproduce->callback([reproduce, a, &action] {
     if (a->quick) {
       if (!a->common.profile.empty() && a->common.profile != "quick") {

@@ -19,6 +19,9 @@ struct CommandOptions {
   // reproduce --jobs N: experiments trained at once, each in its own process
   // (0 = the cores this process may use).
   std::size_t jobs = 0;
+  // reproduce --check: check the declared targets of every table printed
+  // (report/targets.hpp); a FAIL makes the exit code 1.
+  bool check = false;
 };
 
 }  // namespace cnclab
