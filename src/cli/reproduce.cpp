@@ -3,6 +3,7 @@
 // whose upstream results are ready train in parallel, each in its own process
 // (trial_pool.hpp, like sweep trials): results are bit-identical to running
 // them one by one, since a run depends only on its resolved config.
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -357,8 +358,9 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
   TablesOptions tables;
   tables.results_dir = options.results_dir;
   tables.profile = options.profile;
-  print_available_tables(tables, out);
-  return exit_code;
+  tables.check = options.check;
+  const int tables_code = print_available_tables(tables, out);
+  return tables_code == 2 ? 2 : std::max(exit_code, tables_code);
 }
 
 }  // namespace cnclab

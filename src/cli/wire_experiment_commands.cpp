@@ -8,6 +8,7 @@
 #include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/report/compare.hpp"
+#include "cnclab/report/compare_groups.hpp"
 
 namespace cnclab {
 namespace {
@@ -118,6 +119,9 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
                    "upstream results are ready (default: the number of cores this process "
                    "may use; 1 shows each run's progress)")
       ->check(count_validator());
+  reproduce->add_flag("--check", a->common.check,
+                      "Check each printed table's declared targets (configs/studies/*.yaml "
+                      "targets:); PASS/FAIL per target, exit 1 on any FAIL");
   reproduce->add_flag("--quick", a->quick,
                       "Same as --profile quick: fewer epochs and samples, same code paths "
                       "(about a minute per study; results/quick)");
@@ -126,7 +130,8 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
       "experiments/friedman\n"
       "Experiments run upstream first (needs:, init_from:); a result whose resolved config and "
       "upstream results are unchanged is reused. Each line says ran/reused and why.\n"
-      "  cnclab reproduce --quick experiments/step_error   # the quick profile");
+      "  cnclab reproduce --quick experiments/step_error   # the quick profile\n"
+      "  cnclab reproduce --check   # and check the studies' targets (exit 1 on a FAIL)");
   reproduce->callback([reproduce, a, &action] {
     if (a->quick) {
       if (!a->common.profile.empty() && a->common.profile != "quick") {
@@ -142,6 +147,7 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
 struct CompareArgs {
   std::vector<std::string> runs;
   std::string format = "table";
+  GroupCompareOptions groups;  // --group-by, --alpha
 };
 
 void add_compare(CLI::App& app, CommandAction& action) {
@@ -150,11 +156,29 @@ void add_compare(CLI::App& app, CommandAction& action) {
       "compare", "Runs side by side: the config keys that differ and the metrics with deltas");
   compare->add_option("runs", a->runs, "Result files, run folders or sweep folders")->required();
   compare->add_option("--format", a->format, "table, md, csv or json")->capture_default_str();
+  compare->add_option("--group-by", a->groups.group_by,
+                      "Group the runs by this config key (trainer.type), or 'repeats' (configs "
+                      "equal apart from seed); each metric as mean with its confidence interval, "
+                      "each group against the first by Welch's t-test and a bootstrap interval");
+  auto* alpha = compare
+                    ->add_option("--alpha", a->groups.alpha,
+                                 "With --group-by: significance level; intervals at 1 - alpha")
+                    ->capture_default_str();
   compare->footer(
       "Examples:\n  cnclab compare results/friedman1_mlp/a.h5 results/friedman1_mlp/b.h5\n"
-      "  cnclab compare results/friedman1_mlp/sweep-1a2b3c4d --format md");
-  compare->callback(
-      [a, &action] { action = [a] { return compare_command(a->runs, a->format, std::cout); }; });
+      "  cnclab compare results/friedman1_mlp/sweep-1a2b3c4d --format md\n"
+      "  cnclab compare results/narx/sweep-1a2b3c4d --group-by trainer.type --alpha 0.01");
+  compare->callback([a, alpha, &action] {
+    if (alpha->count() > 0 && a->groups.group_by.empty()) {
+      throw CLI::ValidationError("--alpha needs --group-by (it is the level of the group tests)");
+    }
+    action = [a] {
+      if (!a->groups.group_by.empty()) {
+        return compare_groups_command(a->runs, a->format, a->groups, std::cout);
+      }
+      return compare_command(a->runs, a->format, std::cout);
+    };
+  });
 }
 
 }  // namespace

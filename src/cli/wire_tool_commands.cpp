@@ -101,11 +101,16 @@ void add_tables(CLI::App& app, CommandAction& action) {
       ->capture_default_str();
   tables->add_option("--format", a->format, "Output: text (aligned), md, csv or latex")
       ->capture_default_str();
+  tables->add_flag("--check", a->options.check,
+                   "After the tables, each declared target of the study's manifest "
+                   "(configs/studies/*.yaml targets:) with its measured value and PASS/FAIL; "
+                   "exit 1 on any FAIL");
   tables->add_option("--profile", a->options.profile,
                      "Tables of the results made with this profile (reproduce --quick: quick)");
   tables->footer(
       "Examples:\n  cnclab tables ik    # seed 004 Table 5 and the machine-space error\n"
-      "  cnclab tables step-error --format md   # seed 000 Tables 2-8 as Markdown");
+      "  cnclab tables step-error --format md   # seed 000 Tables 2-8 as Markdown\n"
+      "  cnclab tables step-error --check       # and its targets, PASS/FAIL (exit 1 on a FAIL)");
   tables->callback([tables, a, &action] {
     apply_profile_dir(*tables, "--results", a->options.profile, a->options.results_dir);
     action = [a] {

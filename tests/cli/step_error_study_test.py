@@ -1,6 +1,8 @@
 """End-to-end test of seed 000's study in its quick profile: `cnclab
 reproduce --quick experiments/step_error` into a temporary folder, then
-`cnclab tables step-error` in every format, then the figures.
+`cnclab tables step-error` in every format, then the figures, then
+`--check` against the declared targets (passing, and failing for a copy of
+the manifest with a target beyond the measured value).
 
 Checks structural facts against the paper and against independent
 computations (Python's csv module reads the CSV; h5py reads the results and
@@ -86,9 +88,11 @@ def main():
     tmp = tempfile.mkdtemp(prefix=f"cnclab_step_error_study_{os.getpid()}_")
     try:
         results = os.path.join(tmp, "results")
-        out = run([cnclab, "reproduce", "--quick", "--quiet", "experiments/step_error",
+        out = run([cnclab, "reproduce", "--quick", "--quiet", "--check", "experiments/step_error",
                    "--out", results, "--data-dir", os.path.join(tmp, "datasets")], source)
         check("step_error_table8_timing" in out, "reproduce ran the Table 8 timing job")
+        check(re.search(r"^targets: [1-9][0-9]* PASS, 0 FAIL", out, re.M) is not None,
+              "reproduce --check: the quick profile's declared targets pass")
         tables_results = quick_results(results)
         common = ["tables", "step-error", "--results", tables_results, "--profile", "quick"]
         texts = {f: run([cnclab] + common + ["--format", f], source)
@@ -101,6 +105,7 @@ def main():
               and texts["latex"].count("\\begin{tabular}") >= 10, "latex: balanced tabulars")
         check_csv(csv_tables(texts["csv"]))
         check_trivial_predictor(tables_results, source)
+        check_targets(cnclab, source, common, tmp)
         run(["bash", os.path.join(source, "scripts/figures/run"), tables_results], source)
         pngs = glob.glob(os.path.join(tables_results, "figures", "step_error", "*.png"))
         names = {os.path.basename(p).split("_")[0] for p in pngs}
@@ -194,6 +199,53 @@ def check_csv(tables):
             check(float(r[1]) > 0 and float(r[3]) > 0, f"Table 8 {r[0]}: positive times")
     norm = find(tables, "Beyond the paper: z-score normaliser")
     check(len(norm) == 5, "normaliser table: keep/refit x surfaces 2, 3")
+
+
+def run_code(args, cwd):
+    p = subprocess.run(args, cwd=cwd, capture_output=True, text=True)
+    return p.returncode, p.stdout, p.stderr
+
+
+def check_targets(cnclab, source, common, tmp):
+    """`tables step-error --check`: the declared targets pass on the quick
+    results (exit 0); a copy of the manifest with a target beyond the
+    measured value fails (exit 1); an unknown name is a config error naming
+    the file and key (exit 2)."""
+    code, out, err = run_code([cnclab] + common + ["--check"], source)
+    check(code == 0, f"tables --check on the quick results: exit {code}\n{out[-2000:]}{err}")
+    check("tuned.surface1.test_samples" in out and "PASS" in out, "--check prints PASS rows")
+    base = os.path.join(source, "configs", "studies")
+    with open(os.path.join(base, "step_error_tables.yaml")) as f:
+        manifest = yaml.safe_load(f)
+
+    def absolute(node):  # the copy lives elsewhere: experiment paths made absolute
+        if isinstance(node, dict):
+            return {k: absolute(v) for k, v in node.items()}
+        if isinstance(node, str) and node.endswith(".yaml"):
+            return os.path.normpath(os.path.join(base, node))
+        return node
+
+    manifest = absolute(manifest)
+    configs = os.path.join(tmp, "configs")
+    os.makedirs(os.path.join(configs, "studies"), exist_ok=True)
+    copy = os.path.join(configs, "studies", "step_error_tables.yaml")
+
+    def check_with(targets):
+        with open(copy, "w") as f:
+            yaml.safe_dump(dict(manifest, targets=targets), f)
+        return run_code([cnclab] + common + ["--check", "--configs", configs], source)
+
+    # 5,940 test samples measured: one more is beyond it.
+    code, out, err = check_with([{"name": "tuned.surface1.test_samples", "op": ">=",
+                                  "value": 5941, "profiles": {"quick": 5941}, "source": "test"}])
+    check(code == 1, f"a target beyond the measured value: exit {code} (want 1)")
+    check(re.search(r"tuned\.surface1\.test_samples.*5940.*FAIL", out) is not None,
+          f"the failing target is shown with its measured value\n{out[-1500:]}")
+    code, out, err = check_with([{"name": "tuned.surface1.test_sample", "op": "==",
+                                  "value": 1, "source": "test"}])
+    check(code == 2, f"an unknown target name: exit {code} (want 2)")
+    check(copy in err and "targets[0].name = tuned.surface1.test_sample" in err,
+          f"the config error names the manifest and key: {err}")
 
 
 def test_sample_rows(rows):

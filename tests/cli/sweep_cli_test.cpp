@@ -499,6 +499,26 @@ sweep:
   EXPECT_NE(r.out.find("8 trials (4 points x 2 repeats, random)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("rmse (min)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(" ± "), std::string::npos) << r.out;  // mean ± std over repeats
+  // `compare --group-by repeats`: the 4 points, 2 seeds each (issue 20 item 2).
+  const Result g = sh(dir.path(), kCnclab + " compare s --group-by repeats --format csv");
+  ASSERT_EQ(g.code, 0) << g.err << g.out;
+  EXPECT_EQ(g.out.substr(0, g.out.find('\n')),
+            "metric,group,n,mean,std,ci_low,ci_high,diff,welch_t,df,p_value,boot_low,boot_high,"
+            "significant");
+  const Result j = sh(dir.path(), kCnclab + " compare s --group-by repeats --format json");
+  ASSERT_EQ(j.code, 0) << j.err;
+  const auto count = [&](const std::string& word) {
+    std::size_t n = 0;
+    for (auto at = j.out.find(word); at != std::string::npos; at = j.out.find(word, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("\"label\":"), 4u) << j.out;                   // the 4 points
+  EXPECT_EQ(count("\"n\": 2,"), count("\"metric\":")) << j.out;  // 2 repeats each
+  const Result h = sh(dir.path(), kCnclab + " compare s --group-by model.hidden --format json");
+  ASSERT_EQ(h.code, 0) << h.err;
+  EXPECT_NE(h.out.find("\"label\": \"model.hidden=[8]\""), std::string::npos) << h.out;
+  expect_usage_error(sh(dir.path(), kCnclab + " compare s --group-by model.hiden"),
+                     "did you mean 'model.hidden'");
   // `cnclab run` of the same file runs its base configuration.
   EXPECT_EQ(sh(dir.path(), kCnclab + " run exp.yaml --quiet --out r").code, 0);
   // A typo inside the block names the file position.

@@ -23,6 +23,9 @@ struct CommandOptions {
   // more than kAbbreviateScalars numbers print as shape and hash,
   // core/config_abbreviate.hpp).
   bool full = false;
+  // reproduce --check: check the declared targets of every table printed
+  // (report/targets.hpp); a FAIL makes the exit code 1.
+  bool check = false;
 };
 
 }  // namespace cnclab

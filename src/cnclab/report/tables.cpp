@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "cnclab/report/targets.hpp"
+
 namespace cnclab {
 
 double normalised_test_mse(const RunRecord& r) {
@@ -56,7 +58,8 @@ int tables_command(const std::string& name, const TablesOptions& options, std::o
   for (const auto& t : tables) {
     if (t.name == name) {
       t.print(options, out);
-      return 0;
+      if (!options.check) return 0;
+      return check_table(t, options, out).failed > 0 ? 1 : 0;
     }
     known += (known.empty() ? "" : ", ") + t.name;
   }
@@ -67,7 +70,10 @@ int tables_command(const std::string& name, const TablesOptions& options, std::o
   throw ConfigError("tables: unknown table '" + name + "'; known: " + known);
 }
 
-void print_available_tables(const TablesOptions& options, std::ostream& out) {
+int print_available_tables(const TablesOptions& options, std::ostream& out) {
+  int code = 0;
+  TableCheck total;
+  std::size_t checked_tables = 0;
   for (const auto& t : registered_tables()) {
     try {
       t.print(options, out);
@@ -75,8 +81,30 @@ void print_available_tables(const TablesOptions& options, std::ostream& out) {
       // Missing or failed inputs: the runs' summary above stands; say why
       // the table is absent (`cnclab tables NAME` reports it as an error).
       out << "\n(table " << t.name << " not printed: " << e.what() << ")\n";
+      continue;
+    }
+    if (!options.check) continue;
+    try {
+      const TableCheck c = check_table(t, options, out);
+      total.passed += c.passed;
+      total.failed += c.failed;
+      total.unchecked += c.unchecked;
+      checked_tables += c.declared ? 1 : 0;
+      if (c.failed > 0) code = std::max(code, 1);
+    } catch (const ConfigError& e) {
+      out << "\n(targets of table " << t.name << " not checked: " << e.what() << ")\n";
+      code = 2;
+    } catch (const Error& e) {
+      out << "\n(targets of table " << t.name << " not checked: " << e.what() << ")\n";
+      code = std::max(code, 1);
     }
   }
+  if (options.check) {
+    out << "\ntargets: " << total.passed << " PASS, " << total.failed << " FAIL";
+    if (total.unchecked > 0) out << ", " << total.unchecked << " not declared for this profile";
+    out << " (" << checked_tables << " table(s) with targets)\n";
+  }
+  return code;
 }
 
 }  // namespace cnclab

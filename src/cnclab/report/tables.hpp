@@ -5,6 +5,7 @@
 // study's register function (src/cli/builtins.cpp).
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -25,7 +26,14 @@ struct TablesOptions {
   // The profiles: entry the results were made with (`reproduce --quick`:
   // "quick"); experiments load with it to find their result files.
   std::string profile;
+  // `--check`: after the tables, each table's declared targets (targets.hpp)
+  // against its measurements, PASS/FAIL; exit 1 on any FAIL.
+  bool check = false;
 };
+
+// A table's measured quantities by name ("tuned.surface1.max_abs_um"), the
+// numbers its rows show, for the targets its manifest declares (targets.hpp).
+using Measurements = std::map<std::string, double>;
 
 // A table's input results do not exist yet: MissingResults
 // (experiment/result_store.hpp), whose message names the command that makes
@@ -36,6 +44,12 @@ struct TableEntry {
   std::string summary;  // one line
   // Prints the table(s); throws MissingResults when results are absent.
   std::function<void(const TablesOptions&, std::ostream&)> print;
+  // Optional: the quantities the tables show, by name, computed by the same
+  // code as the rows; throws as print does.
+  std::function<Measurements(const TablesOptions&)> measure;
+  // Optional: the manifest whose `targets:` `--check` checks, relative to
+  // TablesOptions::configs_dir ("studies/step_error_tables.yaml").
+  std::filesystem::path manifest;
 };
 
 // Test MSE in the normalised units the network was trained in: the mean of
@@ -59,12 +73,15 @@ void register_table(TableEntry entry);
 const std::vector<TableEntry>& registered_tables();
 
 // Prints table `name`; an empty name lists the tables. Unknown names are
-// ConfigErrors listing the known ones. Returns the exit code (0).
+// ConfigErrors listing the known ones. With options.check, then checks its
+// targets (targets.hpp). Returns the exit code: 0, or 1 when a target fails.
 int tables_command(const std::string& name, const TablesOptions& options, std::ostream& out);
 
 // Prints every table whose results exist; a table whose inputs are missing
 // or unusable gets a one-line note instead (what `cnclab reproduce` ends
-// with).
-void print_available_tables(const TablesOptions& options, std::ostream& out);
+// with). With options.check, checks the targets of every table printed and
+// ends with one line of totals. Returns the exit code: 0; 1 when a target
+// fails; 2 when a manifest's targets are malformed (each said in a note).
+int print_available_tables(const TablesOptions& options, std::ostream& out);
 
 }  // namespace cnclab

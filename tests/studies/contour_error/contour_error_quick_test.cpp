@@ -4,10 +4,12 @@
 // predictor, and the figures drawn from the results.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
 
+#include "cnclab/report/targets.hpp"
 #include "cnclab/studies/contour_error/contour_error_tables.hpp"
 #include "cnclab/studies/contour_error/narx_metrics.hpp"
 #include "cnclab/studies/contour_error/narx_study_runs.hpp"
@@ -62,6 +64,24 @@ TEST(ContourErrorQuick, ReproduceAndTables) {
         "Paper:", "sources:"}) {
     EXPECT_NE(text.find(needle), std::string::npos) << needle << "\n" << text;
   }
+  // The measurements count the runs the study loaded, and the targets the
+  // manifest declares for the quick profile pass (`tables --check`).
+  const Measurements m = measure_contour_error_tables(t);
+  const NarxStudyRuns methods = load_narx_study(t, "training_methods.yaml");
+  const auto retry =
+      std::count_if(methods.runs.begin(), methods.runs.end(),
+                    [](const NarxStudyRun& r) { return r.method == "two_stage_retry"; });
+  EXPECT_EQ(m.at("training_methods.two_stage_retry.runs"), static_cast<double>(retry));
+  t.configs_dir = CNCLAB_SOURCE_DIR "/configs";
+  const auto targets = read_targets(t.configs_dir / "studies" / "contour_error_tables.yaml");
+  std::size_t checked = 0;
+  for (const TargetResult& r : check_targets(targets, m, "quick")) {
+    if (!r.wanted) continue;
+    ++checked;
+    EXPECT_TRUE(r.pass) << r.target->name << ": measured " << r.measured << ", target "
+                        << to_string(r.target->op) << " " << *r.wanted;
+  }
+  EXPECT_GT(checked, 0u);
   // The figures script draws from these results (Figs. 4, 5, 8-11, 13, 14).
   const std::string figures = "/usr/bin/python3 " CNCLAB_SOURCE_DIR
                               "/scripts/figures/contour_error.py '" +

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -272,6 +273,63 @@ void print_predictor(const NarxStudyRuns& r, const ConfigReader& ref, TableForma
                      "Paper: " + reference_text(ref, "contour", "accuracy")});
 }
 
+// The measured quantities of one group of runs (a method, an architecture)
+// under `prefix`, with the same stats() and stable() as the rows.
+void add_group(Measurements& m, const std::string& prefix, const NarxStudyRuns& r,
+               const std::vector<const NarxStudyRun*>& runs) {
+  const auto stable =
+      std::count_if(runs.begin(), runs.end(), [&](const NarxStudyRun* x) { return r.stable(*x); });
+  const auto bounded =
+      std::count_if(runs.begin(), runs.end(), [](const NarxStudyRun* x) { return x->bounded(); });
+  m[prefix + ".runs"] = static_cast<double>(runs.size());
+  m[prefix + ".stable_runs"] = static_cast<double>(stable);
+  m[prefix + ".bounded_runs"] = static_cast<double>(bounded);
+  const auto add_stats = [&](const std::string& name, const std::string& metric) {
+    const Stats st = stats(metric_of(runs, metric));
+    m[prefix + "." + name + "_mean"] = st.mean;
+    m[prefix + "." + name + "_std"] = st.std;
+  };
+  for (const auto& a : r.axes) {
+    add_stats("rms_" + a, "closed_loop_rms_" + a);
+    add_stats("max_" + a, "closed_loop_max_" + a);
+  }
+  add_stats("contour_rms", "contour_rms");
+}
+
+// training_methods.<method>.* per method (add_group), training_methods.second_tries,
+// training_methods.zero_rms_<axis>, estimates.<taylor|tangent|osculating>.{mean,max}_abs_diff.
+void add_methods(Measurements& m, const NarxStudyRuns& r) {
+  std::map<std::string, std::vector<const NarxStudyRun*>> by_method;
+  std::size_t tries = 0;
+  for (const auto& run : r.runs) {
+    by_method[run.method].push_back(&run);
+    tries += run.second_tries;
+  }
+  for (const auto& [method, runs] : by_method) add_group(m, "training_methods." + method, r, runs);
+  m["training_methods.second_tries"] = static_cast<double>(tries);
+  for (const auto& a : r.axes) m["training_methods.zero_rms_" + a] = r.metric("zero_rms_" + a);
+  for (const std::string e : {"taylor", "tangent", "osculating"}) {
+    m["estimates." + e + ".mean_abs_diff"] = r.metric(e + "_mean_abs_diff");
+    m["estimates." + e + ".max_abs_diff"] = r.metric(e + "_max_abs_diff");
+  }
+}
+
+// architecture.h<H>_d<in>_<fb>.* per architecture, architecture.all.* over every run.
+void add_architectures(Measurements& m, const NarxStudyRuns& r) {
+  std::map<std::string, std::vector<const NarxStudyRun*>> by_arch;
+  std::vector<const NarxStudyRun*> all;
+  for (const auto& run : r.runs) {
+    // Appended, not `"h" + std::to_string`: GCC 12 warns falsely (-Wrestrict, PR105329).
+    std::string arch = "h";
+    arch += std::to_string(run.hidden);
+    arch += "_d" + std::to_string(run.input_delays) + "_" + std::to_string(run.feedback_delays);
+    by_arch[arch].push_back(&run);
+    all.push_back(&run);
+  }
+  for (const auto& [arch, runs] : by_arch) add_group(m, "architecture." + arch, r, runs);
+  add_group(m, "architecture.all", r, all);
+}
+
 }  // namespace
 
 void print_contour_error_tables(const TablesOptions& o, std::ostream& out) {
@@ -288,6 +346,18 @@ void print_contour_error_tables(const TablesOptions& o, std::ostream& out) {
   }
   print_estimates(methods, ref, o.format, out);
   print_predictor(methods, ref, o.format, out);
+}
+
+Measurements measure_contour_error_tables(const TablesOptions& o) {
+  Measurements m;
+  add_methods(m, load_narx_study(o, "training_methods.yaml"));
+  try {
+    add_architectures(m, load_narx_study(o, "architecture.yaml"));
+  } catch (const MissingResults&) {
+    // As the tables: the architecture table is optional; a target naming
+    // its quantities then reports them unknown.
+  }
+  return m;
 }
 
 }  // namespace cnclab

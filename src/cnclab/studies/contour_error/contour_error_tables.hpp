@@ -14,4 +14,14 @@ namespace cnclab {
 
 void print_contour_error_tables(const TablesOptions& options, std::ostream& out);
 
+// The numbers the tables print, by name (TableEntry::measure; targets in
+// configs/studies/contour_error_tables.yaml):
+//   training_methods.<method>.{runs, stable_runs, bounded_runs}
+//   training_methods.<method>.{rms_<axis>, max_<axis>, contour_rms}_{mean, std}   [µm]
+//   training_methods.second_tries, training_methods.zero_rms_<axis>
+//   estimates.<taylor|tangent|osculating>.{mean_abs_diff, max_abs_diff}           [µm]
+//   architecture.h<H>_d<in>_<fb>.* and architecture.all.* as for a method
+// (architecture.* only when the architecture sweep has results).
+Measurements measure_contour_error_tables(const TablesOptions& options);
+
 }  // namespace cnclab

@@ -11,7 +11,8 @@ void register_contour_error_study() {
       {"contour-error",
        "seed 002: NARX training methods, architecture sweep, contour-error estimates and the "
        "contour predictor's accuracy (simulated machine)",
-       print_contour_error_tables});
+       print_contour_error_tables, measure_contour_error_tables,
+       "studies/contour_error_tables.yaml"});
 }
 
 }  // namespace cnclab

@@ -313,6 +313,20 @@ void print_machine_error(const std::vector<IkVariant>& variants, TableFormat for
   print_table_sources(out, format, sources);
 }
 
+// <variant>.<axis>.* of every network: the Table 5 rows (split sizes,
+// normalised MSEs) and the machine-unit errors, from the same metric() calls.
+void add_axis(Measurements& m, const std::string& prefix, std::size_t axis, const IkAxisRun& r) {
+  m[prefix + ".training_set"] = static_cast<double>(r.record.split.train.size());
+  m[prefix + ".test_set"] = static_cast<double>(r.record.split.test.size());
+  m[prefix + ".validation_set"] = static_cast<double>(r.record.split.validation.size());
+  m[prefix + ".mse_validation"] = metric(r.record, "normalised_validation_mse");
+  m[prefix + ".mse_test"] = metric(r.record, "normalised_mse");
+  // Machine units as the "Test error in machine units" table: mm, or degrees for A and C.
+  const double f = axis >= 3 ? kDegPerRad : 1.0;
+  m[prefix + ".rmse"] = f * metric(r.record, "rmse");
+  m[prefix + ".max_abs_error"] = f * metric(r.record, "max_abs_error");
+}
+
 }  // namespace
 
 void print_ik_tables(const TablesOptions& options, std::ostream& out) {
@@ -321,6 +335,16 @@ void print_ik_tables(const TablesOptions& options, std::ostream& out) {
   const Reference ref = read_reference(reference_file);
   print_table5(variants, ref, reference_file, options.format, out);
   print_machine_error(variants, options.format, out);
+}
+
+Measurements measure_ik_tables(const TablesOptions& options) {
+  Measurements m;
+  for (const auto& v : load_ik_variants(options)) {
+    for (std::size_t a = 0; a < kIkAxes.size(); ++a) {
+      if (v.axes[a]) add_axis(m, v.key + "." + kIkAxes[a], a, *v.axes[a]);
+    }
+  }
+  return m;
 }
 
 }  // namespace cnclab

@@ -11,4 +11,13 @@ namespace cnclab {
 
 void print_ik_tables(const TablesOptions& options, std::ostream& out);
 
+// The numbers Table 5 and the machine-unit table print, by name
+// (TableEntry::measure; targets in configs/studies/ik_tables.yaml):
+//   <variant>.<axis>.{training_set, test_set, validation_set}   split sizes
+//   <variant>.<axis>.{mse_validation, mse_test}                 normalised units
+//   <variant>.<axis>.{rmse, max_abs_error}                      mm (X, Y, Z), deg (A, C)
+// variant: sgdm (the paper's settings), search, trainbr; axis: X, Y, Z, A, C
+// (search and trainbr where their results exist).
+Measurements measure_ik_tables(const TablesOptions& options);
+
 }  // namespace cnclab

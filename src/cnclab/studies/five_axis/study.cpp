@@ -48,7 +48,7 @@ void register_five_axis_study() {
       {"ik",
        "seed 004 Table 5 (IK networks per axis, ours vs paper) and the machine-space error of the "
        "predicted joints",
-       print_ik_tables});
+       print_ik_tables, measure_ik_tables, "studies/ik_tables.yaml"});
 }
 
 }  // namespace cnclab

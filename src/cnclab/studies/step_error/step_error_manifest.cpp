@@ -65,6 +65,8 @@ StudyManifest read_step_error_manifest(const fs::path& file) {
     const ConfigReader c = n.section(choice);
     m.normaliser.push_back({choice, read_path(c, "surface2"), read_path(c, "surface3")});
   }
+  // The study's targets: read by `--check` (report/targets.hpp), not here.
+  if (root.has("targets")) root.raw("targets");
   doc.check_all_consumed();
   return m;
 }

@@ -18,6 +18,7 @@
 //     default: refit             # or keep
 //     keep: {surface2: FILE, surface3: FILE}
 //     refit: {surface2: FILE, surface3: FILE}
+//   targets: [...]                 # `--check` (report/targets.hpp; names: step_error_measures.hpp)
 #include <filesystem>
 #include <map>
 #include <string>

@@ -1,0 +1,27 @@
+#pragma once
+// The step-error tables' numbers by name, for the targets of
+// configs/studies/step_error_tables.yaml (report/targets.hpp). Each is the
+// figure a table row prints, from the same ErrorFigures (step_error_stats.hpp)
+// and normalised_test_mse calls:
+//
+//   <variant>.table2.p<p>.test_mse          Table 2, test MSE (z-score units)
+//   <variant>.table2.p<p>.diverged          1 when that training diverged, else 0
+//   <variant>.table2.best_p                 keep probability with the lowest test MSE
+//   <variant>.<run>.<figure>                run: surface1, surface1_no_dropout,
+//                                           surface2.ft<percent>, surface3.ft<percent>
+//   normaliser.<keep|refit>.<surface2|3>.<figure>
+//
+// with <figure> one of test_samples, max_abs_um, mean_abs_um,
+// share_abs_below_0.4um, share_abs_below_0.5um, share_abs_below_1um (%),
+// share_rel_below_10pct, share_rel_above_10pct (%), final_train_loss (z-score
+// units, last epoch). <p> and <percent> as the tables print them (0.5, 15).
+#include "cnclab/report/tables.hpp"
+#include "cnclab/studies/step_error/step_error_study.hpp"
+
+namespace cnclab {
+
+Measurements step_error_measures(const StepErrorStudy& study);
+// Loads the study (load_step_error_study) and measures it: TableEntry::measure.
+Measurements measure_step_error_tables(const TablesOptions& options);
+
+}  // namespace cnclab
