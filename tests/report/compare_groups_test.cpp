@@ -35,7 +35,7 @@ const std::vector<double> kA = {5.81, 6.02, 5.33, 6.44, 5.47};
 const std::vector<double> kB = {6.58, 7.91, 5.12, 6.10, 7.40, 6.95, 5.88};
 constexpr double kScipyP = 0.10161957739244924;  // ttest_ind(b, a, equal_var=False).pvalue
 constexpr double kScipyT = 1.8238381497097349;
-constexpr double kScipyTol = 1e-9;
+constexpr double kScipyTolerance = 1e-9;
 
 std::vector<ComparedRun> two_trainers() {
   std::vector<ComparedRun> runs;
@@ -71,13 +71,13 @@ TEST(CompareGroups, ByKeyMatchesScipyAndMarksSignificance) {
   EXPECT_EQ(first.summary.n, 5u);
   EXPECT_NEAR(first.summary.mean, (5.81 + 6.02 + 5.33 + 6.44 + 5.47) / 5, 1e-14);
   const GroupRow& lm = row_of(rows, "mse", "trainer.type=lm");
-  EXPECT_NEAR(lm.welch.t, kScipyT, kScipyTol);
-  EXPECT_NEAR(lm.welch.p_value, kScipyP, kScipyTol);
+  EXPECT_NEAR(lm.welch.t, kScipyT, kScipyTolerance);
+  EXPECT_NEAR(lm.welch.p_value, kScipyP, kScipyTolerance);
   EXPECT_EQ(lm.significant, "no");  // p = 0.10 >= 0.05
   EXPECT_LT(lm.bootstrap.low, lm.welch.difference);
   EXPECT_GT(lm.bootstrap.high, lm.welch.difference);
   // r2 = 1 - mse/10: the same test, same p.
-  EXPECT_NEAR(row_of(rows, "r2", "trainer.type=lm").welch.p_value, kScipyP, kScipyTol);
+  EXPECT_NEAR(row_of(rows, "r2", "trainer.type=lm").welch.p_value, kScipyP, kScipyTolerance);
   o.alpha = 0.2;  // p = 0.10 < 0.2
   EXPECT_EQ(row_of(compare_groups(runs, groups, o), "mse", "trainer.type=lm").significant, "yes");
 }
@@ -140,7 +140,7 @@ TEST(CompareGroups, FormatsCarryTheSameColumns) {
   std::string expected;
   for (const auto& c : sorted) expected += (expected.empty() ? "" : ",") + c;
   EXPECT_EQ(keys, expected);
-  EXPECT_NEAR(doc["rows"][1]["p_value"].get<double>(), kScipyP, kScipyTol);
+  EXPECT_NEAR(doc["rows"][1]["p_value"].get<double>(), kScipyP, kScipyTolerance);
   EXPECT_TRUE(doc["rows"][0]["p_value"].is_null());  // the reference group
   EXPECT_EQ(doc["rows"][1]["significant"], "no");
   EXPECT_NE(md.str().find("| metric | group | n | mean |"), std::string::npos) << md.str();

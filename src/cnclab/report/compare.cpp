@@ -21,8 +21,6 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-const std::string kMissing = "—";
-
 struct Comparison {
   std::vector<std::string> labels;  // [1], [2], ...
   std::vector<std::pair<std::string, std::vector<std::optional<std::string>>>> config;
@@ -192,14 +190,14 @@ TextTable display_table(const std::vector<ComparedRun>& runs, const Comparison& 
   t.rows.push_back(std::move(status));
   for (const auto& [key, v] : c.config) {
     std::vector<std::string> row = {key};
-    for (const auto& x : v) row.push_back(x ? *x : kMissing);
+    for (const auto& x : v) row.push_back(x ? *x : kMissingCell);
     t.rows.push_back(std::move(row));
   }
   for (const auto& [name, v] : c.metrics) {
     std::vector<std::string> row = {name};
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (!v[i]) {
-        row.push_back(kMissing);
+        row.push_back(kMissingCell);
         continue;
       }
       const std::string d = delta_text(v, i);

@@ -15,8 +15,6 @@
 namespace cnclab {
 namespace {
 
-const std::string kMissing = "—";
-
 // Keys a repeat may differ in: the master seed (sweep --repeats, seed lists).
 bool is_seed_key(const std::string& key) {
   return key == "seed";
@@ -61,7 +59,7 @@ std::vector<RunGroup> group_repeats(const std::vector<FlatConfig>& configs) {
       });
       if (differs) {
         label += (label.empty() ? "" : " ") + k + "=" +
-                 (mine == keys_of[g].end() ? kMissing : mine->second);
+                 (mine == keys_of[g].end() ? kMissingCell : mine->second);
       }
     }
     groups[g].label = label.empty() ? "group " + std::to_string(g + 1) : label;
@@ -75,7 +73,7 @@ std::vector<RunGroup> group_by_key(const std::vector<FlatConfig>& configs, const
   for (std::size_t i = 0; i < configs.size(); ++i) {
     const auto it = configs[i].find(key);
     any = any || it != configs[i].end();
-    const std::string label = key + "=" + (it == configs[i].end() ? kMissing : it->second);
+    const std::string label = key + "=" + (it == configs[i].end() ? kMissingCell : it->second);
     const auto g = std::find_if(groups.begin(), groups.end(),
                                 [&](const RunGroup& x) { return x.label == label; });
     if (g == groups.end()) {

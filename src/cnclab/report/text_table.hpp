@@ -16,6 +16,9 @@ enum class TableFormat { text, markdown, csv, latex };
 // value and the choices.
 TableFormat parse_table_format(const std::string& name);
 
+// The cell of a value a row does not have (a key one run lacks).
+inline const std::string kMissingCell = "—";
+
 struct TextTable {
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;  // each as long as header
