@@ -34,12 +34,6 @@ constexpr std::array<const char*, kInputs> kRangeKeys = {"ranges.px", "ranges.py
 
 }  // namespace
 
-std::string to_string(SamplingMode m) {
-  return m == SamplingMode::grid      ? "grid"
-         : m == SamplingMode::uniform ? "uniform"
-                                      : "latin_hypercube";
-}
-
 std::size_t IkSamplesOptions::num_samples() const {
   if (mode != SamplingMode::grid) return samples;
   double n = 1;

@@ -28,7 +28,6 @@
 namespace cnclab {
 
 enum class SamplingMode { grid, uniform, latin_hypercube };
-std::string to_string(SamplingMode m);
 
 struct IkSamplesOptions {
   SamplingMode mode = SamplingMode::grid;
