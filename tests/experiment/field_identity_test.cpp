@@ -24,6 +24,7 @@
 #include "cnclab/experiment/narx_spec.hpp"
 #include "cnclab/experiment/sequence_metrics.hpp"
 #include "cnclab/experiment/spec.hpp"
+#include "cnclab/motion/machine_fields.hpp"
 #include "cnclab/train/lm.hpp"
 #include "cnclab/train/sgdm.hpp"
 #include "cnclab/train/trainbr.hpp"
@@ -129,8 +130,23 @@ TEST(FieldIdentity, FollowingErrorGeneratorOptions) {
       // weight_min 1.5 would exceed weight_max 1; velocity 450 would outrun the
       // planner's window overlap (stopping distance)
       {{"dataset.options.path.weight_min", "0.5"}, {"dataset.options.limits.velocity", "200"}},
-      {{"dataset.options.machine",
-        "a file name or a map read by read_machine (motion/machine_config.hpp)"}});
+      {{"dataset.options.machine", "a file name or a map: MachineKeys below"}});
+}
+
+// dataset.options.machine as a map: every key of motion/machine_fields.cpp.
+TEST(FieldIdentity, FollowingErrorMachineKeys) {
+  expect_every_key_in_identity(
+      "name: t\nseed: 3\ndataset: {generator: following_error}\nmodel: {}\n"
+      "trainer: {type: sgdm}\n",
+      "dataset.options.machine.", machine_fields().info(),
+      // periods that still nest (velocity loop | controller, step | velocity
+      // loop); static friction >= coulomb; feedforward <= 1
+      {{"dataset.options.machine.timing.velocity_loop_period", "5e-4"},
+       {"dataset.options.machine.timing.integration_step", "1.25e-5"},
+       {"dataset.options.machine.axes.x.coulomb_friction", "0.1"},
+       {"dataset.options.machine.axes.y.coulomb_friction", "0.1"},
+       {"dataset.options.machine.axes.x.velocity_feedforward", "0.5"},
+       {"dataset.options.machine.axes.y.velocity_feedforward", "0.5"}});
 }
 
 TEST(FieldIdentity, IkSamplesGeneratorOptions) {

@@ -45,7 +45,7 @@ TEST(Machine, ShippedRouterFileLoadsAndDocumentsTheDefaults) {
 TEST(Machine, StrictReading) {
   std::string m = config_error("machine:\n  axes:\n    y:\n      backlash: -1\n");
   EXPECT_NE(m.find("machine.axes.y.backlash"), std::string::npos) << m;
-  EXPECT_NE(m.find("must be >= 0"), std::string::npos) << m;
+  EXPECT_NE(m.find("must be a finite number >= 0"), std::string::npos) << m;
   EXPECT_NE(m.find("machine.yaml:4"), std::string::npos) << m;
   m = config_error("machine:\n  axes:\n    x:\n      backlsh: 0.01\n");
   EXPECT_NE(m.find("backlsh"), std::string::npos) << m;

@@ -111,7 +111,14 @@ json field_schema(const FieldInfo& f) {
       s = object_schema(f.children, f.doc);
       break;
     case FieldKind::any:
-      s = f.children.empty() ? json::object() : object_schema(f.children, f.doc);
+      // Read by its own code. With declared children it is a file name (of
+      // a YAML file holding that map, e.g. configs/machines/*.yaml) or the
+      // map itself; without, its shape is left open.
+      if (f.children.empty()) {
+        s = json::object();
+      } else {
+        s["anyOf"] = json::array({{{"type", "string"}}, object_schema(f.children, f.doc)});
+      }
       break;
     case FieldKind::number_list:
     case FieldKind::integer_list:

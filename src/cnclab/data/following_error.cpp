@@ -11,6 +11,7 @@
 #include "cnclab/data/named_config_file.hpp"
 #include "cnclab/motion/contour_error.hpp"
 #include "cnclab/motion/interpolator.hpp"
+#include "cnclab/motion/machine_fields.hpp"
 #include "cnclab/motion/smoothing_spline.hpp"
 
 namespace cnclab {
@@ -179,44 +180,6 @@ std::size_t first_validation_sample(const Dataset& d) {
   return d.num_samples() / 2;
 }
 
-std::string machine_yaml(const MachineOptions& m, const std::string& in) {
-  std::ostringstream out;
-  auto num = [&](const std::string& pad, const char* key, double v) {
-    out << pad << key << ": " << shortest_double(v) << "\n";
-  };
-  out << in << "name: " << m.name << "\n" << in << "timing:\n";
-  const std::string t = in + "  ";
-  num(t, "controller_period", m.timing.controller_period);
-  num(t, "velocity_loop_period", m.timing.velocity_loop_period);
-  num(t, "integration_step", m.timing.integration_step);
-  out << in << "axes:\n";
-  for (int i = 0; i < 2; ++i) {
-    const FeedDriveOptions& a = m.axes[static_cast<std::size_t>(i)];
-    out << in << "  " << kAxis[i] << ":\n";
-    const std::string p = in + "    ";
-    num(p, "motor_inertia", a.motor_inertia);
-    num(p, "screw_inertia", a.screw_inertia);
-    num(p, "table_mass", a.table_mass);
-    num(p, "screw_lead", a.screw_lead);
-    num(p, "torque_limit", a.torque_limit);
-    num(p, "viscous_friction", a.viscous_friction);
-    num(p, "coulomb_friction", a.coulomb_friction);
-    num(p, "static_friction", a.static_friction);
-    num(p, "stribeck_velocity", a.stribeck_velocity);
-    num(p, "backlash", a.backlash);
-    num(p, "lead_error_amplitude", a.lead_error_amplitude);
-    num(p, "lead_error_phase", a.lead_error_phase);
-    num(p, "position_gain", a.position_gain);
-    num(p, "velocity_feedforward", a.velocity_feedforward);
-    num(p, "velocity_gain", a.velocity_gain);
-    num(p, "velocity_integral_time", a.velocity_integral_time);
-    num(p, "scale_resolution", a.scale_resolution);
-    num(p, "scale_noise", a.scale_noise);
-    out << p << "motor_encoder_counts: " << a.motor_encoder_counts << "\n";
-  }
-  return out.str();
-}
-
 FollowingErrorGenerator::FollowingErrorGenerator(FollowingErrorOptions options)
     : options_(std::move(options)) {
   options_.validate();
@@ -281,6 +244,12 @@ const FieldList<FollowingErrorOptions>& following_error_fields() {
     FieldInfo limits_info =
         custom_info("limits", "per-axis limits, the same for x and y", FieldKind::section);
     limits_info.children = limits.info();
+    // A file name or a map: FieldKind::any with the map's declarations.
+    FieldInfo machine_info = custom_info(
+        "machine",
+        "the simulated machine: a configs/machines/*.yaml path or a map (motion/machine.hpp); "
+        "absent: biaxial_router's values");
+    machine_info.children = machine_fields().info();
     return FieldList<O>()
         .section("path", &O::path, path, "the random NURBS tool path")
         .custom(
@@ -294,11 +263,8 @@ const FieldList<FollowingErrorOptions>& following_error_fields() {
             [](const O& o) { return limits.to_node(o.planner.limits.axes[0]); })
         .flatten(&O::planner, planner)
         .custom(
-            custom_info("machine",
-                        "the simulated machine: a configs/machines/*.yaml path or a map "
-                        "(motion/machine_config.hpp); absent: biaxial_router's values"),
-            [](const ConfigReader& r, O& o) { o.machine = read_machine_option(r); },
-            [](const O& o) { return YAML::Load(machine_yaml(o.machine, "")); })
+            machine_info, [](const ConfigReader& r, O& o) { o.machine = read_machine_option(r); },
+            [](const O& o) { return machine_fields().to_node(o.machine); })
         .field("runs", &O::runs, "simulated runs averaged (seed 002: 10)",
                Rule::in(1, true, 1000, true))
         .field("smoothing", &O::smoothing, "csaps p on the sample index (seed 002: 0.05)",

@@ -90,10 +90,6 @@ FollowingErrorRanges following_error_ranges(const Dataset& dataset);
 // Index of the first validation sample (the second half: N / 2).
 std::size_t first_validation_sample(const Dataset& dataset);
 
-// The resolved machine as YAML (keys as in configs/machines/*.yaml, under
-// the given indent), for cache keys.
-std::string machine_yaml(const MachineOptions& machine, const std::string& indent);
-
 // The registered generator `following_error`. Options (dataset.options):
 //   path: {degree, control_points, x_min, x_max, y_min, y_max, step_min,
 //          step_max, max_turn, weight_min, weight_max, min_curvature_radius}

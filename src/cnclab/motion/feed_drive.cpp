@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/motion/machine_fields.hpp"
 
 namespace cnclab {
 namespace {
@@ -117,9 +118,7 @@ class Drive {
 }  // namespace
 
 void DriveTiming::validate() const {
-  require(controller_period > 0, "controller_period", controller_period, "must be > 0");
-  require(velocity_loop_period > 0, "velocity_loop_period", velocity_loop_period, "must be > 0");
-  require(integration_step > 0, "integration_step", integration_step, "must be > 0");
+  drive_timing_fields().check(*this);  // each period > 0 (machine_fields.cpp)
   velocity_ticks_per_control();
   substeps_per_velocity_tick();
 }
@@ -139,29 +138,11 @@ double FeedDriveOptions::total_inertia() const {
 }
 
 void FeedDriveOptions::validate() const {
-  require(motor_inertia >= 0, "motor_inertia", motor_inertia, "must be >= 0");
-  require(screw_inertia >= 0, "screw_inertia", screw_inertia, "must be >= 0");
-  require(table_mass >= 0, "table_mass", table_mass, "must be >= 0");
-  require(screw_lead > 0, "screw_lead", screw_lead, "must be > 0");
+  feed_drive_fields().check(*this);  // per-key rules (machine_fields.cpp)
   require(total_inertia() > 0, "motor_inertia", motor_inertia,
           "total inertia J_motor + J_screw + m (p/2pi)^2 must be > 0");
-  require(torque_limit > 0, "torque_limit", torque_limit, "must be > 0");
-  require(viscous_friction >= 0, "viscous_friction", viscous_friction, "must be >= 0");
-  require(coulomb_friction >= 0, "coulomb_friction", coulomb_friction, "must be >= 0");
   require(static_friction >= coulomb_friction, "static_friction", static_friction,
           "must be >= coulomb_friction");
-  require(stribeck_velocity > 0, "stribeck_velocity", stribeck_velocity, "must be > 0");
-  require(backlash >= 0, "backlash", backlash, "must be >= 0");
-  require(lead_error_amplitude >= 0, "lead_error_amplitude", lead_error_amplitude, "must be >= 0");
-  require(true, "lead_error_phase", lead_error_phase, "");
-  require(position_gain > 0, "position_gain", position_gain, "must be > 0");
-  require(velocity_feedforward >= 0 && velocity_feedforward <= 1, "velocity_feedforward",
-          velocity_feedforward, "must be in [0, 1]");
-  require(velocity_gain > 0, "velocity_gain", velocity_gain, "must be > 0");
-  require(velocity_integral_time > 0, "velocity_integral_time", velocity_integral_time,
-          "must be > 0");
-  require(scale_resolution >= 0, "scale_resolution", scale_resolution, "must be >= 0");
-  require(scale_noise >= 0, "scale_noise", scale_noise, "must be >= 0");
 }
 
 AxisResponse simulate_axis(const FeedDriveOptions& axis, const DriveTiming& timing,

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/motion/machine_fields.hpp"
 
 namespace cnclab {
 namespace {
@@ -19,41 +20,6 @@ void prefixed(const std::string& prefix, F&& validate) {
   }
 }
 
-DriveTiming read_timing(const ConfigReader& r) {
-  DriveTiming t;
-  t.controller_period = r.get<double>("controller_period", t.controller_period);
-  t.velocity_loop_period = r.get<double>("velocity_loop_period", t.velocity_loop_period);
-  t.integration_step = r.get<double>("integration_step", t.integration_step);
-  r.validate([&] { t.validate(); });
-  return t;
-}
-
-FeedDriveOptions read_axis(const ConfigReader& r) {
-  FeedDriveOptions a;
-  auto get = [&](const char* key, double& field) { field = r.get<double>(key, field); };
-  get("motor_inertia", a.motor_inertia);
-  get("screw_inertia", a.screw_inertia);
-  get("table_mass", a.table_mass);
-  get("screw_lead", a.screw_lead);
-  get("torque_limit", a.torque_limit);
-  get("viscous_friction", a.viscous_friction);
-  get("coulomb_friction", a.coulomb_friction);
-  get("static_friction", a.static_friction);
-  get("stribeck_velocity", a.stribeck_velocity);
-  get("backlash", a.backlash);
-  get("lead_error_amplitude", a.lead_error_amplitude);
-  get("lead_error_phase", a.lead_error_phase);
-  get("position_gain", a.position_gain);
-  get("velocity_feedforward", a.velocity_feedforward);
-  get("velocity_gain", a.velocity_gain);
-  get("velocity_integral_time", a.velocity_integral_time);
-  get("scale_resolution", a.scale_resolution);
-  get("scale_noise", a.scale_noise);
-  a.motor_encoder_counts = r.get<std::uint64_t>("motor_encoder_counts", a.motor_encoder_counts);
-  r.validate([&] { a.validate(); });
-  return a;
-}
-
 }  // namespace
 
 void MachineOptions::validate() const {
@@ -65,10 +31,8 @@ void MachineOptions::validate() const {
 
 MachineOptions read_machine(const ConfigReader& section) {
   MachineOptions m;
-  m.name = section.get<std::string>("name", m.name);
-  m.timing = read_timing(section.section("timing"));
-  const ConfigReader axes = section.section("axes");
-  for (int i = 0; i < 2; ++i) m.axes[i] = read_axis(axes.section(kAxisNames[i]));
+  machine_fields().read(section, m);
+  section.validate([&] { m.validate(); });
   return m;
 }
 
