@@ -160,9 +160,17 @@ for where, mutate in [
     if not errors(validator, bad):
         failures.append(f"{where} passes the schema")
 
-# The job kinds whose keys are declared (gcode, step_error_timing) reject
+# The job kinds (gcode, step_error_timing, sweep) and the machine map reject
 # misspelt keys too.
 for path, where, mutate in [
+    ("experiments/ik_search/search_x.yaml", "kind sweep",
+     lambda d: d.__setitem__("job", 2)),
+    ("experiments/ik_search/search_x.yaml", "kind sweep, sweep block",
+     lambda d: d["sweep"].__setitem__("repeat", 2)),
+    ("experiments/ik_search/search_x.yaml", "kind sweep, objective mode",
+     lambda d: d["sweep"]["objective"].__setitem__("mode", "minimum")),
+    ("experiments/contour_error/narx.yaml", "a machine map",
+     lambda d: d["dataset"]["options"].__setitem__("machine", {"axes": {"x": {"backlsh": 0.01}}})),
     ("experiments/trochoid/groove_table2.yaml", "gcode program",
      lambda d: d["program"].__setitem__("feeed", 1)),
     ("experiments/trochoid/groove_table2.yaml", "gcode entry mode spiral",
@@ -177,6 +185,23 @@ for path, where, mutate in [
     mutate(bad)
     if not errors(validator, bad):
         failures.append(f"{where} passes the schema")
+
+# A training experiment's sweep block: declared keys, an open parameters map.
+swept = copy.deepcopy(train_example)
+swept["sweep"] = {"repeats": 2, "objective": {"metric": "rmse", "mode": "min"},
+                  "parameters": {"trainer.learning_rate": [0.1, 0.2], "model.hidden": "[3],[5]"}}
+check(validator, swept, "a train file with a sweep block")
+swept["sweep"]["repeat"] = 2
+if not errors(validator, swept):
+    failures.append("a misspelt key in a train file's sweep block passes the schema")
+
+# A machine is a file name or a map of declared keys.
+narx_machine = copy.deepcopy(narx_example)
+narx_machine["dataset"]["options"]["machine"] = {"timing": {"integration_step": 2.5e-5},
+                                                 "axes": {"y": {"backlash": 0.01}}}
+check(validator, narx_machine, "narx with a machine map")
+narx_machine["dataset"]["options"]["machine"] = "configs/machines/biaxial_router.yaml"
+check(validator, narx_machine, "narx with a machine file")
 
 # --kind gives one kind's schema; an unknown kind is a usage error.
 check(schema_of("--kind", "train"), train_example, "train example against --kind train")

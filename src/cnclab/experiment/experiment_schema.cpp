@@ -135,7 +135,7 @@ json with_header(json s, const std::string& title) {
 
 }  // namespace
 
-json train_file_schema() {
+json train_file_schema(const std::vector<FieldInfo>& sweep_block) {
   const auto info = experiment_fields().info();
   json s = object_schema(info, "a training experiment (kind: train, the default)");
   for (const auto& f : info) {
@@ -143,8 +143,9 @@ json train_file_schema() {
     if (f.key == "model") s["properties"]["model"] = model_schema(f.doc);
     if (f.key == "trainer") s["properties"]["trainer"] = trainer_schema(f.doc);
     if (f.key == "sweep") {
-      s["properties"]["sweep"] = open_schema(
-          f.doc + "; its keys are not declared yet (issue 16 item 6): checked by `cnclab sweep`");
+      s["properties"]["sweep"] = sweep_block.empty()
+                                     ? open_schema(f.doc + "; checked by `cnclab sweep`")
+                                     : object_schema(sweep_block, f.doc);
     }
   }
   // The reader requires what the experiment is about (no silent defaults).
@@ -154,8 +155,8 @@ json train_file_schema() {
   return s;
 }
 
-json experiment_file_schema(const std::string& kind) {
-  std::vector<TaggedVariant> variants = {{"train", train_file_schema()}};
+json experiment_file_schema(const std::string& kind, const std::vector<FieldInfo>& sweep_block) {
+  std::vector<TaggedVariant> variants = {{"train", train_file_schema(sweep_block)}};
   for (const auto& k : registered_job_kinds()) {
     json s = k.schema ? k.schema()
                       : open_schema("kind " + k.kind + " (" + k.summary +

@@ -6,6 +6,7 @@
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/field_schema.hpp"
 #include "cnclab/core/override.hpp"
 #include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -15,6 +16,7 @@
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/sweep/sweep_execute.hpp"
+#include "cnclab/sweep/sweep_fields.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -110,9 +112,8 @@ SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& ov
   job.profile = profile;
   job.name = read_experiment_name(root);
   job.description = root.get<std::string>("description", "");
-  job.experiment_as_written = root.require<std::string>("experiment");
-  job.experiment = upstream_file(root, "experiment", job.experiment_as_written, file.parent_path());
-  job.overrides = root.get<std::vector<std::string>>("overrides", {});
+  sweep_job_fields().read(root, job);
+  root.validate([&] { sweep_job_fields().check(job); });
   for (const auto& text : job.overrides) {
     try {
       parse_override(text);
@@ -120,8 +121,6 @@ SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& ov
       root.fail("overrides", e.what());
     }
   }
-  job.jobs = root.get<std::size_t>("jobs", 0);
-  job.sweep = read_sweep_section(root.section("sweep"));
   try {
     job.sweep.validate();
   } catch (const ConfigError& e) {
@@ -133,26 +132,11 @@ SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& ov
 
 std::string to_yaml(const SweepJob& job) {
   using YAML::Key, YAML::Value, YAML::BeginMap, YAML::EndMap;
-  const SweepSpec& w = job.sweep;
   YAML::Emitter out;
   out << BeginMap << Key << "kind" << Value << "sweep" << Key << "name" << Value << job.name;
   out << Key << "description" << Value << job.description;
-  out << Key << "experiment" << Value << job.experiment_as_written;
-  out << Key << "overrides" << Value << YAML::Flow << job.overrides;
-  out << Key << "jobs" << Value << job.jobs;
-  out << Key << "sweep" << Value << BeginMap;
-  out << Key << "method" << Value << (w.resolved_method() == SweepMethod::grid ? "grid" : "random");
-  if (w.trials > 0) out << Key << "trials" << Value << w.trials;
-  if (w.seed) out << Key << "seed" << Value << *w.seed;
-  out << Key << "repeats" << Value << w.repeats;
-  if (w.objective) {
-    out << Key << "objective" << Value << YAML::Flow << BeginMap << Key << "metric" << Value
-        << w.objective->metric << Key << "mode" << Value << (w.objective->maximize ? "max" : "min")
-        << EndMap;
-  }
-  out << Key << "parameters" << Value << BeginMap;
-  for (const auto& p : w.parameters) out << Key << p.key << Value << p.text;
-  out << EndMap << EndMap << EndMap;
+  sweep_job_fields().emit(out, job);
+  out << EndMap;
   return std::string(out.c_str()) + "\n";
 }
 
@@ -246,6 +230,11 @@ JobKind sweep_job_kind() {
   };
   k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
     return to_yaml(load_sweep_job(file, c.overrides, c.options.profile));
+  };
+  k.schema = [] {
+    return object_schema(sweep_file_fields(),
+                         "kind sweep: a sweep of an experiment file and the selection of its best "
+                         "point");
   };
   return k;
 }

@@ -7,6 +7,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/override.hpp"
+#include "cnclab/sweep/sweep_fields.hpp"
 
 namespace cnclab {
 namespace {
@@ -291,57 +292,36 @@ SweepSpec read_sweep_block(const std::filesystem::path& file,
 
 SweepSpec read_sweep_section(const ConfigReader& s) {
   SweepSpec spec;
-  if (s.has("method")) {
-    const auto m = s.get<std::string>("method", "grid");
-    if (m != "grid" && m != "random") s.fail("method", "must be one of: grid, random");
-    spec.method = m == "grid" ? SweepMethod::grid : SweepMethod::random;
-  }
-  spec.trials = s.get<std::size_t>("trials", 0);
-  spec.seed = s.optional<std::uint64_t>("seed");
-  spec.repeats = s.get<std::size_t>("repeats", 1);
-  s.check(spec.repeats >= 1, "repeats", "must be at least 1");
-  if (s.has("objective")) {
-    const ConfigReader o = s.section("objective");
-    Objective objective;
-    objective.metric = o.require<std::string>("metric");
-    const auto mode = o.get<std::string>("mode", "min");
-    if (mode != "min" && mode != "max") o.fail("mode", "must be one of: min, max");
-    objective.maximize = mode == "max";
-    spec.objective = objective;
-  }
-  const ConfigReader params = s.section("parameters");
-  for (const auto& key : params.keys()) {
-    const YAML::Node node = params.raw(key);
+  sweep_fields().read(s, spec);
+  s.validate([&] { sweep_fields().check(spec); });
+  return spec;
+}
+
+SweepParameter parse_sweep_parameter(const std::string& key, const YAML::Node& node) {
+  check_key(key);
+  std::optional<SweepParameter> p;
+  if (node.IsSequence()) {
+    if (node.size() == 0) throw ConfigError("empty list of values");
+    p.emplace();
+    p->key = key;
+    p->text = node_text(node);
+    for (const auto& v : node) p->values.push_back(YAML::Clone(v));
+  } else if (node.IsScalar()) {
     try {
-      check_key(key);
-    } catch (const ConfigError& e) {
-      params.fail(key, e.what());
+      p = parse_values(key, node.Scalar());
+    } catch (const BadValues& e) {
+      throw ConfigError(e.rule);
     }
-    std::optional<SweepParameter> p;
-    if (node.IsSequence()) {
-      if (node.size() == 0) params.fail(key, "empty list of values");
+    if (!p) {  // one value: a fixed setting
       p.emplace();
       p->key = key;
-      p->text = node_text(node);
-      for (const auto& v : node) p->values.push_back(YAML::Clone(v));
-    } else if (node.IsScalar()) {
-      try {
-        p = parse_values(key, node.Scalar());
-      } catch (const BadValues& e) {
-        params.fail(key, e.rule);
-      }
-      if (!p) {  // one value: a fixed setting
-        p.emplace();
-        p->key = key;
-        p->text = node.Scalar();
-        p->values.push_back(YAML::Clone(node));
-      }
-    } else {
-      params.fail(key, "expected a list of values or a text such as log_uniform(1e-4, 1e-1)");
+      p->text = node.Scalar();
+      p->values.push_back(YAML::Clone(node));
     }
-    spec.set(std::move(*p));
+  } else {
+    throw ConfigError("expected a list of values or a text such as log_uniform(1e-4, 1e-1)");
   }
-  return spec;
+  return std::move(*p);
 }
 
 }  // namespace cnclab

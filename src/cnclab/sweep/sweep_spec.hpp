@@ -112,4 +112,9 @@ class ConfigReader;
 // `kind: sweep` job file's block, sweep_job.hpp). Marks what it reads.
 SweepSpec read_sweep_section(const ConfigReader& s);
 
+// One entry of a sweep block's `parameters` map: a YAML list of values, or a
+// values text (the grammar above), or one value (a fixed setting).
+// ConfigError with the broken rule (the caller adds where).
+SweepParameter parse_sweep_parameter(const std::string& key, const YAML::Node& node);
+
 }  // namespace cnclab
