@@ -50,5 +50,22 @@ TEST(TrochoidJob, UnknownAndInvalidKeysAreConfigErrors) {
   EXPECT_THROW(load_trochoid_job(kJobFile, {"trochoid.cutter_diameter=30"}), ConfigError);
 }
 
+// Rules across sections: the entry must start below the retract height
+// (safe_z 5 in the file) and the pass must cut below the stock top.
+TEST(TrochoidJob, EntryAboveSafeZAndCutAboveTheStockAreConfigErrors) {
+  EXPECT_NO_THROW(load_trochoid_job(kJobFile, {"entry.clearance=4.9"}));
+  for (const char* bad : {"entry.clearance=5", "entry.clearance=7"}) {
+    try {
+      load_trochoid_job(kJobFile, {bad});
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("entry.clearance"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("safe_z = 5"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(load_trochoid_job(kJobFile, {"program.cut_z=0"}), ConfigError);
+  EXPECT_THROW(load_trochoid_job(kJobFile, {"program.cut_z=2"}), ConfigError);
+}
+
 }  // namespace
 }  // namespace cnclab

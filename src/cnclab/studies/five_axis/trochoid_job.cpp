@@ -174,6 +174,15 @@ TrochoidJob load_trochoid_job(const fs::path& file, const std::vector<std::strin
   root.section("program").validate([&] { job.program.validate(); });
   root.section("entry").validate([&] { job.entry.validate(); });
   root.section("report").validate([&] { job.report.validate(); });
+  // Across sections: the entry starts at z = clearance above the stock top
+  // (z = 0) and must lie below the retract height, and the pass cuts into
+  // the stock (kinematics/tool_entry.cpp, gcode.cpp).
+  root.section("program").check(job.program.cut_z < 0, "cut_z",
+                                "must be below the stock top z = 0");
+  root.section("entry").check(
+      job.entry.clearance < job.program.safe_z, "clearance",
+      "must be below program.safe_z = " + shortest_double(job.program.safe_z) +
+          " (the entry starts at z = clearance)");
   doc.check_all_consumed();
   return job;
 }
