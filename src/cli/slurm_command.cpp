@@ -72,10 +72,10 @@ std::optional<SlurmPhase> trial_phase(
 
 // `cnclab sweep ...` as an array task runs it: the same sweep into the same
 // folder, every path as this process resolved it.
-std::vector<std::string> task_command(const std::string& cnclab, const fs::path& experiment,
-                                      const std::vector<std::string>& words,
-                                      std::optional<std::uint64_t> seed,
-                                      const SweepCommandOptions& o, const fs::path& dir) {
+std::vector<std::string> array_task_command(const std::string& cnclab, const fs::path& experiment,
+                                            const std::vector<std::string>& words,
+                                            std::optional<std::uint64_t> seed,
+                                            const SweepCommandOptions& o, const fs::path& dir) {
   std::vector<std::string> c = {cnclab, "sweep", experiment.string()};
   c.insert(c.end(), words.begin(), words.end());
   c.insert(c.end(), {"--dir", dir.string(), "--out", o.common.results_dir.string(), "--data-dir",
@@ -97,7 +97,7 @@ std::vector<std::string> task_command(const std::string& cnclab, const fs::path&
 }
 
 // Job names: letters, digits, '-', '_' (sbatch's #SBATCH lines split at spaces).
-std::string job_name(const std::string& experiment, const char* suffix) {
+std::string slurm_job_name(const std::string& experiment, const char* suffix) {
   std::string name = "cnclab-" + experiment;
   for (char& ch : name) {
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '_';
@@ -259,10 +259,10 @@ int slurm_sweep_command(const fs::path& experiment, const std::vector<std::strin
     }
   }
   SlurmArrayScript array;
-  array.job_name = job_name(prepared.plan.experiment, "");
+  array.job_name = slurm_job_name(prepared.plan.experiment, "");
   array.workdir = fs::current_path();
   array.tasks = tasks.size();
-  array.task_command = task_command(cnclab, experiment, words, seed, o, dir);
+  array.task_command = array_task_command(cnclab, experiment, words, seed, o, dir);
   if (slurm.dry_run) {
     array.submission = dir / "slurm" / "submit-NNN";
     out << "# dry run: nothing written or submitted; " << sel.ids.size() << " of " << total
@@ -279,7 +279,7 @@ int slurm_sweep_command(const fs::path& experiment, const std::vector<std::strin
   array.submission = sub.folder;
   write_text_atomically(sub.folder / "sweep.sbatch", array_script(slurm, array));
   write_text_atomically(sub.folder / "merge.sbatch",
-                        merge_script(slurm, job_name(prepared.plan.experiment, "-merge"),
+                        merge_script(slurm, slurm_job_name(prepared.plan.experiment, "-merge"),
                                      array.workdir, sub.folder, cnclab, dir));
   out << dir.string() << ": " << sel.ids.size() << " of " << total << " trials to submit ("
       << sel.done << " done, " << sel.in_flight << " queued or running)\n";
