@@ -16,7 +16,8 @@ using CommandAction = std::function<int()>;
 
 // run, validate, show, reproduce, compare (wire_experiment_commands.cpp).
 void add_experiment_commands(CLI::App& app, CommandAction& action);
-// sweep and sweep merge (wire_sweep_commands.cpp).
+// sweep, sweep merge, sweep --slurm and status (wire_sweep_commands.cpp,
+// wire_slurm_commands.cpp).
 void add_sweep_commands(CLI::App& app, CommandAction& action);
 // dataset generate/show, gcode, tables, schema, version (wire_tool_commands.cpp).
 void add_tool_commands(CLI::App& app, CommandAction& action);

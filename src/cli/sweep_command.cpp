@@ -76,9 +76,8 @@ int summary_exit_code(const SweepSummary& s) {
 
 }  // namespace
 
-int sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
-                  std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
-                  std::ostream& out, std::ostream& log) {
+PreparedSweep prepare_sweep(const fs::path& experiment, const std::vector<std::string>& words,
+                            std::optional<std::uint64_t> seed, const SweepCommandOptions& o) {
   const SweepArguments args = split_sweep_arguments(words);
   const SweepTarget target = sweep_target(experiment, args, o);
   const SweepSpec spec = resolve_spec(target.spec, args, o);
@@ -87,16 +86,27 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
   exec.jobs = o.jobs != 0 ? o.jobs : target.jobs;
   exec.trial_timeout = o.trial_timeout;
   exec.retry_failed = o.retry_failed;
+  exec.trial_ids = o.trial_ids;
   if (!o.shard.empty()) std::tie(exec.shard, exec.shards) = parse_shard(o.shard);
-  const std::size_t shard = exec.shard, shards = exec.shards;
   SweepPlan plan = plan_sweep(target.experiment, target.overrides, seed, spec, o.common.profile);
   const std::string folder = target.folder.empty() ? plan.experiment : target.folder;
-  const fs::path dir =
+  fs::path dir =
       o.dir.empty() ? o.common.results_dir / folder / ("sweep-" + plan.hash().substr(0, 8)) : o.dir;
+  return {std::move(plan), std::move(dir), std::move(exec)};
+}
+
+int sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
+                  std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
+                  std::ostream& out, std::ostream& log) {
+  const PreparedSweep prepared = prepare_sweep(experiment, words, seed, o);
+  const SweepPlan& plan = prepared.plan;
+  const fs::path& dir = prepared.dir;
+  const std::size_t shard = prepared.exec.shard, shards = prepared.exec.shards;
   store_plan(dir, plan);
   clean_stale_partials({o.common.results_dir, dir, o.common.datasets_dir}, log);
 
-  const SweepExecution ex = execute_sweep(plan, dir, exec, o.common.quiet ? nullptr : &log);
+  const SweepExecution ex =
+      execute_sweep(plan, dir, prepared.exec, o.common.quiet ? nullptr : &log);
   const std::vector<TrialOutcome>& outcomes = ex.outcomes;
   const std::vector<std::size_t>& mine = ex.mine;
   if (ex.stopped != 0) {
@@ -105,12 +115,14 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
     return 128 + ex.stopped;
   }
 
-  if (shards > 1) {
+  if (shards > 1 || !o.trial_ids.empty()) {
     std::size_t ok = 0, bad = 0;
     for (std::size_t i : mine) (outcomes[i].status == TrialOutcome::Status::complete ? ok : bad)++;
-    out << "shard " << shard << "/" << shards << " of " << dir.string() << ": " << ok
-        << " complete, " << bad << " failed; when every shard is done: cnclab sweep merge "
-        << dir.string() << "\n";
+    const std::string part = o.trial_ids.empty()
+                                 ? "shard " + std::to_string(shard) + "/" + std::to_string(shards)
+                                 : std::to_string(mine.size()) + " listed trials";
+    out << part << " of " << dir.string() << ": " << ok << " complete, " << bad
+        << " failed; when every shard is done: cnclab sweep merge " << dir.string() << "\n";
     return bad == 0 ? 0 : 1;
   }
   const SweepSummary summary = summarize(plan, outcomes);

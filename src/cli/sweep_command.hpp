@@ -27,7 +27,19 @@ struct SweepCommandOptions {
   std::optional<std::size_t> repeats, trials;
   std::optional<std::string> method, objective;
   std::optional<std::uint64_t> sweep_seed;
+  std::vector<std::string> trial_ids;  // run only these trials (a Slurm array task's list)
 };
+
+// A sweep planned and its folder chosen: what `cnclab sweep` runs and
+// `cnclab sweep --slurm` submits (slurm_command.hpp).
+struct PreparedSweep {
+  SweepPlan plan;
+  std::filesystem::path dir;
+  SweepExecuteOptions exec;  // jobs (the kind: sweep file's if not given), shard, ...
+};
+PreparedSweep prepare_sweep(const std::filesystem::path& experiment,
+                            const std::vector<std::string>& words,
+                            std::optional<std::uint64_t> seed, const SweepCommandOptions& options);
 
 // `words`: key=value overrides and key=v1,v2 / key=fn(...) sweep parameters.
 int sweep_command(const std::filesystem::path& experiment, const std::vector<std::string>& words,

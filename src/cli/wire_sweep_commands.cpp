@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cli/cli_wiring.hpp"
+#include "cli/slurm_command.hpp"
 #include "cli/sweep_command.hpp"
 #include "cnclab/core/error.hpp"
 
@@ -15,6 +16,7 @@ struct SweepArgs {
   std::string experiment;
   std::vector<std::string> words;
   std::optional<std::string> seed_text, sweep_seed_text;
+  SlurmSweepOptions slurm;
 };
 
 void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
@@ -62,6 +64,7 @@ void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
   sweep.add_flag("--regenerate", o.common.regenerate, "Regenerate the datasets even when cached");
   sweep.add_flag("--quiet,-q", o.common.quiet, "No progress output");
   sweep.add_option("--profile", o.common.profile, kProfileHelp);
+  add_slurm_sweep_options(sweep, a.slurm, o);
   sweep.footer(
       "Examples:\n"
       "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
@@ -99,10 +102,15 @@ void add_sweep_commands(CLI::App& app, CommandAction& action) {
     action = [a] {
       if (a->experiment.empty()) throw ConfigError("sweep: an experiment file is required");
       a->options.sweep_seed = seed_option(a->sweep_seed_text, "--sweep-seed");
+      if (a->slurm.enabled) {
+        return slurm_sweep_command(a->experiment, a->words, seed_option(a->seed_text, "--seed"),
+                                   a->options, a->slurm.slurm, std::cout, std::cerr);
+      }
       return sweep_command(a->experiment, a->words, seed_option(a->seed_text, "--seed"), a->options,
                            std::cout, std::cerr);
     };
   });
+  add_status_command(app, action);
 }
 
 }  // namespace cnclab

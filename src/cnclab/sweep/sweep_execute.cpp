@@ -1,6 +1,7 @@
 #include "cnclab/sweep/sweep_execute.hpp"
 
 #include <algorithm>
+#include <csignal>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -146,6 +147,22 @@ void publish_to_store(const ResultStore& store, const PlannedTrial& trial,
   }
 }
 
+// The trials of `mine` named in `ids` (plan order).
+std::vector<std::size_t> listed_trials(const SweepPlan& plan, const std::vector<std::size_t>& mine,
+                                       const std::vector<std::string>& ids) {
+  std::set<std::string> wanted(ids.begin(), ids.end());
+  std::vector<std::size_t> listed;
+  for (std::size_t i : mine) {
+    if (wanted.erase(plan.trials[i].id)) listed.push_back(i);
+  }
+  if (!wanted.empty()) {
+    throw ConfigError("--trial-ids: " + *wanted.begin() + " is not a trial of this sweep" +
+                      (mine.size() < plan.trials.size() ? " (or of this shard)" : "") +
+                      "; the ids are listed in its sweep.yaml");
+  }
+  return listed;
+}
+
 }  // namespace
 
 SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
@@ -153,6 +170,7 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
   SweepExecution ex;
   ex.outcomes = read_trial_outcomes(dir, plan);
   ex.mine = shard_trials(plan.trials.size(), o.shard, o.shards);
+  if (!o.trial_ids.empty()) ex.mine = listed_trials(plan, ex.mine, o.trial_ids);
   const std::size_t stale = invalidate_stale(plan, ex.mine, o.common.results_dir, ex.outcomes);
   std::vector<std::size_t> todo;
   for (std::size_t i : ex.mine) {
@@ -216,6 +234,8 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
       *note << to_string(r.status) << ": " << (r.reason.empty() ? exit.message : r.reason) << "\n";
     }
   });
+  // Drained (SIGUSR1) after every trial had started: nothing was left out.
+  if (ex.stopped == SIGUSR1 && ex.finished == ex.ran) ex.stopped = 0;
   return ex;
 }
 

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "cnclab/experiment/command_options.hpp"
@@ -19,6 +20,9 @@ struct SweepExecuteOptions {
   bool rerun = false;                 // run every trial of the shard, even those with a result
   bool retry_failed = false;          // run failed trials (failed status, timeout) again
   double trial_timeout = 0;           // seconds; a trial still running is killed; 0 = none
+  // Non-empty: run only these trials of the shard (ids as in sweep.yaml; a
+  // Slurm array task's list, slurm_script.hpp). ConfigError on an unknown id.
+  std::vector<std::string> trial_ids;
 };
 
 struct SweepExecution {

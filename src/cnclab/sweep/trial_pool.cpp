@@ -118,6 +118,7 @@ int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
   sigaddset(&watched, SIGCHLD);
   sigaddset(&watched, SIGINT);
   sigaddset(&watched, SIGTERM);
+  sigaddset(&watched, SIGUSR1);
   const BlockedSignals blocked(watched);
   const pid_t self = ::getpid();
 
@@ -130,6 +131,7 @@ int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
   std::map<pid_t, Running> running;
   std::optional<TrialJob> pending;  // taken from next_ready, not yet started (fork failed)
   int stop_signal = 0;
+  int drain_signal = 0;  // SIGUSR1 received: start nothing, let the running trials end
   const auto reap = [&](pid_t pid, int status) {
     const auto it = running.find(pid);
     if (it == running.end()) return;  // not a trial (e.g. a read probe)
@@ -172,7 +174,7 @@ int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
   };
 
   for (;;) {
-    while (stop_signal == 0 && running.size() < options.jobs) {
+    while (stop_signal == 0 && drain_signal == 0 && running.size() < options.jobs) {
       if (!pending) pending = next_ready();
       if (!pending) break;
       std::cout.flush();
@@ -198,13 +200,14 @@ int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
       reaped = true;
     }
     if (running.empty()) {
-      if (stop_signal == 0 && (reaped || pending)) continue;
+      if (stop_signal == 0 && drain_signal == 0 && (reaped || pending)) continue;
       break;
     }
     const timespec tick{1, 0};  // also a safety net against a missed SIGCHLD
     siginfo_t info;
     const int sig = ::sigtimedwait(&watched, &info, &tick);
     if (options.on_tick) options.on_tick();
+    if (sig == SIGUSR1) drain_signal = sig;
     if ((sig == SIGINT || sig == SIGTERM) && stop_signal == 0) {
       stop_signal = sig;
       for (const auto& [pid, trial] : running) ::kill(pid, SIGTERM);
@@ -227,7 +230,7 @@ int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
   sigaddset(&chld, SIGCHLD);
   while (::sigtimedwait(&chld, nullptr, &zero) > 0) {
   }
-  return stop_signal;
+  return stop_signal != 0 ? stop_signal : drain_signal;
 }
 
 }  // namespace cnclab

@@ -8,7 +8,10 @@
 // (blocked and waited for with sigtimedwait, so no handler and no global
 // flag); the pool forwards SIGTERM to the running trials, waits for them and
 // reports the signal. Their temporaries are partial files (never read as
-// results), so a re-run resumes with nothing lost or duplicated. Children die
+// results), so a re-run resumes with nothing lost or duplicated. SIGUSR1
+// (Slurm's warning before a time limit or pre-emption, slurm_script.hpp)
+// drains the pool instead: no trial starts, the running ones finish, and the
+// pool reports SIGUSR1. Children die
 // with the parent (PR_SET_PDEATHSIG), so `kill -9` of the sweep leaves no
 // trial running.
 //
@@ -64,8 +67,8 @@ std::size_t available_cores();
 
 // Runs `jobs` and calls `on_done` in the parent as each trial ends, with the
 // job's position in `jobs`. Returns 0 when all ran, or the number of the
-// signal (SIGINT, SIGTERM) that stopped the sweep early; trials not started
-// then are simply not run.
+// signal (SIGINT, SIGTERM, or SIGUSR1: drained) that stopped the
+// sweep early; trials not started then are simply not run.
 int run_trial_pool(const std::vector<TrialJob>& jobs, const PoolOptions& options,
                    const std::function<void(std::size_t job, const TrialExit&)>& on_done);
 

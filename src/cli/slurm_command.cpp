@@ -1,0 +1,341 @@
+#include "cli/slurm_command.hpp"
+
+#include <unistd.h>
+
+#include <map>
+#include <set>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/io/atomic_file.hpp"
+#include "cnclab/nn/metrics.hpp"
+#include "cnclab/sweep/slurm_queue.hpp"
+#include "cnclab/sweep/slurm_submission.hpp"
+#include "cnclab/sweep/slurm_tools.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+// The array tasks of a sweep's submissions as Slurm sees them now.
+struct SlurmQueueView {
+  std::vector<SlurmSubmission> submissions;
+  SlurmTaskStates states;  // "<array job>_<task>" -> state; absent: Slurm has forgotten it
+  std::string note;        // what the view lacks (squeue or sacct unavailable)
+};
+
+// `strict`: a failing squeue is an error (a submission must not guess what
+// is in flight); else it is noted and the view has no states.
+SlurmQueueView slurm_queue_view(const fs::path& dir, bool strict) {
+  SlurmQueueView v;
+  v.submissions = read_submissions(dir);
+  if (v.submissions.empty()) return v;
+  try {
+    v.states = squeue_tasks();
+  } catch (const Error& e) {
+    if (strict) throw;
+    v.note = e.what();
+    return v;
+  }
+  std::vector<std::string> jobs;
+  for (const auto& s : v.submissions) jobs.push_back(s.array_job);
+  std::string why;
+  if (const auto ended = sacct_tasks(jobs, why)) {
+    for (const auto& [task, state] : *ended) v.states.emplace(task, state);  // squeue first
+  } else {
+    v.note = why + " (tasks ended more than MinJobAge ago are not shown)";
+  }
+  return v;
+}
+
+std::string task_key(const SlurmSubmission& s, std::size_t task) {
+  return s.array_job + "_" + std::to_string(task);
+}
+
+// The trial's most active array task: running before queued; nullopt when
+// none is queued or running (ended, forgotten, or never submitted).
+std::optional<SlurmPhase> trial_phase(
+    const std::string& id, const SlurmQueueView& v,
+    const std::map<std::string, std::vector<TrialPlacement>>& at) {
+  const auto it = at.find(id);
+  if (it == at.end()) return std::nullopt;
+  std::optional<SlurmPhase> best;
+  for (const auto& p : it->second) {
+    const auto s = v.states.find(task_key(*p.submission, p.task));
+    if (s == v.states.end()) continue;
+    const SlurmPhase phase = slurm_phase(s->second);
+    if (phase == SlurmPhase::running) return phase;
+    if (phase == SlurmPhase::queued) best = phase;
+  }
+  return best;
+}
+
+// `cnclab sweep ...` as an array task runs it: the same sweep into the same
+// folder, every path as this process resolved it.
+std::vector<std::string> array_task_command(const std::string& cnclab, const fs::path& experiment,
+                                            const std::vector<std::string>& words,
+                                            std::optional<std::uint64_t> seed,
+                                            const SweepCommandOptions& o, const fs::path& dir) {
+  std::vector<std::string> c = {cnclab, "sweep", experiment.string()};
+  c.insert(c.end(), words.begin(), words.end());
+  c.insert(c.end(), {"--dir", dir.string(), "--out", o.common.results_dir.string(), "--data-dir",
+                     o.common.datasets_dir.string()});
+  const auto add = [&c](const char* option, const std::string& value) {
+    c.push_back(option);
+    c.push_back(value);
+  };
+  if (!o.common.profile.empty()) add("--profile", o.common.profile);
+  if (seed) add("--seed", std::to_string(*seed));
+  if (o.repeats) add("--repeats", std::to_string(*o.repeats));
+  if (o.trials) add("--trials", std::to_string(*o.trials));
+  if (o.method) add("--method", *o.method);
+  if (o.objective) add("--objective", *o.objective);
+  if (o.sweep_seed) add("--sweep-seed", std::to_string(*o.sweep_seed));
+  if (o.trial_timeout > 0) add("--trial-timeout", std::to_string(o.trial_timeout));
+  if (o.retry_failed) c.push_back("--retry-failed");
+  return c;
+}
+
+// Job names: letters, digits, '-', '_' (sbatch's #SBATCH lines split at spaces).
+std::string slurm_job_name(const std::string& experiment, const char* suffix) {
+  std::string name = "cnclab-" + experiment;
+  for (char& ch : name) {
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '_';
+  }
+  return name + suffix;
+}
+
+// "12345" or "12345;cluster" (sbatch --parsable) -> "12345".
+std::string parsed_job_id(const ToolRun& r) {
+  std::string id = r.out.substr(0, r.out.find_first_of(";\n"));
+  if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos) {
+    throw Error("sbatch printed no job id (output '" + r.out + "')");
+  }
+  return id;
+}
+
+std::string tool_message(const ToolRun& r) {
+  std::string m = r.err.empty() ? r.out : r.err;
+  while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
+  return m;
+}
+
+// The trials to submit: no result yet (failed too with --retry-failed) and
+// not held by a queued or running array task. Counts what it skipped.
+struct SubmitSelection {
+  std::vector<std::string> ids;
+  std::size_t done = 0, in_flight = 0;
+};
+SubmitSelection trials_to_submit(const SweepPlan& plan, const fs::path& dir,
+                                 const SweepCommandOptions& o, const SlurmQueueView& v) {
+  const auto outcomes = read_trial_outcomes(dir, plan);
+  const auto placements = trial_placements(v.submissions);
+  SubmitSelection sel;
+  for (std::size_t i = 0; i < plan.trials.size(); ++i) {
+    const bool retry = o.retry_failed && outcomes[i].status == TrialOutcome::Status::failed;
+    if (outcomes[i].done() && !retry) {
+      ++sel.done;
+    } else if (trial_phase(plan.trials[i].id, v, placements)) {
+      ++sel.in_flight;
+    } else {
+      sel.ids.push_back(plan.trials[i].id);
+    }
+  }
+  return sel;
+}
+
+// Arrays of earlier submissions with tasks still queued or running, and
+// their merge jobs still waiting: the new merge job waits for all those
+// arrays and replaces those merge jobs, so the last summary.h5 written is
+// the one made after every array ended.
+struct EarlierJobs {
+  std::vector<std::string> arrays, merges;
+};
+EarlierJobs earlier_jobs(const SlurmQueueView& v) {
+  EarlierJobs e;
+  for (const auto& s : v.submissions) {
+    for (std::size_t k = 0; k < s.tasks.size(); ++k) {
+      const auto it = v.states.find(task_key(s, k));
+      if (it != v.states.end() && slurm_phase(it->second) != SlurmPhase::ended) {
+        e.arrays.push_back(s.array_job);
+        break;
+      }
+    }
+    if (!s.merge_job.empty()) e.merges.push_back(s.merge_job);
+  }
+  return e;
+}
+
+// Submits the array, then the merge job after it; the submission counts
+// (job.yaml) only once sbatch accepted the array.
+int submit_scripts(SlurmSubmission& sub, const fs::path& dir, const EarlierJobs& earlier,
+                   std::ostream& out, std::ostream& log) {
+  const ToolRun array = run_tool({"sbatch", "--parsable", (sub.folder / "sweep.sbatch").string()});
+  if (array.exit_code != 0) {
+    std::error_code ec;
+    fs::remove_all(sub.folder, ec);
+    throw Error("sbatch rejected the job array (exit " + std::to_string(array.exit_code) +
+                "): " + tool_message(array) + "; nothing was submitted for " + dir.string());
+  }
+  const std::string array_id = parsed_job_id(array);
+  record_jobs(sub, array_id, "");
+  std::string after = "afterany:" + array_id;
+  for (const auto& id : earlier.arrays) after += ":" + id;
+  const ToolRun merge =
+      run_tool({"sbatch", "--parsable", "--dependency=" + after, "--kill-on-invalid-dep=yes",
+                (sub.folder / "merge.sbatch").string()});
+  int code = 0;
+  if (merge.exit_code == 0) {
+    record_jobs(sub, array_id, parsed_job_id(merge));
+    // Earlier merge jobs still pending are redundant now (scancel ignores
+    // those that already ran).
+    for (const auto& id : earlier.merges) {
+      try {
+        run_tool({"scancel", "--state=PENDING", id});
+      } catch (const Error&) {
+        // No scancel: the earlier merge runs too; the new one runs last.
+      }
+    }
+  } else {
+    log << "warning: sbatch rejected the merge job: " << tool_message(merge)
+        << "; when the array has ended run: cnclab sweep merge " << dir.string() << "\n";
+    code = 1;
+  }
+  out << "submitted " << sub.folder.filename().string() << ": array job " << array_id << " ("
+      << sub.tasks.size() << " task" << (sub.tasks.size() == 1 ? "" : "s") << ")";
+  if (!sub.merge_job.empty()) out << ", merge job " << sub.merge_job << " after it";
+  out << "\nstatus: cnclab status " << dir.string() << "\n";
+  return code;
+}
+
+}  // namespace
+
+int slurm_sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
+                        std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
+                        const SlurmOptions& slurm, std::ostream& out, std::ostream& log) {
+  slurm.validate();
+  if (!o.shard.empty()) throw ConfigError("--shard with --slurm: the array tasks are the shards");
+  if (o.jobs != 0) {
+    throw ConfigError("--jobs with --slurm: a task runs --cpus-per-task trials at once");
+  }
+  if (!o.trial_ids.empty()) throw ConfigError("--trial-ids with --slurm: the tasks set it");
+  if (!slurm.dry_run) {
+    for (const char* tool : {"sbatch", "squeue", "scontrol"}) {
+      if (!find_on_path(tool)) {
+        throw Error(std::string(tool) +
+                    " not found on PATH: --slurm needs Slurm's client commands (run it on a "
+                    "login node, or use --dry-run to see the scripts)");
+      }
+    }
+  }
+  const PreparedSweep prepared = prepare_sweep(experiment, words, seed, o);
+  const fs::path& dir = prepared.dir;
+  if (slurm.dry_run) {
+    if (fs::exists(dir / "sweep.yaml") && load_plan(dir).hash() != prepared.plan.hash()) {
+      store_plan(dir, prepared.plan);  // throws: another sweep's folder
+    }
+  } else {
+    store_plan(dir, prepared.plan);
+  }
+  const SlurmQueueView view = slurm_queue_view(dir, !slurm.dry_run);
+  const SubmitSelection sel = trials_to_submit(prepared.plan, dir, o, view);
+  const std::size_t total = prepared.plan.trials.size();
+  if (sel.ids.empty()) {
+    out << "nothing to submit for " << dir.string() << ": " << sel.done << " of " << total
+        << " trials done, " << sel.in_flight << " queued or running\n";
+    return 0;
+  }
+  if (slurm.tasks == 0 && sel.ids.size() > kMaxArrayTasks) {
+    throw ConfigError(std::to_string(sel.ids.size()) + " trials to submit: more than " +
+                      std::to_string(kMaxArrayTasks) + " array tasks; give --tasks N");
+  }
+  const auto tasks = split_into_tasks(sel.ids, slurm.tasks);
+  const std::string cnclab = fs::read_symlink("/proc/self/exe").string();
+  for (const fs::path& p : {fs::current_path(), fs::absolute(dir)}) {
+    if (p.string().find_first_of(" \t\n%") != std::string::npos) {
+      throw ConfigError(p.string() +
+                        ": a path with spaces or '%' cannot go on an #SBATCH line; choose "
+                        "another --dir or working folder");
+    }
+  }
+  SlurmArrayScript array;
+  array.job_name = slurm_job_name(prepared.plan.experiment, "");
+  array.workdir = fs::current_path();
+  array.tasks = tasks.size();
+  array.task_command = array_task_command(cnclab, experiment, words, seed, o, dir);
+  if (slurm.dry_run) {
+    array.submission = dir / "slurm" / "submit-NNN";
+    out << "# dry run: nothing written or submitted; " << sel.ids.size() << " of " << total
+        << " trials to submit (" << sel.done << " done, " << sel.in_flight << " in flight)\n"
+        << array_script(slurm, array) << "# tasks.txt:\n";
+    for (const auto& ids : tasks) {
+      out << "#   ";
+      for (std::size_t k = 0; k < ids.size(); ++k) out << (k ? "," : "") << ids[k];
+      out << "\n";
+    }
+    return 0;
+  }
+  SlurmSubmission sub = create_submission(dir, tasks);
+  array.submission = sub.folder;
+  write_text_atomically(sub.folder / "sweep.sbatch", array_script(slurm, array));
+  write_text_atomically(sub.folder / "merge.sbatch",
+                        merge_script(slurm, slurm_job_name(prepared.plan.experiment, "-merge"),
+                                     array.workdir, sub.folder, cnclab, dir));
+  out << dir.string() << ": " << sel.ids.size() << " of " << total << " trials to submit ("
+      << sel.done << " done, " << sel.in_flight << " queued or running)\n";
+  return submit_scripts(sub, dir, earlier_jobs(view), out, log);
+}
+
+int status_command(const fs::path& dir, std::ostream& out) {
+  const SweepPlan plan = load_plan(dir);
+  const auto outcomes = read_trial_outcomes(dir, plan);
+  const SlurmQueueView view = slurm_queue_view(dir, false);
+  const auto placements = trial_placements(view.submissions);
+  std::size_t complete = 0, failed = 0, running = 0, pending = 0, unqueued = 0, errors = 0;
+  for (std::size_t i = 0; i < plan.trials.size(); ++i) {
+    const auto& r = outcomes[i];
+    if (r.status == TrialOutcome::Status::complete) {
+      ++complete;
+    } else if (r.status == TrialOutcome::Status::failed) {
+      ++failed;
+    } else if (const auto phase = trial_phase(plan.trials[i].id, view, placements)) {
+      ++(*phase == SlurmPhase::running ? running : pending);
+    } else {
+      ++(r.status == TrialOutcome::Status::error ? errors : unqueued);
+    }
+  }
+  out << "sweep " << dir.string() << " (" << plan.experiment << "): " << plan.trials.size()
+      << " trials\n"
+      << "  complete " << complete << ", failed " << failed << ", running " << running
+      << ", pending " << pending << ", not queued " << unqueued + errors;
+  if (errors) out << " (" << errors << " stopped with an error)";
+  out << "\n";
+  for (const auto& s : view.submissions) {
+    std::map<std::string, std::size_t> states;
+    for (std::size_t k = 0; k < s.tasks.size(); ++k) {
+      const auto it = view.states.find(task_key(s, k));
+      ++states[it == view.states.end() ? "unknown to Slurm" : it->second];
+    }
+    out << "  " << s.folder.filename().string() << ": array job " << s.array_job << ", tasks";
+    for (const auto& [state, n] : states) out << " " << state << " " << n;
+    if (!s.merge_job.empty()) out << "; merge job " << s.merge_job;
+    out << "\n";
+  }
+  if (!view.note.empty()) out << "  note: " << view.note << "\n";
+  const SweepSummary summary = summarize(plan, outcomes);
+  if (summary.best_trial >= 0) {
+    const auto& t = plan.trials[static_cast<std::size_t>(summary.best_trial)];
+    const auto& r = outcomes[static_cast<std::size_t>(summary.best_trial)];
+    out << "best so far: " << t.id << " (" << point_text(plan.keys, t.values)
+        << "): " << plan.objective.metric << " "
+        << format_metric(metric_or_nan(r.metrics, plan.objective.metric)) << "\n";
+  } else {
+    out << "best so far: none (no trial complete)\n";
+  }
+  if (unqueued + errors > 0) {
+    out << "resubmit the trials not queued: the same `cnclab sweep ... --slurm` command\n";
+  }
+  return 0;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,225 @@
+// `cnclab sweep --slurm` on a real single-node Slurm (scripts/slurm_local:
+// Debian's slurm-wlm and munge, started here and always stopped): submit a
+// sweep as a job array of 2 concurrent tasks, cancel one task mid-run, send
+// another the pre-emption warning (it finishes its running trial and
+// requeues itself), resubmit, wait, and compare the merged summary with a
+// local `--jobs 2` run trial for trial (bit-identical metrics and network
+// parameters), with no trial run twice. Independent reference: the local run
+// shares no code with the Slurm path beyond the trial itself.
+//
+// Skipped (not failed) when the daemons cannot run here: not root, or
+// slurm-wlm / munge not installed.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/sweep/slurm_submission.hpp"
+#include "cnclab/sweep/sweep_summary.hpp"
+#include "common/process.hpp"
+#include "common/temp_dir.hpp"
+
+namespace cnclab {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_shell;
+using testing::ShellResult;
+using testing::slurp;
+using testing::TempDir;
+
+const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
+const std::string kSlurmLocal = CNCLAB_SOURCE_DIR "/scripts/slurm_local";
+const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
+// A port pair of its own, so a developer's `scripts/slurm_local` on the
+// default 6817 does not collide with the test's cluster.
+constexpr int kTestPort = 16817;
+constexpr auto kWaitLimit = std::chrono::seconds(120);
+
+// 6 trials (3 keep probabilities x 2 learning rates) of about 3 s each.
+std::string sweep_words() {
+  return kExperiment +
+         " trainer.epochs=6000 dataset.options.samples=300 model.hidden=[16,8] "
+         "model.dropout.keep_probability=0.8,0.9,1.0 trainer.learning_rate=1e-3,1e-2 "
+         "--data-dir data";
+}
+
+// The cluster of scripts/slurm_local under `state`, stopped on destruction
+// (also when an assertion ends the test early).
+class LocalCluster {
+ public:
+  explicit LocalCluster(fs::path state) : state_(std::move(state)) {}
+  ~LocalCluster() {
+    if (started_) run_shell(state_.parent_path(), env() + kSlurmLocal + " stop");
+    std::error_code ignored;
+    fs::remove_all(state_, ignored);
+  }
+  LocalCluster(const LocalCluster&) = delete;
+  LocalCluster& operator=(const LocalCluster&) = delete;
+
+  ShellResult start() {
+    started_ = true;  // stop even a half-started cluster
+    return run_shell(state_.parent_path(), env() + kSlurmLocal + " start");
+  }
+  // Prefix of a shell command that talks to this cluster.
+  std::string env() const {
+    return "CNCLAB_SLURM_DIR='" + state_.string() +
+           "' CNCLAB_SLURM_PORT=" + std::to_string(kTestPort) + " SLURM_CONF='" +
+           (state_ / "etc/slurm.conf").string() + "' ";
+  }
+
+ private:
+  fs::path state_;
+  bool started_ = false;
+};
+
+std::string why_not_runnable() {
+  if (::geteuid() != 0) return "not root (slurmd and munged run as root here)";
+  for (const char* tool : {"/usr/sbin/munged", "/usr/sbin/slurmctld", "/usr/sbin/slurmd",
+                           "/usr/bin/sbatch", "/usr/bin/squeue"}) {
+    if (!fs::exists(tool)) return std::string(tool) + " missing (slurm-wlm, munge)";
+  }
+  return "";
+}
+
+// "<array>_<task>" -> state of the caller's array tasks.
+std::map<std::string, std::string> task_states(const fs::path& dir, const LocalCluster& c) {
+  const ShellResult r = run_shell(dir, c.env() + "squeue -h -r -t all -o '%F_%K %T'");
+  std::map<std::string, std::string> states;
+  std::istringstream in(r.out);
+  std::string task, state;
+  while (in >> task >> state) states[task] = state;
+  return states;
+}
+
+bool queue_empty(const fs::path& dir, const LocalCluster& c) {
+  return run_shell(dir, c.env() + "squeue -h -o %i").out.empty();
+}
+
+// Waits until `done()` or the limit; false on timeout.
+template <class F>
+bool wait_for(F done) {
+  const auto end = std::chrono::steady_clock::now() + kWaitLimit;
+  while (std::chrono::steady_clock::now() < end) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  }
+  return false;
+}
+
+// Trial ids with a "[k/n] <id> ..." finished line in any task log: how
+// often each trial ran to its end (a result written).
+std::map<std::string, int> finished_runs(const fs::path& sweep) {
+  std::map<std::string, int> runs;
+  const std::regex line(R"(^\[\d+/\d+\] ([0-9a-f]{16}) )");
+  for (const auto& sub : fs::directory_iterator(sweep / "slurm")) {
+    for (const auto& log : fs::directory_iterator(sub.path() / "logs")) {
+      std::istringstream in(slurp(log.path()));
+      std::string text;
+      std::smatch m;
+      while (std::getline(in, text)) {
+        // A trial killed with its task ends as "error: ..." (it runs again).
+        if (std::regex_search(text, m, line) && text.find(": error:") == std::string::npos) {
+          ++runs[m[1].str()];
+        }
+      }
+    }
+  }
+  return runs;
+}
+
+TEST(SlurmCluster, ArraySweepSurvivesCancelAndPreemptionAndMatchesLocalRun) {
+  const std::string why = why_not_runnable();
+  if (!why.empty()) GTEST_SKIP() << "no local Slurm: " << why;
+  TempDir tmp;
+  const fs::path dir = tmp.path();
+  // Short: munged's socket path lives in it (at most 108 bytes).
+  const fs::path state = fs::temp_directory_path() / ("cnclab-slurm-" + std::to_string(::getpid()));
+  LocalCluster cluster(state);
+  const ShellResult started = cluster.start();
+  ASSERT_EQ(started.code, 0) << "scripts/slurm_local start failed (daemons could not start):\n"
+                             << started.out << started.err;
+
+  // The reference: the same sweep run locally with 2 jobs.
+  const ShellResult local = run_shell(
+      dir, kCnclab + " sweep " + sweep_words() + " --jobs 2 --quiet --out local --dir local/sw");
+  ASSERT_EQ(local.code, 0) << local.out << local.err;
+
+  // Submission: 3 array tasks of 2 trials, 2 at once.
+  const std::string submit = cluster.env() + kCnclab + " sweep " + sweep_words() +
+                             " --out slurm --dir slurm/sw --slurm --tasks 3 --max-concurrent 2";
+  const ShellResult first = run_shell(dir, submit);
+  ASSERT_EQ(first.code, 0) << first.out << first.err;
+  EXPECT_NE(first.out.find("6 of 6 trials to submit"), std::string::npos) << first.out;
+  const auto subs = read_submissions(dir / "slurm/sw");
+  ASSERT_EQ(subs.size(), 1u);
+  const std::string array = subs[0].array_job;
+  ASSERT_EQ(subs[0].tasks.size(), 3u);
+
+  // Tasks 0 and 1 run (the throttle holds task 2 back): cancel task 0, warn task 1.
+  ASSERT_TRUE(wait_for([&] {
+    const auto s = task_states(dir, cluster);
+    return s.count(array + "_0") && s.at(array + "_0") == "RUNNING" && s.count(array + "_1") &&
+           s.at(array + "_1") == "RUNNING";
+  })) << "the first two array tasks never ran together";
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // mid-trial
+  ASSERT_EQ(run_shell(dir, cluster.env() + "scancel " + array + "_0").code, 0);
+  ASSERT_EQ(run_shell(dir, cluster.env() + "scancel --signal=USR1 --batch " + array + "_1").code,
+            0);
+  ASSERT_TRUE(wait_for([&] {
+    const auto s = task_states(dir, cluster);
+    return s.count(array + "_0") && s.at(array + "_0") == "CANCELLED";
+  }));
+
+  // Resubmission while tasks 1 and 2 are still queued or running: only the
+  // cancelled task's trials without a result go again.
+  const ShellResult second = run_shell(dir, submit);
+  ASSERT_EQ(second.code, 0) << second.out << second.err;
+  const auto after = read_submissions(dir / "slurm/sw");
+  ASSERT_EQ(after.size(), 2u) << second.out;
+  const std::set<std::string> task0(subs[0].tasks[0].begin(), subs[0].tasks[0].end());
+  for (const auto& ids : after[1].tasks) {
+    for (const auto& id : ids)
+      EXPECT_TRUE(task0.count(id)) << id << " was not the cancelled task's";
+  }
+
+  ASSERT_TRUE(wait_for([&] { return queue_empty(dir, cluster); })) << "jobs still queued";
+  const ShellResult status = run_shell(dir, cluster.env() + kCnclab + " status slurm/sw");
+  EXPECT_NE(status.out.find("complete 6, failed 0, running 0, pending 0, not queued 0"),
+            std::string::npos)
+      << status.out << status.err;
+  // Task 1 was warned, requeued and ran again.
+  EXPECT_NE(slurp(dir / "slurm/sw/slurm/submit-001/logs/task-1.out").find("requeueing"),
+            std::string::npos);
+
+  // The merge jobs' summary equals the local run's, trial for trial.
+  ASSERT_TRUE(fs::exists(dir / "slurm/sw/summary.h5"));
+  const StoredSummary a = read_summary(dir / "local/sw/summary.h5");
+  const StoredSummary b = read_summary(dir / "slurm/sw/summary.h5");
+  ASSERT_EQ(a.plan.hash(), b.plan.hash());
+  ASSERT_EQ(a.outcomes.size(), b.outcomes.size());
+  for (std::size_t i = 0; i < a.outcomes.size(); ++i) {
+    EXPECT_EQ(to_string(b.outcomes[i].status), "complete");
+    EXPECT_EQ(a.outcomes[i].metrics, b.outcomes[i].metrics) << a.plan.trials[i].id;
+    const std::string file = "trials/" + a.plan.trials[i].id + ".h5";
+    const RunRecord ra = read_result(dir / "local/sw" / file);
+    const RunRecord rb = read_result(dir / "slurm/sw" / file);
+    EXPECT_EQ(ra.parameters, rb.parameters) << file;
+    EXPECT_EQ(ra.test_predictions, rb.test_predictions) << file;
+  }
+  EXPECT_EQ(a.best_trial, b.best_trial);
+  // No trial ran to its end twice (cancelled runs never reached the end).
+  for (const auto& [id, n] : finished_runs(dir / "slurm/sw")) EXPECT_EQ(n, 1) << id;
+  EXPECT_EQ(finished_runs(dir / "slurm/sw").size(), 6u);
+}
+
+}  // namespace
+}  // namespace cnclab
