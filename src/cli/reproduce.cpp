@@ -2,7 +2,10 @@
 // results (DVC-style stage caching; see experiment_graph.hpp). Experiments
 // whose upstream results are ready train in parallel, each in its own process
 // (trial_pool.hpp, like sweep trials): results are bit-identical to running
-// them one by one, since a run depends only on its resolved config.
+// them one by one, since a run depends only on its resolved config. The
+// `kind:` jobs run after the graph; their datasets (JobKind::prework) are
+// generated into the cache in free slots while the graph trains, under the
+// same --jobs budget (issue 21 item 2).
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -48,13 +51,16 @@ struct NodeState {
 // records one summary row per experiment.
 class GraphRun {
  public:
-  GraphRun(const std::vector<GraphNode>& graph, const CommandOptions& options, std::ostream& log)
+  GraphRun(const std::vector<GraphNode>& graph, std::vector<JobPrework> prework,
+           const CommandOptions& options, std::ostream& log)
       : graph_(graph),
+        prework_(std::move(prework)),
         options_(options),
         run_(run_options(options, log)),
         store_(options.results_dir, options.profile),
         log_(run_.log),
-        state_(graph.size()) {}
+        state_(graph.size()),
+        prework_started_(prework_.size()) {}
 
   // Runs what needs running; returns 0, or the signal that stopped it.
   int run(std::size_t jobs) {
@@ -102,9 +108,12 @@ class GraphRun {
     exit_code_ = config_error ? 2 : std::max(exit_code_, 1);
   }
 
-  // The next experiment to train whose upstream are done; experiments that
-  // are current, blocked or broken are settled on the way.
+  // The jobs' prework first (a dataset takes one slot for minutes, and the
+  // jobs after the graph wait for it), then the next experiment to train
+  // whose upstream are done; experiments that are current, blocked or broken
+  // are settled on the way.
   std::optional<TrialJob> next_ready() {
+    if (next_prework_ < prework_.size()) return start_prework(next_prework_++);
     for (std::size_t i = 0; i < graph_.size(); ++i) {
       if (state_[i].stage != NodeState::Stage::waiting) continue;
       bool upstream_done = true;
@@ -194,12 +203,43 @@ class GraphRun {
     ++started_;
     if (log_) *log_ << "[run " << started_ << "] " << display_name(i) << " (" << why << ")\n";
     last_log_ = s.started;
-    return TrialJob{i, &exp, path, error_note(path)};
+    return TrialJob{i, &exp, path, error_note(path), {}};
   }
 
   static fs::path error_note(const fs::path& result) { return result.string() + ".error"; }
 
+  // Prework k runs in the pool as index graph_.size() + k.
+  TrialJob start_prework(std::size_t k) {
+    prework_started_[k] = std::chrono::steady_clock::now();
+    if (log_) *log_ << "[prepare] " << prework_[k].what << ", beside the training\n";
+    TrialJob job;
+    job.index = graph_.size() + k;
+    job.task = prework_[k].run;
+    job.error_file = error_note(prework_[k].key);
+    return job;
+  }
+
+  // A failed prework is only logged: the job meets the same error when it
+  // runs and reports it in its row.
+  void prework_finished(std::size_t k, const TrialExit& exit) {
+    prework_done_.insert(k);
+    const std::string text = read_note(error_note(prework_[k].key));
+    if (!log_ || exit.kind == TrialExit::Kind::interrupted) return;
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - prework_started_[k])
+            .count();
+    *log_ << "[prepared] " << prework_[k].what;
+    if (exit.kind == TrialExit::Kind::result) {
+      *log_ << " in " << std::fixed << std::setprecision(1) << seconds << " s" << std::defaultfloat;
+    } else if (exit.kind == TrialExit::Kind::error) {
+      *log_ << ": failed (" << (text.empty() ? exit.message : text) << "); its job will say why";
+    }
+    *log_ << "\n";
+    last_log_ = std::chrono::steady_clock::now();
+  }
+
   void finished(std::size_t i, const TrialExit& exit) {
+    if (i >= graph_.size()) return prework_finished(i - graph_.size(), exit);
     NodeState& s = state_[i];
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - s.started).count();
@@ -238,11 +278,16 @@ class GraphRun {
     const auto now = std::chrono::steady_clock::now();
     if (!log_ || now - last_log_ < kHeartbeat) return;
     std::string line;
+    const auto add = [&](const std::string& name, std::chrono::steady_clock::time_point started) {
+      const auto s = std::chrono::duration_cast<std::chrono::seconds>(now - started);
+      line += (line.empty() ? "" : ", ") + name + " " + std::to_string(s.count() / 60) + "m" +
+              (s.count() % 60 < 10 ? "0" : "") + std::to_string(s.count() % 60) + "s";
+    };
     for (std::size_t i = 0; i < graph_.size(); ++i) {
-      if (state_[i].stage != NodeState::Stage::running) continue;
-      const auto s = std::chrono::duration_cast<std::chrono::seconds>(now - state_[i].started);
-      line += (line.empty() ? "" : ", ") + display_name(i) + " " + std::to_string(s.count() / 60) +
-              "m" + (s.count() % 60 < 10 ? "0" : "") + std::to_string(s.count() % 60) + "s";
+      if (state_[i].stage == NodeState::Stage::running) add(display_name(i), state_[i].started);
+    }
+    for (std::size_t k = 0; k < next_prework_; ++k) {
+      if (!prework_done_.count(k)) add(prework_[k].what, prework_started_[k]);
     }
     if (!line.empty()) *log_ << "[running] " << line << "\n";
     last_log_ = now;
@@ -280,16 +325,41 @@ class GraphRun {
   }
 
   const std::vector<GraphNode>& graph_;
+  const std::vector<JobPrework> prework_;  // the jobs' datasets, run before the graph's trainings
   const CommandOptions& options_;
   const RunOptions run_;     // the trials' options
   const ResultStore store_;  // where current results are found (reuse)
   std::ostream* log_;        // progress; null when quiet
   std::vector<NodeState> state_;
   std::set<fs::path> regenerated_;
+  std::size_t next_prework_ = 0;
+  std::vector<std::chrono::steady_clock::time_point> prework_started_;
+  std::set<std::size_t> prework_done_;
   std::size_t started_ = 0, finished_ = 0;
   std::chrono::steady_clock::time_point last_log_ = std::chrono::steady_clock::now();
   int exit_code_ = 0;
 };
+
+// What the jobs need that does not wait for training (their datasets), each
+// piece once. None with --regenerate (the jobs regenerate their own). A job
+// whose prework cannot be listed (a bad file) reports that when it runs.
+std::vector<JobPrework> jobs_prework(const std::vector<std::pair<fs::path, JobKind>>& jobs,
+                                     const CommandOptions& options) {
+  std::vector<JobPrework> out;
+  if (options.regenerate) return out;
+  std::set<std::string> keys;
+  const JobContext context{options, {}, nullptr};
+  for (const auto& [file, kind] : jobs) {
+    if (!kind.prework) continue;
+    try {
+      for (auto& p : kind.prework(file, context)) {
+        if (keys.insert(p.key).second) out.push_back(std::move(p));
+      }
+    } catch (const std::exception&) {
+    }
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -315,7 +385,7 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
     }
   }
   const std::vector<GraphNode> graph = load_graph(files, options.profile);
-  GraphRun graph_run(graph, options, log);
+  GraphRun graph_run(graph, jobs_prework(jobs, options), options, log);
   clean_stale_partials({options.results_dir, options.datasets_dir}, log);
   const std::size_t parallel = options.jobs > 0 ? options.jobs : available_cores();
   if (!options.quiet) {

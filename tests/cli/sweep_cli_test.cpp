@@ -663,6 +663,54 @@ TEST(GraphCli, ReproduceRunsUpstreamFirstAndReusesUntilUpstreamChanges) {
 // A diamond a -> {b, c} -> d with 2 jobs: b and c wait for a, d for both;
 // every result equals the one-job run bit for bit, and d records the results
 // of b and c it started from.
+// A `kind: sweep` job runs after the graph, but its dataset is generated
+// in a free slot while the graph trains (issue 21 item 2): the log says so
+// before the graph's run ends, the job then finds it cached, and the
+// results equal a --jobs 1 run's.
+TEST(GraphCli, ReproduceGeneratesAJobsDatasetBesideTheTraining) {
+  TempDir tmp;
+  const fs::path one = tmp / "one", two = tmp / "two";
+  for (const fs::path& dir : {one, two}) {
+    fs::create_directories(dir);
+    write_upstream(dir, 3);
+    std::ofstream(dir / "swept.yaml") << "include: " << kExperiment
+                                      << "\nname: swept\ntrainer: {epochs: 2}\n"
+                                         "dataset: {options: {samples: 300}}\n";
+    std::ofstream(dir / "search.yaml")
+        << "kind: sweep\nname: search\nexperiment: swept.yaml\njobs: 1\n"
+           "sweep: {parameters: {trainer.learning_rate: [0.01, 0.02]}}\n";
+  }
+  const Result serial = sh(one, kCnclab + " reproduce up.yaml search.yaml --jobs 1");
+  ASSERT_EQ(serial.code, 0) << serial.err << serial.out;
+  const Result parallel = sh(two, kCnclab + " reproduce up.yaml search.yaml --jobs 2");
+  ASSERT_EQ(parallel.code, 0) << parallel.err << parallel.out;
+  const std::string& log = parallel.err;
+  const auto prepare = log.find("[prepare] dataset friedman1-");
+  ASSERT_NE(prepare, std::string::npos) << log;
+  EXPECT_NE(log.find("(search), beside the training"), std::string::npos) << log;
+  EXPECT_LT(prepare, log.find("] up ran in")) << log;
+  EXPECT_NE(log.find("[prepared] dataset friedman1-"), std::string::npos) << log;
+  // One file per dataset: the graph's and the job's.
+  std::size_t datasets = 0;
+  for (const auto& e : fs::directory_iterator(two / "datasets")) {
+    datasets += e.path().extension() == ".h5";
+  }
+  EXPECT_EQ(datasets, 2u);
+  const auto trials = [](const fs::path& dir) {
+    for (const auto& e : fs::directory_iterator(dir / "results" / "search")) {
+      if (e.path().filename().string().rfind("sweep-", 0) == 0) return trial_files(e.path());
+    }
+    return std::vector<fs::path>{};
+  };
+  const auto a = trials(one), b = trials(two);
+  ASSERT_EQ(a.size(), 2u);
+  ASSERT_EQ(b.size(), 2u);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].filename(), b[i].filename());
+    EXPECT_EQ(read_result(a[i]).test_predictions, read_result(b[i]).test_predictions) << a[i];
+  }
+}
+
 TEST(GraphCli, ParallelReproduceWaitsForUpstreamAndMatchesOneJob) {
   TempDir tmp;
   const fs::path one = tmp / "one", two = tmp / "two";

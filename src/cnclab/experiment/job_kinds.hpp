@@ -3,7 +3,8 @@
 // timing studies, sweeps, searches...). Each kind is one entry here;
 // `cnclab run` and `cnclab validate` dispatch on it, and `cnclab reproduce`
 // runs every job after the training graph (so the training results a job
-// reads exist by then), in file order. Adding a kind: write its loader and
+// reads exist by then), in file order; a job's prework (its datasets) runs
+// beside the graph. Adding a kind: write its loader and
 // runner in its study's folder and register it from the study's register
 // function (called by src/cli/builtins.cpp); lower modules never name a kind.
 //
@@ -43,6 +44,16 @@ struct JobReport {
   std::string report;  // printed after the summary (may be empty)
 };
 
+// Work a job needs done before it runs that does not depend on training
+// results, such as generating its datasets into the cache: `reproduce` runs
+// it in a free slot while the training graph runs. Equal keys are the same
+// work (done once).
+struct JobPrework {
+  std::string key;   // e.g. the dataset cache file
+  std::string what;  // for the log: "dataset following_error-….h5"
+  std::function<void()> run;
+};
+
 struct JobKind {
   std::string kind;  // the value of `kind:`
   std::string summary;
@@ -57,6 +68,11 @@ struct JobKind {
   // from its field declarations. Empty while its keys are not declared: the
   // schema then says so and accepts any keys.
   std::function<nlohmann::json()> schema = {};
+  // The job's prework (see JobPrework) that is not done yet; empty: none.
+  // Throws like run (reproduce then leaves the error to the job's own run).
+  std::function<std::vector<JobPrework>(const std::filesystem::path& file,
+                                        const JobContext& context)>
+      prework = {};
 };
 
 // A kind whose files load into a `Job` by `load(file, overrides, profile)`

@@ -3,11 +3,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <chrono>
+#include <set>
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/field_schema.hpp"
 #include "cnclab/core/override.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/spec.hpp"
@@ -200,6 +202,26 @@ SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options
   return r;
 }
 
+std::vector<JobPrework> sweep_job_prework(const SweepJob& job, const CommandOptions& options) {
+  std::vector<JobPrework> out;
+  std::set<std::string> seen;
+  const SweepPlan plan =
+      plan_sweep(job.experiment, job.overrides, std::nullopt, job.sweep, job.profile);
+  for (const auto& trial : plan.trials) {
+    if (!trial.experiment) continue;
+    const ExperimentSpec& spec = trial.experiment->spec;
+    const std::uint64_t seed = generator_seed(spec);
+    const fs::path file = dataset_cache_file(spec.dataset, seed, options.datasets_dir);
+    std::error_code ec;
+    if (fs::exists(file, ec) || !seen.insert(file.string()).second) continue;
+    out.push_back({file.string(), "dataset " + file.filename().string() + " (" + job.name + ")",
+                   [dataset = spec.dataset, seed, dir = options.datasets_dir] {
+                     obtain_dataset(dataset, seed, dir, nullptr);
+                   }});
+  }
+  return out;
+}
+
 // `kind: sweep` (sweep_job.hpp): trials without a result run; a finished
 // sweep with the same plan is reused.
 JobKind sweep_job_kind() {
@@ -230,6 +252,9 @@ JobKind sweep_job_kind() {
   };
   k.resolved_yaml = [](const fs::path& file, const JobContext& c) {
     return to_yaml(load_sweep_job(file, c.overrides, c.options.profile));
+  };
+  k.prework = [](const fs::path& file, const JobContext& c) {
+    return sweep_job_prework(load_sweep_job(file, c.overrides, c.options.profile), c.options);
   };
   k.schema = [] {
     return object_schema(sweep_file_fields(),

@@ -70,6 +70,10 @@ std::string to_yaml(const SweepJob& job);
 // (which covers every trial's resolved config under the job's profile).
 ResultKey sweep_job_key(const SweepJob& job, const SweepPlan& plan);
 
+// The datasets of the job's trials that are not in the cache yet
+// (options.datasets_dir), one prework each (job_kinds.hpp).
+std::vector<JobPrework> sweep_job_prework(const SweepJob& job, const CommandOptions& options);
+
 // The job's sweep as it stands in `results_dir` (nothing run or written).
 struct SweepJobState {
   SweepPlan plan;

@@ -56,7 +56,12 @@ void write_note(const std::filesystem::path& path, const std::string& text) {
       run.log = nullptr;
       run.progress = ProgressMode::quiet;
     }
-    code = run_experiment(*job.experiment, run).ok ? kExitResult : kExitFailed;
+    if (job.task) {
+      job.task();
+      code = kExitResult;
+    } else {
+      code = run_experiment(*job.experiment, run).ok ? kExitResult : kExitFailed;
+    }
   } catch (const std::exception& e) {
     if (dynamic_cast<const ConfigError*>(&e)) code = kExitConfig;
     try {

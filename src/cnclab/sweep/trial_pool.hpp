@@ -35,6 +35,10 @@ struct TrialJob {
   const LoadedExperiment* experiment = nullptr;
   std::filesystem::path result_file;  // where the trial's result goes
   std::filesystem::path error_file;   // written when the trial stops without a result
+  // Other work run in the child instead of an experiment (e.g. generating a
+  // dataset into the cache while trainings run); its exceptions end it like
+  // a trial's. Set either this or `experiment`.
+  std::function<void()> task;
 };
 
 // How a child ended.
