@@ -1,0 +1,139 @@
+#include "cnclab/cad/occt_shape_io.hpp"
+
+#include <BRepBuilderAPI_Transform.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESControl_Writer.hxx>
+#include <IGESData_IGESModel.hxx>
+#include <IGESData_IGESWriter.hxx>
+#include <IGESData_Protocol.hxx>
+#include <IGESSelect_WorkLibrary.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
+#include <Standard_Failure.hxx>
+#include <StepAP214.hxx>
+#include <StepAP214_Protocol.hxx>
+#include <StepData_StepModel.hxx>
+#include <StepData_StepWriter.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <UnitsMethods.hxx>
+#include <cmath>
+#include <exception>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+
+#include "cnclab/core/error.hpp"
+
+namespace cnclab::occt {
+namespace fs = std::filesystem;
+
+namespace {
+
+// "%.16E": 17 significant digits, enough for any double to read back
+// identically (the writers' default keeps 12).
+constexpr const char* kOcctRealFormat = "%.16E";
+
+TopoDS_Shape read_step_shape(const fs::path& file) {
+  STEPControl_Reader reader;
+  if (reader.ReadFile(file.c_str()) != IFSelect_RetDone) {
+    throw ConfigError(file.string() + ": not a readable STEP file (the STEP parser failed)");
+  }
+  // Shapes in mm whatever unit the file declares (SI_UNIT(.MILLI.,.METRE.),
+  // CONVERSION_BASED_UNIT('INCH', ...), ...): the reader scales to this unit.
+  reader.SetSystemLengthUnit(1.0);
+  if (reader.TransferRoots() == 0) throw ConfigError(file.string() + ": holds no shape");
+  return reader.OneShape();
+}
+
+TopoDS_Shape read_iges_shape(const fs::path& file) {
+  IGESControl_Reader reader;
+  if (reader.ReadFile(file.c_str()) != IFSelect_RetDone) {
+    throw ConfigError(file.string() + ": not a readable IGES file (the IGES parser failed)");
+  }
+  if (reader.TransferRoots() == 0) throw ConfigError(file.string() + ": holds no shape");
+  TopoDS_Shape shape = reader.OneShape();
+  // The IGES reader converts from the file's unit (global section) to OCCT's
+  // session unit, GetCasCadeLengthUnit() mm (1 unless a program changed it).
+  const double mm_per_unit = UnitsMethods::GetCasCadeLengthUnit();
+  if (mm_per_unit != 1.0 && !shape.IsNull()) {
+    gp_Trsf scale;
+    scale.SetScaleFactor(mm_per_unit);
+    shape = BRepBuilderAPI_Transform(shape, scale, true).Shape();
+  }
+  return shape;
+}
+
+}  // namespace
+
+void silence_occt_messages() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+  });
+}
+
+std::string occt_failure_text() {
+  try {
+    throw;
+  } catch (const Standard_Failure& e) {
+    const char* text = e.GetMessageString();
+    return std::string(e.DynamicType()->Name()) + (text && *text ? std::string(": ") + text : "");
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+CadShape read_cad_shape(const fs::path& file) {
+  const CadFormat format = require_cad_format(file);
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) throw ConfigError(file.string() + ": no such file");
+  if (!std::ifstream(file)) throw ConfigError(file.string() + ": cannot be opened for reading");
+  silence_occt_messages();
+  CadShape out;
+  try {
+    out.shape = format == CadFormat::step ? read_step_shape(file) : read_iges_shape(file);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (...) {
+    throw ConfigError(file.string() + ": OCCT could not read it (" + occt_failure_text() + ")");
+  }
+  if (out.shape.IsNull()) throw ConfigError(file.string() + ": holds no shape");
+  TopTools_IndexedMapOfShape map;
+  TopExp::MapShapes(out.shape, TopAbs_FACE, map);
+  for (int i = 1; i <= map.Extent(); ++i) out.faces.push_back(TopoDS::Face(map(i)));
+  if (out.faces.empty()) {
+    throw ConfigError(file.string() + ": holds no face (only points, curves or wires)");
+  }
+  return out;
+}
+
+std::string cad_shape_text(const TopoDS_Shape& shape, CadFormat format) {
+  silence_occt_messages();
+  std::ostringstream text;
+  if (format == CadFormat::step) {
+    STEPControl_Writer writer;
+    if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) {
+      throw Error("STEP writer: the shape could not be translated");
+    }
+    StepData_StepWriter out(writer.Model());
+    out.FloatWriter().SetFormat(kOcctRealFormat);
+    out.SendModel(StepAP214::Protocol());
+    if (!out.Print(text)) throw Error("STEP writer: printing the model failed");
+  } else {
+    IGESControl_Writer writer("MM", 0);  // 0: faces as trimmed surfaces (144), widely read
+    if (!writer.AddShape(shape)) throw Error("IGES writer: the shape could not be translated");
+    writer.ComputeModel();
+    IGESData_IGESWriter out(writer.Model());
+    out.FloatWriter().SetFormat(kOcctRealFormat);
+    out.SendModel(IGESSelect_WorkLibrary::DefineProtocol());
+    if (!out.Print(text)) throw Error("IGES writer: printing the model failed");
+  }
+  return text.str();
+}
+
+}  // namespace cnclab::occt
