@@ -1,9 +1,11 @@
 #include "cnclab/cad/occt_shape_io.hpp"
 
+#include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <IGESControl_Reader.hxx>
 #include <IGESControl_Writer.hxx>
 #include <IGESData_IGESModel.hxx>
+#include <IGESData_GlobalSection.hxx>
 #include <IGESData_IGESWriter.hxx>
 #include <IGESData_Protocol.hxx>
 #include <IGESSelect_WorkLibrary.hxx>
@@ -17,6 +19,7 @@
 #include <StepAP214_Protocol.hxx>
 #include <StepData_StepModel.hxx>
 #include <StepData_StepWriter.hxx>
+#include <TCollection_HAsciiString.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
@@ -37,6 +40,10 @@ namespace {
 // "%.16E": 17 significant digits, enough for any double to read back
 // identically (the writers' default keeps 12).
 constexpr const char* kOcctRealFormat = "%.16E";
+// A fixed time stamp instead of the writing time: the same shape gives the
+// same bytes, hence the same content hash and dataset identity.
+constexpr const char* kStepTimeStamp = "2000-01-01T00:00:00";
+constexpr const char* kIgesDate = "20000101.000000";
 
 TopoDS_Shape read_step_shape(const fs::path& file) {
   STEPControl_Reader reader;
@@ -120,6 +127,8 @@ std::string cad_shape_text(const TopoDS_Shape& shape, CadFormat format) {
     if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) {
       throw Error("STEP writer: the shape could not be translated");
     }
+    APIHeaderSection_MakeHeader(writer.Model())
+        .SetTimeStamp(new TCollection_HAsciiString(kStepTimeStamp));
     StepData_StepWriter out(writer.Model());
     out.FloatWriter().SetFormat(kOcctRealFormat);
     out.SendModel(StepAP214::Protocol());
@@ -128,6 +137,11 @@ std::string cad_shape_text(const TopoDS_Shape& shape, CadFormat format) {
     IGESControl_Writer writer("MM", 0);  // 0: faces as trimmed surfaces (144), widely read
     if (!writer.AddShape(shape)) throw Error("IGES writer: the shape could not be translated");
     writer.ComputeModel();
+    IGESData_GlobalSection header = writer.Model()->GlobalSection();
+    header.SetDate(new TCollection_HAsciiString(kIgesDate));
+    header.SetLastChangeDate(new TCollection_HAsciiString(kIgesDate));
+    header.SetAuthorName(new TCollection_HAsciiString("cnclab"));  // not the user name
+    writer.Model()->SetGlobalSection(header);
     IGESData_IGESWriter out(writer.Model());
     out.FloatWriter().SetFormat(kOcctRealFormat);
     out.SendModel(IGESSelect_WorkLibrary::DefineProtocol());
