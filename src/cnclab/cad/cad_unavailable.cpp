@@ -8,10 +8,12 @@
 namespace cnclab {
 
 CadSurface read_cad_surface(const std::filesystem::path& file, int) {
+  require_cad_format(file);  // a wrong file name is said first, as with OCCT
   throw ConfigError(file.string() + ": " + cad_unavailable_message());
 }
 
 std::vector<CadFaceSummary> list_cad_faces(const std::filesystem::path& file) {
+  require_cad_format(file);
   throw ConfigError(file.string() + ": " + cad_unavailable_message());
 }
 

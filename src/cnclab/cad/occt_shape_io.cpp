@@ -1,11 +1,14 @@
 #include "cnclab/cad/occt_shape_io.hpp"
 
+#include <unistd.h>
+
 #include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
+#include <BinTools.hxx>
 #include <IGESControl_Reader.hxx>
 #include <IGESControl_Writer.hxx>
-#include <IGESData_IGESModel.hxx>
 #include <IGESData_GlobalSection.hxx>
+#include <IGESData_IGESModel.hxx>
 #include <IGESData_IGESWriter.hxx>
 #include <IGESData_Protocol.hxx>
 #include <IGESSelect_WorkLibrary.hxx>
@@ -24,13 +27,16 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <UnitsMethods.hxx>
+#include <atomic>
 #include <cmath>
 #include <exception>
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <string_view>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/io/isolated_read.hpp"
 
 namespace cnclab::occt {
 namespace fs = std::filesystem;
@@ -101,14 +107,49 @@ CadShape read_cad_shape(const fs::path& file) {
   if (!fs::is_regular_file(file, ec)) throw ConfigError(file.string() + ": no such file");
   if (!std::ifstream(file)) throw ConfigError(file.string() + ": cannot be opened for reading");
   silence_occt_messages();
-  CadShape out;
+  const auto read = [&] {
+    try {
+      return format == CadFormat::step ? read_step_shape(file) : read_iges_shape(file);
+    } catch (const ConfigError&) {
+      throw;
+    } catch (...) {
+      throw ConfigError(file.string() + ": OCCT could not read it (" + occt_failure_text() + ")");
+    }
+  };
+  // OCCT's parsers are not memory-safe on damaged files (a truncated IGES
+  // B-spline entity crashes 7.6's IGES reader): the file is read in a forked
+  // child (io/isolated_read.hpp), which hands the shape over as an exact
+  // binary BRep file (BinTools: doubles as bytes). The child's own
+  // ConfigErrors come back marked as such.
+  static constexpr std::string_view kOwnError = "cnclab-cad-error: ";
+  static std::atomic<unsigned> handover_count{0};
+  const fs::path handover =
+      fs::temp_directory_path() / ("cnclab_cad_" + std::to_string(::getpid()) + "_" +
+                                   std::to_string(handover_count++) + ".brep");
   try {
-    out.shape = format == CadFormat::step ? read_step_shape(file) : read_iges_shape(file);
-  } catch (const ConfigError&) {
-    throw;
-  } catch (...) {
-    throw ConfigError(file.string() + ": OCCT could not read it (" + occt_failure_text() + ")");
+    probe_in_child(file, [&] {
+      try {
+        const TopoDS_Shape shape = read();
+        if (!BinTools::Write(shape, handover.c_str())) {
+          throw ConfigError(file.string() + ": cannot hand the shape over (" + handover.string() +
+                            ")");
+        }
+      } catch (const ConfigError& e) {
+        throw IoError(std::string(kOwnError) + e.what());
+      }
+    });
+  } catch (const IoError& e) {
+    fs::remove(handover, ec);
+    const std::string message = e.what();
+    if (message.starts_with(kOwnError)) throw ConfigError(message.substr(kOwnError.size()));
+    throw ConfigError(file.string() + ": not a readable " +
+                      (format == CadFormat::step ? "STEP" : "IGES") +
+                      " file: OCCT's reader crashed or hung on it (truncated or damaged?)");
   }
+  CadShape out;
+  const bool handed_over = BinTools::Read(out.shape, handover.c_str());
+  fs::remove(handover, ec);
+  if (!handed_over) throw ConfigError(file.string() + ": the shape read could not be handed over");
   if (out.shape.IsNull()) throw ConfigError(file.string() + ": holds no shape");
   TopTools_IndexedMapOfShape map;
   TopExp::MapShapes(out.shape, TopAbs_FACE, map);
