@@ -21,6 +21,8 @@ void add_experiment_commands(CLI::App& app, CommandAction& action);
 void add_sweep_commands(CLI::App& app, CommandAction& action);
 // dataset generate/show, gcode, tables, schema, version (wire_tool_commands.cpp).
 void add_tool_commands(CLI::App& app, CommandAction& action);
+// surface show/export/example-part (surface_command.cpp).
+void add_surface_commands(CLI::App& app, CommandAction& action);
 
 // Shared by the wiring files (cli_wiring.cpp).
 extern const char* const kProfileHelp;

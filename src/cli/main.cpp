@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   cnclab::add_experiment_commands(app, action);
   cnclab::add_sweep_commands(app, action);
   cnclab::add_tool_commands(app, action);
+  cnclab::add_surface_commands(app, action);
 
   try {
     app.parse(argc, argv);

@@ -18,6 +18,7 @@ void StepErrorDatasetOptions::validate() const {
   surface.validate();
   tool_path.validate();
   exact.validate();
+  if (cad) check_tool_path_on_face(*cad, tool_path);
   if (curve_points < 1 || curve_points > 10'000) {
     throw OptionError("curve_points", std::to_string(curve_points), "must be in [1, 10000]");
   }
@@ -85,11 +86,35 @@ StepErrorGenerator::StepErrorGenerator(StepErrorDatasetOptions options)
 
 namespace {
 
-// `surface:` as a file name (resolved like include:) or an inline map.
-NurbsSurface read_surface(const ConfigReader& r) {
-  if (!r.has("surface")) r.fail("surface", "is required (a configs/surfaces/*.yaml path or a map)");
+// `surface: {file: part.step, face: 3}`: a face of a CAD file (the file
+// resolved like include:).
+void read_cad_face(const ConfigReader& r, StepErrorDatasetOptions& o) {
+  const ConfigReader s = r.section("surface");
+  const std::filesystem::path file = named_config_file(s, "file");
+  const auto face = s.require<std::int64_t>("face");
+  s.check(face >= 1 && face <= 1'000'000, "face",
+          "must be a face number >= 1 (faces count from 1)");
+  try {
+    auto cad = std::make_shared<CadSurface>(read_cad_surface(file, static_cast<int>(face)));
+    o.surface = cad->surface;
+    o.cad = std::move(cad);
+  } catch (const ConfigError& e) {
+    s.fail("file", e.what());
+  }
+}
+
+// `surface:` as a file name (resolved like include:), an inline map or a CAD face.
+void read_surface(const ConfigReader& r, StepErrorDatasetOptions& o) {
+  if (!r.has("surface")) {
+    r.fail("surface", "is required (a configs/surfaces/*.yaml path, a map or {file, face})");
+  }
+  o.cad.reset();
   const YAML::Node node = r.raw("surface");
-  if (node.IsMap()) return read_nurbs_surface(r.section("surface"));
+  if (node.IsMap() && node["file"]) return read_cad_face(r, o);
+  if (node.IsMap()) {
+    o.surface = read_nurbs_surface(r.section("surface"));
+    return;
+  }
   const std::filesystem::path file = named_config_file(r, "surface");
   ConfigDocument doc;
   try {
@@ -97,9 +122,19 @@ NurbsSurface read_surface(const ConfigReader& r) {
   } catch (const ConfigError& e) {
     r.fail("surface", e.what());
   }
-  NurbsSurface surface = read_nurbs_surface(doc.root());
+  o.surface = read_nurbs_surface(doc.root());
   doc.check_all_consumed();
-  return surface;
+}
+
+// The surface's identity in options_yaml(): the NURBS inline, or the CAD
+// file's content hash with the face.
+YAML::Node surface_node(const StepErrorDatasetOptions& o) {
+  if (!o.cad) return YAML::Load(nurbs_surface_yaml(o.surface, ""));
+  YAML::Node n(YAML::NodeType::Map);
+  n["file_hash"] = o.cad->file_hash;
+  n["face"] = o.cad->face;
+  n["type"] = o.cad->surface_type;
+  return n;
 }
 
 }  // namespace
@@ -118,12 +153,11 @@ const FieldList<StepErrorDatasetOptions>& step_error_fields() {
                  Rule::positive());
   static const auto fields =
       FieldList<O>()
-          .custom(
-              custom_info("surface",
-                          "the machined NURBS surface (required): a configs/surfaces/*.yaml "
-                          "path or an inline map"),
-              [](const ConfigReader& r, O& o) { o.surface = read_surface(r); },
-              [](const O& o) { return YAML::Load(nurbs_surface_yaml(o.surface, "")); })
+          .custom(custom_info("surface",
+                              "the machined NURBS surface (required): a configs/surfaces/*.yaml "
+                              "path, an inline map, or {file: part.step|.stp|.iges|.igs, face: N} "
+                              "(N from 1; `cnclab surface show` lists the faces)"),
+                  read_surface, surface_node)
           .flatten(&O::tool_path, tool_path)
           .field("curve_points", &O::curve_points,
                  "K, points per local CC curve given as inputs (3K + 13 inputs; 73 at 20)",

@@ -21,6 +21,7 @@
 #include <memory>
 #include <string>
 
+#include "cnclab/cad/cad_surface.hpp"
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/fields.hpp"
 #include "cnclab/data/dataset.hpp"
@@ -34,6 +35,10 @@ namespace cnclab {
 struct StepErrorDatasetOptions {
   // The machined surface (configs/surfaces/*.yaml; geometry/surface_config.hpp).
   NurbsSurface surface;
+  // Set when `surface` is a face of a STEP/IGES file (cad/cad_surface.hpp):
+  // its NURBS form is `surface`, and validate() checks the tool path stays on
+  // the face.
+  std::shared_ptr<const CadSurface> cad;
   // Lines, CC points per line and ball radius R (defaults: seed 000's 200 x 100, 5 mm).
   ToolPathOptions tool_path;
   // K, discrete points per local CC curve given as inputs; 73 inputs at 20 (see above). >= 1.
@@ -58,13 +63,17 @@ void step_error_inputs(const ToolPathLine& path, std::size_t i, std::size_t k,
 //   surface: configs/surfaces/surface1.yaml   # a path, resolved like include:
 //                                              # (relative to the naming file,
 //                                              # else configs/... upward), or
-//                                              # the surface map inline
+//                                              # the surface map inline, or
+//                                              # {file: part.step, face: 3}: a
+//                                              # face of a STEP/IGES file
 //   lines: 200
 //   points_per_line: 100
 //   tool_radius: 5          # mm
 //   curve_points: 20        # K
 // options_yaml() writes the surface inline, so the cache key covers the
-// geometry itself, not the file name.
+// geometry itself, not the file name; a CAD face is written as
+// {file_hash, face, type}: the file's content, not its path, is the identity
+// (and the dataset's generator_config records them).
 class StepErrorGenerator : public DatasetGenerator {
  public:
   explicit StepErrorGenerator(StepErrorDatasetOptions options);  // validates

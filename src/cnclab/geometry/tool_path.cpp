@@ -21,11 +21,20 @@ void ToolPathOptions::validate() const {
   }
 }
 
-ToolPathLine plan_line(const NurbsSurface& s, const ToolPathOptions& o, std::size_t line) {
+double tool_path_v(const NurbsSurface& s, const ToolPathOptions& o, std::size_t line) {
   const double v0 = s.knots_v.front(), v1 = s.knots_v.back();
+  return v0 + (v1 - v0) * static_cast<double>(line) / static_cast<double>(o.lines - 1);
+}
+
+double tool_path_u(const NurbsSurface& s, const ToolPathOptions& o, std::size_t k) {
   const double u0 = s.knots_u.front(), u1 = s.knots_u.back();
+  const std::size_t m = o.points_per_line;
+  return k + 1 == m ? u1 : u0 + (u1 - u0) * static_cast<double>(k) / static_cast<double>(m - 1);
+}
+
+ToolPathLine plan_line(const NurbsSurface& s, const ToolPathOptions& o, std::size_t line) {
   ToolPathLine t;
-  t.v = v0 + (v1 - v0) * static_cast<double>(line) / static_cast<double>(o.lines - 1);
+  t.v = tool_path_v(s, o, line);
   t.curve = iso_curve_u(s, t.v);
   t.tool_radius = o.tool_radius;
   const std::size_t m = o.points_per_line;
@@ -34,7 +43,7 @@ ToolPathLine plan_line(const NurbsSurface& s, const ToolPathOptions& o, std::siz
   t.normal.resize(m);
   t.cl.resize(m);
   for (std::size_t k = 0; k < m; ++k) {
-    t.u[k] = k + 1 == m ? u1 : u0 + (u1 - u0) * static_cast<double>(k) / static_cast<double>(m - 1);
+    t.u[k] = tool_path_u(s, o, k);
     const SurfaceDerivatives d = surface_derivatives(s, t.u[k], t.v);
     t.cc[k] = d.point;
     t.normal[k] = oriented_unit_normal(d, kToolAxis);

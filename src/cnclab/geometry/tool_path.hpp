@@ -46,6 +46,12 @@ struct ToolPathLine {
   }
 };
 
+// The constant parameter v_l of line `line` and the parameter u_k of CC point
+// `k` (formulas at ToolPathOptions::lines and ::points_per_line; the last
+// value is the range end exactly).
+double tool_path_v(const NurbsSurface& surface, const ToolPathOptions& options, std::size_t line);
+double tool_path_u(const NurbsSurface& surface, const ToolPathOptions& options, std::size_t k);
+
 // Line `line` (0-based, < options.lines) of the tool path on `surface`.
 // Throws Error where a normal is undefined or horizontal.
 ToolPathLine plan_line(const NurbsSurface& surface, const ToolPathOptions& options,

@@ -1,0 +1,33 @@
+#include "cnclab/cad/cad_surface.hpp"
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
+
+namespace cnclab {
+
+std::string CadSurface::label() const {
+  return "face " + std::to_string(face) + " of " + file_name;
+}
+
+void check_tool_path_on_face(const CadSurface& cad, const ToolPathOptions& o) {
+  if (!cad.boundary) throw Error(cad.label() + ": no face boundary to check the tool path against");
+  for (std::size_t line = 0; line < o.lines; ++line) {
+    const double v = tool_path_v(cad.surface, o, line);
+    for (std::size_t k = 0; k < o.points_per_line; ++k) {
+      const double u = tool_path_u(cad.surface, o, k);
+      const Eigen::Vector3d p = surface_point(cad.surface, u, v);
+      if (!cad.boundary->contains(u, v, p)) {
+        throw ConfigError(cad.label() + " (" + cad.surface_type +
+                          ") is trimmed and the tool path "
+                          "leaves it: line " +
+                          std::to_string(line) + ", CC point " + std::to_string(k) + " at (" +
+                          shortest_double(p.x()) + ", " + shortest_double(p.y()) + ", " +
+                          shortest_double(p.z()) +
+                          ") mm lies outside the face's boundary; choose a face whose "
+                          "boundary is its parameter rectangle");
+      }
+    }
+  }
+}
+
+}  // namespace cnclab

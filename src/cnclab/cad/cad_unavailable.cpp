@@ -1,0 +1,28 @@
+// The cad module's readers and writers in a build without OCCT: each throws
+// the ConfigError of cad_unavailable_message() (exit 2 in the CLI).
+#include "cnclab/cad/cad_export.hpp"
+#include "cnclab/cad/cad_faces.hpp"
+#include "cnclab/cad/cad_surface.hpp"
+#include "cnclab/core/error.hpp"
+
+namespace cnclab {
+
+CadSurface read_cad_surface(const std::filesystem::path& file, int) {
+  require_cad_format(file);  // a wrong file name is said first, as with OCCT
+  throw ConfigError(file.string() + ": " + cad_unavailable_message());
+}
+
+std::vector<CadFaceSummary> list_cad_faces(const std::filesystem::path& file) {
+  require_cad_format(file);
+  throw ConfigError(file.string() + ": " + cad_unavailable_message());
+}
+
+std::string cad_surface_text(const NurbsSurface&, CadFormat) {
+  throw ConfigError(cad_unavailable_message());
+}
+
+std::string cad_example_part_text(const NurbsSurface&, CadFormat) {
+  throw ConfigError(cad_unavailable_message());
+}
+
+}  // namespace cnclab
