@@ -1,14 +1,21 @@
 #include "cli/cli_wiring.hpp"
 
 #include <algorithm>
+#include <iostream>
 
 #include "cnclab/core/rng.hpp"
+#include "cnclab/experiment/result_store.hpp"
 
 namespace cnclab {
 
+// The results-folder rule (result_store.hpp results_folder), said the same
+// way by every command that reads or writes results.
 const char* const kProfileHelp =
-    "Apply the experiment files' `profiles: {NAME: ...}` overrides (e.g. quick); results then "
-    "default to <results>/NAME";
+    "Apply the experiment files' `profiles: {NAME: ...}` overrides (e.g. quick); results are "
+    "then in ROOT/NAME (ROOT: --out or --results, default results)";
+const char* const kResultsRootHelp =
+    "Results root ROOT: results are in ROOT, or ROOT/NAME with --profile NAME (a ROOT that "
+    "holds results directly and no NAME/ folder, the layout before, is used as it is)";
 
 const CLI::Validator& count_validator() {
   static const CLI::Validator count(
@@ -30,7 +37,9 @@ std::optional<std::uint64_t> seed_option(const std::optional<std::string>& text,
 
 void apply_profile_dir(const CLI::App& sub, const char* option, const std::string& profile,
                        std::filesystem::path& dir) {
-  if (!profile.empty() && sub.get_option(option)->count() == 0) dir = dir / profile;
+  const ResultsFolder folder = results_folder(dir, profile, sub.get_option(option)->count() > 0);
+  if (!folder.note.empty()) std::cerr << "cnclab: note: " << folder.note << "\n";
+  dir = folder.dir;
 }
 
 }  // namespace cnclab

@@ -26,6 +26,8 @@ void add_surface_commands(CLI::App& app, CommandAction& action);
 
 // Shared by the wiring files (cli_wiring.cpp).
 extern const char* const kProfileHelp;
+// --out / --results: the results root (results_folder, result_store.hpp).
+extern const char* const kResultsRootHelp;
 // Counts (--jobs, --repeats, --trials): digits only. CLI11 alone reads "-1"
 // for an unsigned option as 2^64 - 1 (a sweep then plans forever).
 const CLI::Validator& count_validator();
@@ -33,8 +35,10 @@ const CLI::Validator& count_validator();
 // own errors do not take our error form): ConfigError naming `option`.
 std::optional<std::uint64_t> seed_option(const std::optional<std::string>& text,
                                          const char* option);
-// With a profile, results go to <dir>/<profile> unless `option` (--out,
-// --results) was given: quick results never mix with the full ones.
+// `dir` (the root, from `option`: --out or --results) becomes the results
+// folder of `profile`: ROOT/profile (results_folder, result_store.hpp, with
+// its note for a folder in the old layout on stderr). Quick results never
+// mix with the full ones.
 void apply_profile_dir(const CLI::App& sub, const char* option, const std::string& profile,
                        std::filesystem::path& dir);
 

@@ -37,7 +37,7 @@ void add_run(CLI::App& app, CommandAction& action) {
                   "Config overrides key=value, values typed as YAML (1e-4, true, [28, 20])");
   run->add_option("--seed", a->seed_text, "Master seed (overrides the YAML's seed)")
       ->type_name("UINT");
-  run->add_option("--out", a->common.results_dir, "Results folder")->capture_default_str();
+  run->add_option("--out", a->common.results_dir, kResultsRootHelp)->capture_default_str();
   run->add_option("--data-dir", a->common.datasets_dir, "Dataset cache folder")
       ->capture_default_str();
   run->add_flag("--quiet,-q", a->common.quiet, "No progress output");
@@ -105,7 +105,7 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
   auto* reproduce = app.add_subcommand(
       "reproduce", "Run experiments (default: all under experiments/) and print their metrics");
   reproduce->add_option("paths", a->paths, "Experiment files or folders (default: experiments)");
-  reproduce->add_option("--out", a->common.results_dir, "Results folder")->capture_default_str();
+  reproduce->add_option("--out", a->common.results_dir, kResultsRootHelp)->capture_default_str();
   reproduce->add_option("--data-dir", a->common.datasets_dir, "Dataset cache folder")
       ->capture_default_str();
   reproduce->add_flag("--quiet,-q", a->common.quiet, "No progress output");
@@ -124,7 +124,7 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
                       "targets:); PASS/FAIL per target, exit 1 on any FAIL");
   reproduce->add_flag("--quick", a->quick,
                       "Same as --profile quick: fewer epochs and samples, same code paths "
-                      "(about a minute per study; results/quick)");
+                      "(about a minute per study; ROOT/quick)");
   reproduce->footer(
       "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
       "experiments/friedman\n"

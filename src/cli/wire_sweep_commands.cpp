@@ -58,7 +58,7 @@ void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
       ->type_name("UINT");
   sweep.add_option("--seed", a.seed_text, "Master seed (overrides the YAML's seed)")
       ->type_name("UINT");
-  sweep.add_option("--out", o.common.results_dir, "Results folder")->capture_default_str();
+  sweep.add_option("--out", o.common.results_dir, kResultsRootHelp)->capture_default_str();
   sweep.add_option("--data-dir", o.common.datasets_dir, "Dataset cache folder")
       ->capture_default_str();
   sweep.add_flag("--regenerate", o.common.regenerate, "Regenerate the datasets even when cached");

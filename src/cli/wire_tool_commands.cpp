@@ -92,25 +92,28 @@ void add_tables(CLI::App& app, CommandAction& action) {
   auto* tables = app.add_subcommand(
       "tables", "Print a paper's tables from result files beside the paper's numbers");
   tables->add_option("table", a->table, "Table name (none: list the tables)");
-  tables->add_option("--results", a->options.results_dir, "Results folder")->capture_default_str();
+  tables->add_option("--results", a->options.results_dir, kResultsRootHelp)->capture_default_str();
   tables->add_option("--experiments", a->options.experiments_dir, "Experiments folder")
       ->capture_default_str();
   tables->add_option("--reference", a->options.reference_dir, "Paper numbers folder")
       ->capture_default_str();
   tables->add_option("--configs", a->options.configs_dir, "Configs folder (study manifests)")
       ->capture_default_str();
-  tables->add_option("--format", a->format, "Output: text (aligned), md, csv or latex")
+  tables
+      ->add_option("--format", a->format,
+                   "Output: text (aligned), md, latex for people; csv, json numbers only "
+                   "(mean ± std as _mean and _std columns, units in the column names)")
       ->capture_default_str();
   tables->add_flag("--check", a->options.check,
                    "After the tables, each declared target of the study's manifest "
                    "(configs/studies/*.yaml targets:) with its measured value and PASS/FAIL; "
                    "exit 1 on any FAIL");
-  tables->add_option("--profile", a->options.profile,
-                     "Tables of the results made with this profile (reproduce --quick: quick)");
+  tables->add_option("--profile", a->options.profile, kProfileHelp);
   tables->footer(
       "Examples:\n  cnclab tables ik    # seed 004 Table 5 and the machine-space error\n"
       "  cnclab tables step-error --format md   # seed 000 Tables 2-8 as Markdown\n"
-      "  cnclab tables step-error --check       # and its targets, PASS/FAIL (exit 1 on a FAIL)");
+      "  cnclab tables step-error --check       # and its targets, PASS/FAIL (exit 1 on a FAIL)\n"
+      "  cnclab tables contour-error --profile quick --format csv   # results/quick, numbers only");
   tables->callback([tables, a, &action] {
     apply_profile_dir(*tables, "--results", a->options.profile, a->options.results_dir);
     action = [a] {

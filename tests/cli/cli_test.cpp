@@ -631,6 +631,18 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
   EXPECT_NE(t.out.find("adds up to 2432"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("Machine-space error"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("(n = 100,"), std::string::npos) << t.out;
+  // csv and json carry numbers only: every column a number column (float or
+  // empty) or a declared label column, read by Python's csv and json modules.
+  for (const char* format : {"csv", "json"}) {
+    const Result m =
+        cnclab("tables ik --reference " CNCLAB_SOURCE_DIR "/results/reference --format " +
+               std::string(format));
+    ASSERT_EQ(m.code, 0) << m.err << m.out;
+    write(std::string("ik.") + format, m.out);
+  }
+  const Result machine =
+      sh("/usr/bin/python3 " CNCLAB_SOURCE_DIR "/tests/report/machine_tables.py ik.csv ik.json");
+  EXPECT_EQ(machine.code, 0) << machine.out << machine.err;
   // Each table names the files it read: the paper's numbers and the results.
   const std::string sources = "\nsources: " CNCLAB_SOURCE_DIR
                               "/results/reference/ik_table5.yaml, "
@@ -708,6 +720,30 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
                        "complete trial(s) of 2 planned), its median repeat"),
             std::string::npos)
       << c.out;
+
+  // One rule for results folders (issue 21 item 4): `--results ROOT --profile
+  // P` reads ROOT/P, as `reproduce --out ROOT --profile P` writes; a folder
+  // in the layout that wrote ROOT itself still works, with a note.
+  const std::string tables_quick =
+      "tables ik --reference " CNCLAB_SOURCE_DIR "/results/reference --profile quick --results ";
+  fs::create_directories(dir_ / "root");
+  fs::rename(dir_ / "results", dir_ / "root/quick");
+  const Result rooted = cnclab(tables_quick + "root");
+  ASSERT_EQ(rooted.code, 0) << rooted.err << rooted.out;
+  EXPECT_EQ(words_of_line(rooted.out, "Hidden layer1"), hidden1) << rooted.out;
+  EXPECT_EQ(rooted.err, "");
+  fs::rename(dir_ / "root/quick", dir_ / "legacy");  // results directly in ROOT
+  const Result legacy = cnclab(tables_quick + "legacy");
+  ASSERT_EQ(legacy.code, 0) << legacy.err << legacy.out;
+  EXPECT_EQ(words_of_line(legacy.out, "Hidden layer1"), hidden1) << legacy.out;
+  EXPECT_NE(legacy.err.find("note: legacy holds results directly and has no quick/ folder"),
+            std::string::npos)
+      << legacy.err;
+  const Result reused = cnclab("reproduce experiments/ik --quiet --profile quick --out legacy");
+  ASSERT_EQ(reused.code, 0) << reused.err << reused.out;
+  EXPECT_EQ(reused.out.find(" ran "), std::string::npos) << reused.out;  // found in place
+  EXPECT_FALSE(fs::exists(dir_ / "legacy/quick"));
+  fs::rename(dir_ / "legacy", dir_ / "results");
 
   expect_one_line_error(cnclab("tables nosuch"), 2, "unknown table 'nosuch'; known: ik");
   const Result list = cnclab("tables");

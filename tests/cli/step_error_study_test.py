@@ -28,6 +28,9 @@ import h5py
 import numpy as np
 import yaml
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "report"))
+from machine_tables import check_machine_tables, csv_tables  # noqa: E402
+
 PAPER_TEST_SIZES = [19800, 19602, 18810, 17820, 16830]
 # "Wide margin": the network's test MSE below this share of the MSE of
 # predicting the mean of the training targets (R^2 > 0.9 on average).
@@ -51,27 +54,6 @@ def run(args, cwd):
     return p.stdout
 
 
-def csv_tables(text):
-    """Tables of a CSV document: '# title' comment, then rows until a blank
-    line or the next comment (format of `cnclab tables --format csv`)."""
-    tables, title, lines = [], None, []
-
-    def flush():
-        if title is not None and lines:
-            tables.append((title, list(csv.reader(io.StringIO("".join(lines))))))
-
-    for line in text.splitlines(keepends=True):
-        if line.startswith("# ") and not lines:
-            title = line[2:].strip()
-        elif line.startswith("#") or not line.strip():
-            flush()
-            lines = []
-        else:
-            lines.append(line)
-    flush()
-    return tables
-
-
 def edges_of(labels):
     """Numbers in bin labels '< 0.1', '0.1–0.2', '> 20 %', '≥ 0.8'."""
     numbers = []
@@ -93,16 +75,20 @@ def main():
         check("step_error_table8_timing" in out, "reproduce ran the Table 8 timing job")
         check(re.search(r"^targets: [1-9][0-9]* PASS, 0 FAIL", out, re.M) is not None,
               "reproduce --check: the quick profile's declared targets pass")
-        tables_results = quick_results(results)
-        common = ["tables", "step-error", "--results", tables_results, "--profile", "quick"]
+        tables_results = os.path.join(results, "quick")
+        check(os.path.isdir(tables_results), "reproduce --out ROOT --quick wrote ROOT/quick")
+        # One rule (issue 21 item 4): --results names the root, --profile its subfolder.
+        common = ["tables", "step-error", "--results", results, "--profile", "quick"]
         texts = {f: run([cnclab] + common + ["--format", f], source)
-                 for f in ("text", "md", "csv", "latex")}
+                 for f in ("text", "md", "csv", "latex", "json")}
         for f, text in texts.items():
             check("Table 8" in text and "Table 7" in text, f"{f}: all tables printed")
             check("not printed" not in text, f"{f}: no table missing")
         check_sources(texts["text"], source)
         check(texts["latex"].count("\\begin{tabular}") == texts["latex"].count("\\end{tabular}")
               and texts["latex"].count("\\begin{tabular}") >= 10, "latex: balanced tabulars")
+        for failure in check_machine_tables(texts["csv"], texts["json"]):
+            check(False, f"machine-readable tables: {failure}")
         check_csv(csv_tables(texts["csv"]))
         check_trivial_predictor(tables_results, source)
         check_targets(cnclab, source, common, tmp)
@@ -136,12 +122,6 @@ def check_sources(text, source):
           "the paper's numbers are named where they are used")
 
 
-def quick_results(results):
-    """Where the quick profile's results went (results/quick/ under --out)."""
-    quick = os.path.join(results, "quick")
-    return quick if os.path.isdir(quick) else results
-
-
 def find(tables, prefix):
     found = [rows for title, rows in tables if title.startswith(prefix)]
     check(len(found) == 1, f"one table titled '{prefix}...' (found {len(found)})")
@@ -154,13 +134,14 @@ def check_csv(tables):
         check(all(len(r) == width for r in rows), f"{title}: every row as wide as the header")
 
     t2 = find(tables, "Seed 000 Table 2")
-    check(t2[0][2:] == ["0.3", "0.4", "0.5", "0.6", "0.7", "0.8", "0.9"], f"Table 2 header {t2[0]}")
+    check(t2[0][2:] == [f"p_0.{k}" for k in range(3, 10)], f"Table 2 header {t2[0]}")
     check((len(t2) - 2) % 2 == 0 and len(t2) >= 4, "Table 2: paper row + 2 rows per variant")
 
     # Tables 4 and 5: the test sizes, ours equal to the paper's.
     for prefix in ("Seed 000 Table 4", "Seed 000 Table 5"):
         rows = find(tables, prefix)
-        check(rows[0][2:] == ["0 %", "1 %", "5 %", "10 %", "15 %"], f"{prefix} header {rows[0]}")
+        check(rows[0][2:] == [f"fine_tune_{p}_percent" for p in (0, 1, 5, 10, 15)],
+              f"{prefix} header {rows[0]}")
         test_rows = test_sample_rows(rows)
         check(len(test_rows) >= 2, f"{prefix}: paper and our test-size rows")
         for r in test_rows:
@@ -168,6 +149,7 @@ def check_csv(tables):
 
     # Bin tables: monotone edges; counts sum to the test size; ratios to 100.
     surface1 = find(tables, "Surface 1 in the text")
+    check(surface1[1][0] == "test_samples", f"surface 1: first row {surface1[1]}")
     s1_sizes = dict(zip(surface1[0][1:], surface1[1][1:]))  # header -> test samples
     check(s1_sizes.get("paper") == "5940", "surface 1: paper test set 5,940")
     for prefix, sizes in (("Seed 000 Table 3", s1_sizes), ("Seed 000 Table 6", None),
@@ -178,7 +160,7 @@ def check_csv(tables):
             check(all(a < b for a, b in zip(edges, edges[1:])), f"{prefix} {part}: edges {edges}")
             for i in range(1, len(rows), 2):
                 source, count, ratio = rows[i][0], rows[i], rows[i + 1]
-                check(count[1] == "Number" and ratio[1] == "Ratio (%)", f"{prefix}: row pairs")
+                check(count[1] == "count" and ratio[1] == "percent", f"{prefix}: row pairs")
                 if source == "paper":
                     continue
                 total = sum(int(v) for v in count[2:])
@@ -192,10 +174,10 @@ def check_csv(tables):
 
     t8 = find(tables, "Seed 000 Table 8")
     labels = [r[0] for r in t8[1:]]
-    for needed in ("(a) geometric method (iterative)", "(b) exact method (ours)"):
+    for needed in ("geometric_s", "exact_s", "network_total_s"):
         check(needed in labels, f"Table 8 row {needed}")
     for r in t8[1:]:
-        if r[0].startswith("("):
+        if r[0].endswith("_s"):
             check(float(r[1]) > 0 and float(r[3]) > 0, f"Table 8 {r[0]}: positive times")
     norm = find(tables, "Beyond the paper: z-score normaliser")
     check(len(norm) == 5, "normaliser table: keep/refit x surfaces 2, 3")
@@ -249,13 +231,8 @@ def check_targets(cnclab, source, common, tmp):
 
 
 def test_sample_rows(rows):
-    out, inside = [], False
-    for r in rows[1:]:
-        if r[0]:
-            inside = r[0] == "test samples"
-        if inside:
-            out.append(r)
-    return out
+    """csv carries the quantity on every row, continuation rows included."""
+    return [r for r in rows[1:] if r[0] == "test_samples"]
 
 
 def final_networks(source):

@@ -133,8 +133,40 @@ TEST_F(Store, CommandNamesProfileAndFolder) {
   EXPECT_EQ(
       ResultStore("elsewhere", "quick").make_command(result_key(down)),
       "cnclab reproduce " + (dir_ / "down.yaml").string() + " --profile quick --out elsewhere");
+  // ROOT/P names ROOT (results_folder turns it back into ROOT/P).
+  EXPECT_EQ(ResultStore("runs/quick", "quick").make_command(result_key(down)),
+            "cnclab reproduce " + (dir_ / "down.yaml").string() + " --profile quick --out runs");
   // A missing experiment file is a missing result too.
   EXPECT_THROW(ResultStore(dir_ / "results").get(dir_ / "nope.yaml"), MissingResults);
+}
+
+// The one rule (results_folder): ROOT/P, except for a given ROOT in the old
+// layout (results directly in ROOT, no ROOT/P), used as it is with a note.
+TEST(ResultsFolder, RootAndProfileWithTheOldLayoutKept) {
+  TempDir dir;
+  const fs::path root = dir.path() / "r";
+  EXPECT_EQ(results_folder(root, "", true).dir, root);
+  EXPECT_EQ(results_folder(root, "quick", true).dir, root / "quick");  // nothing there yet
+  fs::create_directories(root / "tiny");
+  std::ofstream(root / "tiny" / "notes.txt") << "not a result";
+  EXPECT_EQ(results_folder(root, "quick", true).dir, root / "quick");  // no results in ROOT
+  std::ofstream(root / "tiny" / "tiny-seed5-0123abcd.h5") << "";
+  const ResultsFolder old = results_folder(root, "quick", true);
+  EXPECT_EQ(old.dir, root);
+  EXPECT_NE(old.note.find(root.string() + " holds results directly and has no quick/ folder"),
+            std::string::npos)
+      << old.note;
+  // The default root never falls back (reproduce --quick always wrote results/quick).
+  EXPECT_EQ(results_folder(root, "quick", false).dir, root / "quick");
+  EXPECT_EQ(results_folder(root, "quick", false).note, "");
+  // Once ROOT/P exists, it is the folder.
+  fs::create_directories(root / "quick");
+  EXPECT_EQ(results_folder(root, "quick", true).dir, root / "quick");
+  EXPECT_EQ(results_folder(root, "quick", true).note, "");
+  // A sweep folder counts as results too.
+  const fs::path sweeps = dir.path() / "s";
+  fs::create_directories(sweeps / "narx" / "sweep-1a2b3c4d");
+  EXPECT_EQ(results_folder(sweeps, "quick", true).dir, sweeps);
 }
 
 }  // namespace

@@ -33,10 +33,13 @@ std::string ResultStore::make_command(const ResultKey& key) const {
   std::string command = std::string("cnclab ") + (key.has_upstream ? "reproduce " : "run ") +
                         key.source_file.lexically_normal().string();
   if (!profile_.empty()) command += " --profile " + profile_;
-  // The CLI's default: results, or results/<profile> with a profile.
-  const fs::path default_dir =
-      profile_.empty() ? fs::path("results") : fs::path("results") / profile_;
-  if (results_dir_.lexically_normal() != default_dir) command += " --out " + results_dir_.string();
+  // The root the CLI turns into this folder (results_folder): ROOT/P gives
+  // ROOT; an old-layout folder (no /P) is its own root.
+  fs::path root = results_dir_.lexically_normal();
+  if (!profile_.empty() && root.filename() == profile_) {
+    root = root.parent_path().empty() ? fs::path(".") : root.parent_path();
+  }
+  if (root != fs::path("results")) command += " --out " + root.string();
   return command;
 }
 
@@ -99,6 +102,36 @@ std::string source_path_text(const fs::path& file) {
   const fs::path rel = file.lexically_normal().lexically_relative(cwd);
   if (rel.empty() || *rel.begin() == "..") return file.string();
   return rel.string();
+}
+
+namespace {
+
+// A folder of `root` with a result file (*.h5) or a sweep folder (sweep-*):
+// results written to root directly.
+bool results_folder_holds_results(const fs::path& root) {
+  std::error_code ec;
+  for (const auto& sub : fs::directory_iterator(root, ec)) {
+    if (!sub.is_directory(ec)) continue;
+    for (const auto& e : fs::directory_iterator(sub.path(), ec)) {
+      const std::string name = e.path().filename().string();
+      if (e.path().extension() == ".h5" || name.rfind("sweep-", 0) == 0) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+ResultsFolder results_folder(const fs::path& root, const std::string& profile, bool root_given) {
+  if (profile.empty()) return {root, ""};
+  const fs::path sub = root / profile;
+  std::error_code ec;
+  if (!root_given || fs::exists(sub, ec) || !results_folder_holds_results(root)) return {sub, ""};
+  return {root, root.string() + " holds results directly and has no " + profile +
+                    "/ folder: the layout `--out " + root.string() + " --profile " + profile +
+                    "` wrote before results went to ROOT/PROFILE; using " + root.string() +
+                    " as it is (move its contents into " + sub.string() +
+                    " to use the new layout)"};
 }
 
 }  // namespace cnclab

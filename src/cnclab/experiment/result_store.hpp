@@ -67,8 +67,9 @@ class ResultStore {
   const std::string& profile() const { return profile_; }
 
   std::filesystem::path path_of(const ResultKey& key) const;
-  // `cnclab run FILE [--profile P] [--out R]` (reproduce when key.has_upstream);
-  // --out only when R is not the default for the profile (results[/P]).
+  // `cnclab run FILE [--profile P] [--out ROOT]` (reproduce when
+  // key.has_upstream); ROOT the root of the store's folder (results_folder:
+  // R = ROOT/P), --out only when it is not the default "results".
   std::string make_command(const ResultKey& key) const;
 
   // The experiment file with the store's profile (load_experiment's errors).
@@ -93,6 +94,22 @@ class ResultStore {
   std::filesystem::path results_dir_;
   std::string profile_;
 };
+
+// The one rule for results folders, the same for `run`, `sweep`, `reproduce`
+// and `tables`: --out / --results name the root ROOT (default "results") and
+// --profile P picks its subfolder ROOT/P; no profile: ROOT itself.
+// Folders in the layout before this rule keep working: until then an
+// explicit `--out ROOT --profile P` wrote ROOT itself. So when the root was
+// given (`root_given`), ROOT/P does not exist and ROOT holds results directly
+// (a folder of it with a result file or a sweep folder), ROOT is used as it
+// is and `note` says so. The default root never falls back: `reproduce
+// --quick` always wrote results/quick.
+struct ResultsFolder {
+  std::filesystem::path dir;  // where results are read and written
+  std::string note;           // empty, or why ROOT itself is used (old layout)
+};
+ResultsFolder results_folder(const std::filesystem::path& root, const std::string& profile,
+                             bool root_given);
 
 // A path for a table's `sources:` footer: relative to the working directory
 // when it lies below it, otherwise as given.

@@ -1,6 +1,9 @@
 #include "cnclab/report/tables.hpp"
 
 #include <algorithm>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -29,16 +32,60 @@ void print_table_sources(std::ostream& out, TableFormat format,
   }
   if (format == TableFormat::text) {
     out << "\n" << line << "\n";  // a footer line, not one of the notes
+  } else if (format == TableFormat::json) {
+    out << nlohmann::json{{"sources", seen}}.dump() << "\n";
   } else {
     print_table_notes(out, format, {line});
   }
 }
 
 namespace {
+
+using TablesJson = nlohmann::ordered_json;
+
+// The record lines of a json printout (text_table.hpp) as one document.
+TablesJson tables_json_document(const std::string& records) {
+  TablesJson tables = TablesJson::array(), notes = TablesJson::array();
+  std::string title;
+  std::size_t open_from = 0;  // tables that the next notes/sources belong to
+  std::istringstream lines(records);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    TablesJson r = TablesJson::parse(line, nullptr, false);
+    if (r.is_discarded() || !r.is_object()) {
+      notes.push_back(line);  // printed as text ("(Seed 000 Table 8 not printed: ...)")
+    } else if (r.contains("title")) {
+      title = r["title"].get<std::string>();
+    } else if (r.contains("table")) {
+      if (open_from < tables.size() &&
+          (tables.back().contains("notes") || tables.back().contains("sources"))) {
+        open_from = tables.size();
+      }
+      TablesJson t = {{"title", title}};
+      for (auto& [k, v] : r["table"].items()) t[k] = v;
+      tables.push_back(std::move(t));
+      title.clear();
+    } else {
+      const std::string key = r.contains("notes") ? "notes" : "sources";
+      if (open_from >= tables.size()) {
+        for (auto& v : r[key]) notes.push_back(v);
+        continue;
+      }
+      for (std::size_t i = open_from; i < tables.size(); ++i) {
+        if (!tables[i].contains(key)) tables[i][key] = TablesJson::array();
+        for (auto& v : r[key]) tables[i][key].push_back(v);
+      }
+    }
+  }
+  return {{"tables", tables}, {"notes", notes}};
+}
+
 std::vector<TableEntry>& table_registry() {
   static std::vector<TableEntry> tables;
   return tables;
 }
+
 }  // namespace
 
 void register_table(TableEntry entry) {
@@ -52,14 +99,45 @@ const std::vector<TableEntry>& registered_tables() {
   return table_registry();
 }
 
+namespace {
+
+// `body` printed to `out`; for json its record lines as one document.
+void print_tables_body(const std::string& name, const TablesOptions& options,
+                       const std::function<void(std::ostream&)>& body, std::ostream& out) {
+  if (options.format != TableFormat::json) return body(out);
+  std::ostringstream records;
+  body(records);
+  const TablesJson doc = tables_json_document(records.str());
+  const TablesJson wrapped = {{"name", name},
+                              {"profile", options.profile},
+                              {"tables", doc["tables"]},
+                              {"notes", doc["notes"]}};
+  out << wrapped.dump(2) << "\n";
+}
+
+}  // namespace
+
+void print_table_document(const TableEntry& entry, const TablesOptions& options,
+                          std::ostream& out) {
+  print_tables_body(
+      entry.name, options, [&](std::ostream& o) { entry.print(options, o); }, out);
+}
+
 int tables_command(const std::string& name, const TablesOptions& options, std::ostream& out) {
   const auto& tables = registered_tables();
   std::string known;
   for (const auto& t : tables) {
     if (t.name == name) {
-      t.print(options, out);
-      if (!options.check) return 0;
-      return check_table(t, options, out).failed > 0 ? 1 : 0;
+      // --check's table joins the document (json: one more table).
+      int code = 0;
+      print_tables_body(
+          t.name, options,
+          [&](std::ostream& o) {
+            t.print(options, o);
+            if (options.check) code = check_table(t, options, o).failed > 0 ? 1 : 0;
+          },
+          out);
+      return code;
     }
     known += (known.empty() ? "" : ", ") + t.name;
   }

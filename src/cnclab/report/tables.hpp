@@ -66,6 +66,15 @@ ResultStore table_store(const TablesOptions& options);
 void print_table_sources(std::ostream& out, TableFormat format,
                          const std::vector<std::filesystem::path>& files);
 
+// Prints `entry`'s tables in `options.format`; for json one document
+//   {"name": NAME, "profile": P, "tables": [{"title", "columns", "rows",
+//    "notes", "sources"}], "notes": [...]}
+// assembled from the record lines the printers write (text_table.hpp): a
+// table takes the title before it, and notes and sources that follow it
+// (shared by the tables since the last notes); stray text lines become
+// document notes.
+void print_table_document(const TableEntry& entry, const TablesOptions& options, std::ostream& out);
+
 // Registers a table (src/cli/builtins.cpp, before any command runs);
 // std::logic_error for a name registered twice.
 void register_table(TableEntry entry);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "cnclab/core/error.hpp"
 
@@ -85,6 +86,19 @@ void TextTable::print_latex(std::ostream& out) const {
   out << "\\hline\n\\end{tabular}\n";
 }
 
+void TextTable::print_json(std::ostream& out) const {
+  using Json = nlohmann::ordered_json;
+  Json columns = Json::array();
+  for (const auto& h : header) columns.push_back({{"name", h}, {"header", h}, {"label", true}});
+  Json records = Json::array();
+  for (const auto& row : rows) {
+    Json r = Json::object();
+    for (std::size_t c = 0; c < row.size() && c < header.size(); ++c) r[header[c]] = row[c];
+    records.push_back(std::move(r));
+  }
+  out << Json{{"table", {{"columns", columns}, {"rows", records}}}}.dump() << "\n";
+}
+
 void TextTable::print(std::ostream& out, TableFormat format) const {
   switch (format) {
     case TableFormat::text:
@@ -95,6 +109,8 @@ void TextTable::print(std::ostream& out, TableFormat format) const {
       return print_csv(out);
     case TableFormat::latex:
       return print_latex(out);
+    case TableFormat::json:
+      return print_json(out);
   }
 }
 
@@ -103,7 +119,9 @@ TableFormat parse_table_format(const std::string& name) {
   if (name == "md") return TableFormat::markdown;
   if (name == "csv") return TableFormat::csv;
   if (name == "latex") return TableFormat::latex;
-  throw ConfigError("--format: unknown format '" + name + "'; choose one of: text, md, csv, latex");
+  if (name == "json") return TableFormat::json;
+  throw ConfigError("--format: unknown format '" + name +
+                    "'; choose one of: text, md, csv, latex, json");
 }
 
 void print_table_title(std::ostream& out, TableFormat format, const std::string& title) {
@@ -119,6 +137,9 @@ void print_table_title(std::ostream& out, TableFormat format, const std::string&
       return;
     case TableFormat::latex:
       out << "\n% " << title << "\n";
+      return;
+    case TableFormat::json:
+      out << nlohmann::json{{"title", title}}.dump() << "\n";
       return;
   }
 }
@@ -140,6 +161,9 @@ void print_table_notes(std::ostream& out, TableFormat format,
       return;
     case TableFormat::latex:
       for (const auto& n : notes) out << "% " << n << "\n";
+      return;
+    case TableFormat::json:
+      out << nlohmann::json{{"notes", notes}}.dump() << "\n";
       return;
   }
 }

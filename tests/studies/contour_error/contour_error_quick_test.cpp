@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -64,6 +65,21 @@ TEST(ContourErrorQuick, ReproduceAndTables) {
         "Paper:", "sources:"}) {
     EXPECT_NE(text.find(needle), std::string::npos) << needle << "\n" << text;
   }
+  // csv and json carry numbers only (issue 21 item 5): every column a number
+  // column or a declared label column, read by Python's csv and json modules.
+  TableEntry entry;
+  entry.name = "contour-error";
+  entry.print = print_contour_error_tables;
+  for (const TableFormat f : {TableFormat::csv, TableFormat::json}) {
+    TablesOptions machine = t;
+    machine.format = f;
+    std::ofstream file(dir.path() / (f == TableFormat::csv ? "tables.csv" : "tables.json"));
+    print_table_document(entry, machine, file);
+  }
+  const std::string check_machine =
+      "/usr/bin/python3 " CNCLAB_SOURCE_DIR "/tests/report/machine_tables.py '" +
+      (dir.path() / "tables.csv").string() + "' '" + (dir.path() / "tables.json").string() + "'";
+  EXPECT_EQ(std::system(check_machine.c_str()), 0) << check_machine;
   // The measurements count the runs the study loaded, and the targets the
   // manifest declares for the quick profile pass (`tables --check`).
   const Measurements m = measure_contour_error_tables(t);

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
-#include "cnclab/report/text_table.hpp"
+#include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/contour_error/narx_study_runs.hpp"
 
 namespace cnclab {
@@ -80,9 +80,14 @@ Stats stats(const std::vector<double>& v) {
   s.max = *std::max_element(ok.begin(), ok.end());
   return s;
 }
-std::string mean_std(const Stats& s) {
-  if (s.n == 0) return "-";
-  return table_number(s.mean, 3) + " ± " + table_number(s.std, 2);
+TableCell mean_std(const Stats& s) {
+  if (s.n == 0) return missing_cell("-");
+  return mean_std_cell(s.mean, s.std, table_number(s.mean, 3) + " ± " + table_number(s.std, 2));
+}
+
+// A single number in µm, 3 significant digits as the paper's text.
+TableCell um3(double v) {
+  return number_cell(v, table_number(v, 3));
 }
 
 // The metric `name` of each run.
@@ -93,10 +98,12 @@ std::vector<double> metric_of(const std::vector<const NarxStudyRun*>& runs,
   return v;
 }
 
-std::string stable_count(const NarxStudyRuns& study, const std::vector<const NarxStudyRun*>& runs) {
+// "4/5": stable runs of all (csv/json: stable, runs).
+TableCell stable_count(const NarxStudyRuns& study, const std::vector<const NarxStudyRun*>& runs) {
   const auto stable = std::count_if(runs.begin(), runs.end(),
                                     [&](const NarxStudyRun* r) { return study.stable(*r); });
-  return std::to_string(stable) + "/" + std::to_string(runs.size());
+  return pair_cell(static_cast<double>(stable), static_cast<double>(runs.size()),
+                   std::to_string(stable) + "/" + std::to_string(runs.size()));
 }
 
 std::string stable_note() {
@@ -133,14 +140,14 @@ void print_training_methods(const NarxStudyRuns& r, const ConfigReader& ref, Tab
                         std::to_string(r.validation_samples) + " steps; trained on " +
                         std::to_string(r.train_samples) +
                         "). Simulated machine biaxial_router; errors in µm, mean ± std.");
-  TextTable t;
-  t.header = {"method", "stable"};
+  TypedTable t;
+  t.columns = {label_column("method", "method"), pair_column("stable", "stable", "runs")};
   for (const auto& a : r.axes) {
-    t.header.push_back("RMS " + a);
-    t.header.push_back("max " + a);
+    t.columns.push_back(mean_std_column("RMS " + a, "rms_" + a, "um"));
+    t.columns.push_back(mean_std_column("max " + a, "max_" + a, "um"));
   }
-  t.header.push_back("contour RMS");
-  t.header.push_back("epochs open+closed");
+  t.columns.push_back(mean_std_column("contour RMS", "contour_rms", "um"));
+  t.columns.push_back(pair_column("epochs open+closed", "open_epochs", "closed_epochs"));
   for (const char* m : {"two_stage", "two_stage_retry", "two_stage_windowed", "open_loop_only",
                         "closed_loop_only", "closed_loop_only_windowed"}) {
     std::vector<const NarxStudyRun*> runs;
@@ -148,23 +155,26 @@ void print_training_methods(const NarxStudyRuns& r, const ConfigReader& ref, Tab
       if (run.method == m) runs.push_back(&run);
     }
     if (runs.empty()) continue;
-    std::vector<std::string> row = {m, stable_count(r, runs)};
+    std::vector<TableCell> row = {m, stable_count(r, runs)};
     for (const auto& a : r.axes) {
       row.push_back(mean_std(stats(metric_of(runs, "closed_loop_rms_" + a))));
       row.push_back(mean_std(stats(metric_of(runs, "closed_loop_max_" + a))));
     }
     row.push_back(mean_std(stats(metric_of(runs, "contour_rms"))));
-    row.push_back(std::to_string(runs[0]->open_epochs) + "+" +
-                  std::to_string(runs[0]->closed_epochs));
+    row.push_back(pair_cell(
+        static_cast<double>(runs[0]->open_epochs), static_cast<double>(runs[0]->closed_epochs),
+        std::to_string(runs[0]->open_epochs) + "+" + std::to_string(runs[0]->closed_epochs)));
     t.rows.push_back(row);
   }
-  std::vector<std::string> zero = {"zero predictor (e = 0)", "-"};
+  // One value where the methods have mean ± std: csv/json carry it as the mean.
+  std::vector<TableCell> zero = {label_cell("zero predictor (e = 0)", "zero_predictor"),
+                                 missing_cell("-")};
   for (const auto& a : r.axes) {
-    zero.push_back(table_number(r.metric("zero_rms_" + a), 3));
-    zero.push_back(table_number(r.metric("zero_max_" + a), 3));
+    zero.push_back(um3(r.metric("zero_rms_" + a)));
+    zero.push_back(um3(r.metric("zero_max_" + a)));
   }
-  zero.push_back("-");
-  zero.push_back("-");
+  zero.push_back(missing_cell("-"));
+  zero.push_back(missing_cell("-"));
   t.rows.push_back(zero);
   t.print(out, f);
   std::vector<std::string> notes = {
@@ -178,11 +188,13 @@ void print_architecture(const NarxStudyRuns& r, const ConfigReader& ref, TableFo
                         std::ostream& out) {
   print_table_title(out, f,
                     "Contour error: NARX architecture sweep (trainbr), mean over seeds, µm");
-  TextTable t;
-  t.header = {"hidden", "delays (in/fb)", "parameters", "stable"};
-  for (const auto& a : r.axes) t.header.push_back("RMS " + a);
-  t.header.push_back("contour RMS");
-  t.header.push_back("paper");
+  TypedTable t;
+  t.columns = {number_column("hidden", "hidden"),
+               pair_column("delays (in/fb)", "input_delays", "feedback_delays"),
+               number_column("parameters", "parameters"), pair_column("stable", "stable", "runs")};
+  for (const auto& a : r.axes) t.columns.push_back(mean_std_column("RMS " + a, "rms_" + a, "um"));
+  t.columns.push_back(mean_std_column("contour RMS", "contour_rms", "um"));
+  t.columns.push_back(number_column("paper", "paper_choice"));  // 1: the paper's architecture
   const auto same_architecture = [](const NarxStudyRun& a, const NarxStudyRun& b) {
     return a.hidden == b.hidden && a.input_delays == b.input_delays &&
            a.feedback_delays == b.feedback_delays;
@@ -204,14 +216,19 @@ void print_architecture(const NarxStudyRuns& r, const ConfigReader& ref, TableFo
     }
     const std::size_t h = k->hidden, di = k->input_delays, df = k->feedback_delays;
     const std::size_t params = h * (di + df) + 2 * h + 1;
-    std::vector<std::string> row = {std::to_string(h),
-                                    std::to_string(di) + "/" + std::to_string(df),
-                                    std::to_string(params), stable_count(r, runs)};
+    const auto count = [](std::size_t n) {
+      return number_cell(static_cast<double>(n), std::to_string(n));
+    };
+    std::vector<TableCell> row = {count(h),
+                                  pair_cell(static_cast<double>(di), static_cast<double>(df),
+                                            std::to_string(di) + "/" + std::to_string(df)),
+                                  count(params), stable_count(r, runs)};
     for (const auto& a : r.axes) {
       row.push_back(mean_std(stats(metric_of(runs, "closed_loop_rms_" + a))));
     }
     row.push_back(mean_std(stats(metric_of(runs, "contour_rms"))));
-    row.push_back(h == paper_h && di == paper_d && df == paper_d ? "<- paper's choice" : "");
+    const bool papers = h == paper_h && di == paper_d && df == paper_d;
+    row.push_back(number_cell(papers ? 1 : 0, papers ? "<- paper's choice" : ""));
     t.rows.push_back(row);
   }
   t.print(out, f);
@@ -228,15 +245,18 @@ void print_estimates(const NarxStudyRuns& r, const ConfigReader& ref, TableForma
   print_table_title(out, f,
                     "Contour error estimates vs the exact contour error (Newton projection) on the "
                     "simulated data, validation half, µm");
-  TextTable t;
-  t.header = {"estimate", "mean |est - exact|", "max |est - exact|"};
+  TypedTable t;
+  t.columns = {label_column("estimate", "estimate"),
+               number_column("mean |est - exact|", "mean_abs_diff", "um"),
+               number_column("max |est - exact|", "max_abs_diff", "um")};
   for (const std::string e : {"taylor", "tangent", "osculating"}) {
-    t.rows.push_back({e, table_number(r.metric(e + "_mean_abs_diff"), 3),
-                      table_number(r.metric(e + "_max_abs_diff"), 3)});
+    t.rows.push_back({e, um3(r.metric(e + "_mean_abs_diff")), um3(r.metric(e + "_max_abs_diff"))});
   }
-  t.rows.push_back({"(exact contour error itself)",
-                    table_number(r.metric("exact_contour_mean"), 3) + " (mean)",
-                    table_number(r.metric("exact_contour_max"), 3) + " (max)"});
+  const double exact_mean = r.metric("exact_contour_mean"),
+               exact_max = r.metric("exact_contour_max");
+  t.rows.push_back({label_cell("(exact contour error itself)", "exact_contour_error"),
+                    number_cell(exact_mean, table_number(exact_mean, 3) + " (mean)"),
+                    number_cell(exact_max, table_number(exact_max, 3) + " (max)")});
   t.print(out, f);
   print_table_notes(out, f, {"Paper: " + reference_text(ref, "contour", "estimate")});
 }
@@ -247,8 +267,11 @@ void print_predictor(const NarxStudyRuns& r, const ConfigReader& ref, TableForma
                     "Contour error predictor (Taylor estimate from the NARX-predicted following "
                     "errors) vs the \"actual\" (exact, simulated) contour error, validation half, "
                     "µm");
-  TextTable t;
-  t.header = {"runs", "RMS (mean ± std)", "RMS best", "max (mean ± std)", "zero predictor RMS"};
+  TypedTable t;
+  t.columns = {label_column("runs", "runs"), mean_std_column("RMS (mean ± std)", "rms", "um"),
+               number_column("RMS best", "rms_best", "um"),
+               mean_std_column("max (mean ± std)", "max", "um"),
+               number_column("zero predictor RMS", "zero_predictor_rms", "um")};
   std::vector<const NarxStudyRun*> two_stage;
   for (const auto& run : r.runs) {
     if (run.method == "two_stage") two_stage.push_back(&run);
@@ -263,8 +286,8 @@ void print_predictor(const NarxStudyRuns& r, const ConfigReader& ref, TableForma
           : kMissingCell;
   // Predicting zero following error predicts zero contour error: its RMS is
   // the exact contour error's RMS.
-  t.rows.push_back({"two_stage, " + std::to_string(s.n) + " stable", mean_std(s),
-                    table_number(best, 3), mean_std(stats(mx)), "see note"});
+  t.rows.push_back({"two_stage, " + std::to_string(s.n) + " stable", mean_std(s), um3(best),
+                    mean_std(stats(mx)), missing_cell("see note")});
   t.print(out, f);
   print_table_notes(out, f,
                     {"zero predictor: contour RMS = RMS of the exact contour error; its mean is " +

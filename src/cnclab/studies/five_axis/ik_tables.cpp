@@ -14,7 +14,7 @@
 #include "cnclab/data/ik_samples.hpp"
 #include "cnclab/kinematics/joint_error.hpp"
 #include "cnclab/nn/metrics.hpp"
-#include "cnclab/report/text_table.hpp"
+#include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/five_axis/ik_runs.hpp"
 
 namespace cnclab {
@@ -59,9 +59,9 @@ Reference read_reference(const fs::path& file) {
 }
 
 // An SGDM setting of the run's trainer; "-" for other trainers (lm, trainbr).
-std::string sgdm_setting(const IkAxisRun& r, double SgdmOptions::*field) {
+TableCell sgdm_setting(const IkAxisRun& r, double SgdmOptions::*field) {
   const auto* sgdm = std::get_if<SgdmOptions>(&r.loaded.spec.trainer);
-  return sgdm ? table_number(sgdm->*field) : "-";
+  return sgdm ? number_cell(sgdm->*field, table_number(sgdm->*field)) : missing_cell("-");
 }
 
 std::string integer(double v) {
@@ -75,29 +75,34 @@ struct Column {
 };
 
 // Table 5's rows for `columns` (axes in groups: each variant, then the paper).
-TextTable table5(const std::vector<Column>& columns, const Reference& ref) {
-  TextTable t;
-  t.header = {"", ""};
+TypedTable table5(const std::vector<Column>& columns, const Reference& ref) {
+  TypedTable t;
+  t.columns = {label_column("", "group"), label_column("", "quantity")};
   for (const auto& c : columns) {
-    t.header.push_back(std::string(kIkAxes[c.axis]) + " " +
-                       (c.variant ? c.variant->label : "paper"));
+    const std::string header =
+        std::string(kIkAxes[c.axis]) + " " + (c.variant ? c.variant->label : "paper");
+    t.columns.push_back(number_column(header, machine_name(header)));  // "x_ours"
   }
-  using Ours = std::function<std::string(const IkAxisRun&)>;
+  using Ours = std::function<TableCell(const IkAxisRun&)>;
+  std::string group_key;  // csv/json carry the group on its continuation rows too
   const auto row = [&](const std::string& group, const std::string& label, const std::string& key,
                        const Ours& ours, bool integer_ref) {
-    std::vector<std::string> cells = {group, label};
+    if (!group.empty()) group_key = machine_name(group);
+    std::vector<TableCell> cells = {label_cell(group, group_key), label_cell(label, key)};
     for (const auto& c : columns) {
       if (!c.variant) {
         const double v = ref.rows.at(key)[c.axis];
-        cells.push_back(integer_ref ? integer(v) : table_number(v));
+        cells.push_back(number_cell(v, integer_ref ? integer(v) : table_number(v)));
       } else {
         const auto& run = c.variant->axes[c.axis];
-        cells.push_back(run ? ours(*run) : "n/a");
+        cells.push_back(run ? ours(*run) : missing_cell("n/a"));
       }
     }
     t.rows.push_back(cells);
   };
-  const auto count = [](std::size_t n) { return std::to_string(n); };
+  const auto count = [](std::size_t n) {
+    return number_cell(static_cast<double>(n), std::to_string(n));
+  };
   row(
       "Dataset", "Training set", "training_set",
       [&](const IkAxisRun& r) { return count(r.record.split.train.size()); }, true);
@@ -113,13 +118,15 @@ TextTable table5(const std::vector<Column>& columns, const Reference& ref) {
   row(
       "", "Hidden layer1", "hidden_layer1",
       [&](const IkAxisRun& r) {
-        return r.record.model.hidden.size() > 0 ? count(r.record.model.hidden[0]) : "-";
+        return r.record.model.hidden.size() > 0 ? count(r.record.model.hidden[0])
+                                                : missing_cell("-");
       },
       true);
   row(
       "", "Hidden layer2", "hidden_layer2",
       [&](const IkAxisRun& r) {
-        return r.record.model.hidden.size() > 1 ? count(r.record.model.hidden[1]) : "-";
+        return r.record.model.hidden.size() > 1 ? count(r.record.model.hidden[1])
+                                                : missing_cell("-");
       },
       true);
   row(
@@ -134,12 +141,16 @@ TextTable table5(const std::vector<Column>& columns, const Reference& ref) {
   row(
       "MSE-validation", "", "mse_validation",
       [&](const IkAxisRun& r) {
-        return table_number(metric(r.record, "normalised_validation_mse"), 3);
+        const double v = metric(r.record, "normalised_validation_mse");
+        return number_cell(v, table_number(v, 3));
       },
       false);
   row(
       "MSE-test", "", "mse_test",
-      [&](const IkAxisRun& r) { return table_number(metric(r.record, "normalised_mse"), 3); },
+      [&](const IkAxisRun& r) {
+        const double v = metric(r.record, "normalised_mse");
+        return number_cell(v, table_number(v, 3));
+      },
       false);
   return t;
 }
@@ -183,15 +194,23 @@ void print_table5(const std::vector<IkVariant>& variants, const Reference& ref,
     table5({split, columns.end()}, ref).print(out, format);
   }
 
-  TextTable phys;
-  phys.header = {"metric", "variant", "X [mm]", "Y [mm]", "Z [mm]", "A [deg]", "C [deg]"};
+  TypedTable phys;
+  phys.columns = {label_column("metric", "metric"),    label_column("variant", "variant"),
+                  number_column("X [mm]", "x", "mm"),  number_column("Y [mm]", "y", "mm"),
+                  number_column("Z [mm]", "z", "mm"),  number_column("A [deg]", "a", "deg"),
+                  number_column("C [deg]", "c", "deg")};
   for (const char* name : {"rmse", "max_abs_error"}) {
     for (const IkVariant* v : shown) {
-      std::vector<std::string> cells = {name == std::string("rmse") ? "RMSE" : "max |error|",
-                                        v->label};
+      std::vector<TableCell> cells = {
+          label_cell(name == std::string("rmse") ? "RMSE" : "max |error|", name), v->label};
       for (std::size_t a = 0; a < kIkAxes.size(); ++a) {
         const double f = a >= 3 ? kDegPerRad : 1.0;
-        cells.push_back(v->axes[a] ? table_number(f * metric(v->axes[a]->record, name), 3) : "n/a");
+        if (!v->axes[a]) {
+          cells.push_back(missing_cell("n/a"));
+          continue;
+        }
+        const double e = f * metric(v->axes[a]->record, name);
+        cells.push_back(number_cell(e, table_number(e, 3)));
       }
       phys.rows.push_back(cells);
     }
@@ -258,9 +277,15 @@ void print_machine_error(const std::vector<IkVariant>& variants, TableFormat for
   const TttrrMachine machine(generator->options().machine);
   const auto n = static_cast<Eigen::Index>(first.split.test.size());
 
-  TextTable t;
-  t.header = {"Networks",     "Predicted joints", "tip mean [mm]",  "tip p95 [mm]",
-              "tip max [mm]", "axis mean [deg]",  "axis p95 [deg]", "axis max [deg]"};
+  TypedTable t;
+  t.columns = {label_column("Networks", "networks"),
+               label_column("Predicted joints", "predicted_joints"),
+               number_column("tip mean [mm]", "tip_mean", "mm"),
+               number_column("tip p95 [mm]", "tip_p95", "mm"),
+               number_column("tip max [mm]", "tip_max", "mm"),
+               number_column("axis mean [deg]", "axis_mean", "deg"),
+               number_column("axis p95 [deg]", "axis_p95", "deg"),
+               number_column("axis max [deg]", "axis_max", "deg")};
   std::vector<std::string> notes;
   std::vector<fs::path> sources;
   for (const auto& v : variants) {
@@ -283,6 +308,8 @@ void print_machine_error(const std::vector<IkVariant>& variants, TableFormat for
     if (!borrowed.empty()) {
       notes.push_back(label + ": " + borrowed + " from ours (no " + v.label + " result)");
     }
+    // csv/json carry the networks on every row and the predicted joints as
+    // their letters ("x_y_z").
     const auto add = [&](const std::string& joints, const std::vector<int>& rows) {
       Eigen::MatrixXd mixed = truth;
       for (int row : rows) mixed.row(row) = predicted.row(row);
@@ -291,9 +318,15 @@ void print_machine_error(const std::vector<IkVariant>& variants, TableFormat for
       std::vector<double> axis_deg;
       for (double d : e.axis_rad) axis_deg.push_back(d * kDegPerRad);
       const ErrorSummary a = summarize_errors(axis_deg);
-      t.rows.push_back({rows.size() == 5 ? label : "", joints, table_number(p.mean, 3),
-                        table_number(p.p95, 3), table_number(p.max, 3), table_number(a.mean, 3),
-                        table_number(a.p95, 3), table_number(a.max, 3)});
+      std::string predicted_key;
+      for (int row : rows) {
+        if (!predicted_key.empty()) predicted_key += "_";
+        predicted_key += machine_name(kIkAxes[static_cast<std::size_t>(row)]);
+      }
+      const auto num = [](double x) { return number_cell(x, table_number(x, 3)); };
+      t.rows.push_back({label_cell(rows.size() == 5 ? label : "", label),
+                        label_cell(joints, predicted_key), num(p.mean), num(p.p95), num(p.max),
+                        num(a.mean), num(a.p95), num(a.max)});
     };
     add("X, Y, Z, A, C (all five)", {0, 1, 2, 3, 4});
     add("X, Y, Z (A, C exact)", {0, 1, 2});

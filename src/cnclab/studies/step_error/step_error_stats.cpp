@@ -79,6 +79,28 @@ std::string overflow_label(const std::vector<double>& edges, const std::string& 
   return with_unit("≥ " + number(edges.back()), unit);
 }
 
+std::vector<TableColumn> bin_columns(const std::vector<double>& edges, const std::string& unit,
+                                     const std::string& shown_unit, bool overflow) {
+  const std::vector<std::string> labels = bin_labels(edges, shown_unit);
+  std::vector<TableColumn> columns;
+  // Appended, not `"bin_" + std::string`: GCC 12 warns falsely (-Wrestrict, PR105329).
+  const auto name = [](double low, double high) {
+    std::string n = "bin_";
+    n += shortest_double(low);
+    n += "_";
+    n += std::isinf(high) ? std::string("inf") : shortest_double(high);
+    return n;
+  };
+  for (std::size_t k = 0; k + 1 < edges.size(); ++k) {
+    columns.push_back(number_column(labels[k], name(edges[k], edges[k + 1]), unit));
+  }
+  if (overflow) {
+    columns.push_back(
+        number_column(overflow_label(edges, shown_unit), name(edges.back(), HUGE_VAL), unit));
+  }
+  return columns;
+}
+
 std::vector<double> absolute_errors(const std::vector<double>& predicted,
                                     const std::vector<double>& target) {
   if (predicted.size() != target.size()) {

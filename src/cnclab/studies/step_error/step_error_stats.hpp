@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "cnclab/report/typed_table.hpp"
+
 namespace cnclab {
 
 // Counts of values in half-open bins [edges[k], edges[k+1]); the paper's
@@ -34,6 +36,12 @@ double percent(std::size_t count, std::size_t total);
 // appended ("%" -> "< 1 %").
 std::vector<std::string> bin_labels(const std::vector<double>& edges, const std::string& unit);
 std::string overflow_label(const std::vector<double>& edges, const std::string& unit);
+// The bin columns of a typed table (typed_table.hpp): headers bin_labels
+// (and overflow_label when `overflow`) with `shown_unit`; csv/json names
+// bin_<low>_<high>_<unit>, high "inf" for a last column that counts
+// everything at or above an edge.
+std::vector<TableColumn> bin_columns(const std::vector<double>& edges, const std::string& unit,
+                                     const std::string& shown_unit, bool overflow);
 
 // |predicted - target| per sample (same units as the inputs: µm here).
 std::vector<double> absolute_errors(const std::vector<double>& predicted,

@@ -3,7 +3,7 @@
 #include <map>
 #include <string>
 
-#include "cnclab/report/text_table.hpp"
+#include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/step_error/step_error_timing.hpp"
 
 namespace cnclab {
@@ -19,7 +19,12 @@ void print_step_error_table8(const StepErrorStudy& s, const TablesOptions& o, st
     timing_file = stored.file;
     timing = read_step_error_timing(stored.record, stored.file);
   } catch (const MissingResults& e) {
-    out << "\n(Seed 000 Table 8 not printed: " << e.what() << ")\n";
+    const std::string why = "(Seed 000 Table 8 not printed: " + std::string(e.what()) + ")";
+    if (o.format == TableFormat::csv || o.format == TableFormat::json) {
+      print_table_notes(out, o.format, {why});  // a comment or note, not a row
+    } else {
+      out << "\n" << why << "\n";
+    }
     return;
   }
   std::map<std::string, const SurfaceTiming*> by;
@@ -29,32 +34,46 @@ void print_step_error_table8(const StepErrorStudy& s, const TablesOptions& o, st
   }
   const SurfaceTiming& t2 = *by.at("surface2");
   const SurfaceTiming& t3 = *by.at("surface3");
-  TextTable t;
-  t.header = {"Method", "Surface 2 (s) ours", "paper", "Surface 3 (s) ours", "paper"};
-  const auto sec = [](double v) { return table_number(v, 4); };
-  const auto row = [&](const std::string& label, double SurfaceTiming::*field,
-                       const std::map<std::string, double>* paper) {
-    t.rows.push_back({label, sec(t2.*field), paper ? sec(paper->at("surface2")) : "-",
-                      sec(t3.*field), paper ? sec(paper->at("surface3")) : "-"});
+  // Rows are quantities, seconds or ratios: csv/json carry the unit in each
+  // row's key (planning_s, ratio_network_total_to_geometric).
+  TypedTable t;
+  t.columns = {label_column("Method", "method"), number_column("Surface 2 (s) ours", "surface2"),
+               number_column("paper", "surface2_paper"),
+               number_column("Surface 3 (s) ours", "surface3"),
+               number_column("paper", "surface3_paper")};
+  const auto sec = [](double v) { return number_cell(v, table_number(v, 4)); };
+  const auto row = [&](const std::string& label, const std::string& key,
+                       double SurfaceTiming::*field, const std::map<std::string, double>* paper) {
+    t.rows.push_back({label_cell(label, key), sec(t2.*field),
+                      paper ? sec(paper->at("surface2")) : missing_cell("-"), sec(t3.*field),
+                      paper ? sec(paper->at("surface3")) : missing_cell("-")});
   };
-  row("tool-path planning (shared start of all three)", &SurfaceTiming::planning_s, nullptr);
-  row("(a) geometric method (iterative)", &SurfaceTiming::iterative_s, &s.ref.table8_geometric);
-  row("(b) exact method (ours)", &SurfaceTiming::exact_s, nullptr);
-  row("(c) network: load model from result file", &SurfaceTiming::network_load_s, nullptr);
-  row("(c) network: inputs from the tool path", &SurfaceTiming::network_inputs_s, nullptr);
-  row("(c) network: normalise + forward pass", &SurfaceTiming::network_forward_s, nullptr);
-  t.rows.push_back({"(c) network total (\"proposed method\")", sec(t2.network_total_s()),
-                    sec(s.ref.table8_proposed.at("surface2")), sec(t3.network_total_s()),
-                    sec(s.ref.table8_proposed.at("surface3"))});
-  const auto ratio = [](double a, double b) { return table_number(a / b, 3); };
+  row("tool-path planning (shared start of all three)", "planning_s", &SurfaceTiming::planning_s,
+      nullptr);
+  row("(a) geometric method (iterative)", "geometric_s", &SurfaceTiming::iterative_s,
+      &s.ref.table8_geometric);
+  row("(b) exact method (ours)", "exact_s", &SurfaceTiming::exact_s, nullptr);
+  row("(c) network: load model from result file", "network_load_s", &SurfaceTiming::network_load_s,
+      nullptr);
+  row("(c) network: inputs from the tool path", "network_inputs_s",
+      &SurfaceTiming::network_inputs_s, nullptr);
+  row("(c) network: normalise + forward pass", "network_forward_s",
+      &SurfaceTiming::network_forward_s, nullptr);
+  t.rows.push_back({label_cell("(c) network total (\"proposed method\")", "network_total_s"),
+                    sec(t2.network_total_s()), sec(s.ref.table8_proposed.at("surface2")),
+                    sec(t3.network_total_s()), sec(s.ref.table8_proposed.at("surface3"))});
+  const auto ratio = [](double a, double b) { return number_cell(a / b, table_number(a / b, 3)); };
   t.rows.push_back(
-      {"ratio network total / geometric", ratio(t2.network_total_s(), t2.iterative_s),
+      {label_cell("ratio network total / geometric", "ratio_network_total_to_geometric"),
+       ratio(t2.network_total_s(), t2.iterative_s),
        ratio(s.ref.table8_proposed.at("surface2"), s.ref.table8_geometric.at("surface2")),
        ratio(t3.network_total_s(), t3.iterative_s),
        ratio(s.ref.table8_proposed.at("surface3"), s.ref.table8_geometric.at("surface3"))});
-  t.rows.push_back({"ratio network load + forward / geometric",
-                    ratio(t2.network_load_s + t2.network_forward_s, t2.iterative_s), "-",
-                    ratio(t3.network_load_s + t3.network_forward_s, t3.iterative_s), "-"});
+  t.rows.push_back(
+      {label_cell("ratio network load + forward / geometric",
+                  "ratio_network_load_forward_to_geometric"),
+       ratio(t2.network_load_s + t2.network_forward_s, t2.iterative_s), missing_cell("-"),
+       ratio(t3.network_load_s + t3.network_forward_s, t3.iterative_s), missing_cell("-")});
   const TableFormat format = o.format;
   print_table_title(out, format,
                     "Seed 000 Table 8: time to obtain the step errors of the surface-2 and "

@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "cnclab/report/text_table.hpp"
+#include "cnclab/core/format.hpp"
+#include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/step_error/step_error_study.hpp"
 #include "cnclab/studies/step_error/step_error_table8.hpp"
 
@@ -56,6 +57,26 @@ std::string grouped(double v) {
   return out;
 }
 
+// Typed cells (csv/json carry the number) with the texts above.
+TableCell fixed_cell(double v) {
+  return number_cell(v, fixed(v));
+}
+TableCell um_cell(double v) {
+  return number_cell(v, um(v));
+}
+TableCell count_cell(std::size_t n) {
+  return number_cell(static_cast<double>(n), std::to_string(n));
+}
+TableCell integer_cell(double v) {
+  return number_cell(v, integer(v));
+}
+
+// A source ("ours, tuned") as a label, carried as "ours_tuned" by csv/json
+// (the column names of the surface-1 table).
+TableCell source_cell(const std::string& label) {
+  return label_cell(label, machine_name(label));
+}
+
 // The reference's sentences about one table ("Table 6: ...").
 std::vector<std::string> checks_about(const Seed000Reference& ref, const std::string& table) {
   std::vector<std::string> out;
@@ -82,29 +103,31 @@ const std::string kRelativeNote =
 
 // Bin rows "Number" and "Ratio (%)" for one source; `overflow` adds the
 // count at or above the last edge.
-void add_bin_rows(TextTable& t, const std::string& source, const BinCounts& b, bool overflow) {
-  std::vector<std::string> count = {source, "Number"}, ratio = {source, "Ratio (%)"};
+void add_bin_rows(TypedTable& t, const std::string& source, const BinCounts& b, bool overflow) {
+  std::vector<TableCell> count = {source_cell(source), label_cell("Number", "count")};
+  std::vector<TableCell> ratio = {source_cell(source), label_cell("Ratio (%)", "percent")};
   for (std::size_t c : b.counts) {
-    count.push_back(std::to_string(c));
-    ratio.push_back(fixed(percent(c, b.total())));
+    count.push_back(count_cell(c));
+    ratio.push_back(fixed_cell(percent(c, b.total())));
   }
   if (overflow) {
-    count.push_back(std::to_string(b.above));
-    ratio.push_back(fixed(percent(b.above, b.total())));
+    count.push_back(count_cell(b.above));
+    ratio.push_back(fixed_cell(percent(b.above, b.total())));
   }
   t.rows.push_back(count);
   t.rows.push_back(ratio);
 }
 
-void add_paper_bin_rows(TextTable& t, const PaperBins& p, bool overflow) {
-  std::vector<std::string> count = {"paper", "Number"}, ratio = {"paper", "Ratio (%)"};
+void add_paper_bin_rows(TypedTable& t, const PaperBins& p, bool overflow) {
+  std::vector<TableCell> count = {"paper", label_cell("Number", "count")};
+  std::vector<TableCell> ratio = {"paper", label_cell("Ratio (%)", "percent")};
   for (std::size_t k = 0; k < p.count.size(); ++k) {
-    count.push_back(integer(p.count[k]));
-    ratio.push_back(fixed(p.percent[k]));
+    count.push_back(integer_cell(p.count[k]));
+    ratio.push_back(fixed_cell(p.percent[k]));
   }
   if (overflow) {
-    count.push_back("-");
-    ratio.push_back("-");
+    count.push_back(missing_cell("-"));
+    ratio.push_back(missing_cell("-"));
   }
   t.rows.push_back(count);
   t.rows.push_back(ratio);
@@ -127,19 +150,20 @@ void print_bin_tables(std::ostream& out, TableFormat format, const std::string& 
                       const fs::path& reference,
                       const std::vector<std::pair<std::string, const Run*>>& sources,
                       std::vector<std::string> notes) {
-  TextTable a;
-  a.header = {"(a) Absolute error (µm)", ""};
-  for (const auto& l : bin_labels(paper.absolute_um.edges, "")) a.header.push_back(l);
-  a.header.push_back(overflow_label(paper.absolute_um.edges, ""));
+  // Rows are quantities (count, percent): the unit of a bin column is its edges'.
+  TypedTable a;
+  a.columns = {label_column("(a) Absolute error (µm)", "source"), label_column("", "quantity")};
+  for (auto& c : bin_columns(paper.absolute_um.edges, "um", "", true)) a.columns.push_back(c);
   add_paper_bin_rows(a, paper.absolute_um, true);
   for (const auto& [label, run] : sources) {
     add_bin_rows(a, label, bin_counts(run->figures.abs_um, paper.absolute_um.edges), true);
   }
-  TextTable r;
+  TypedTable r;
   const bool overflow = !std::isinf(paper.relative_percent.edges.back());
-  r.header = {"(b) Relative error", ""};
-  for (const auto& l : bin_labels(paper.relative_percent.edges, "%")) r.header.push_back(l);
-  if (overflow) r.header.push_back(overflow_label(paper.relative_percent.edges, "%"));
+  r.columns = {label_column("(b) Relative error", "source"), label_column("", "quantity")};
+  for (auto& c : bin_columns(paper.relative_percent.edges, "percent", "%", overflow)) {
+    r.columns.push_back(c);
+  }
   add_paper_bin_rows(r, paper.relative_percent, overflow);
   for (const auto& [label, run] : sources) {
     add_bin_rows(r, label, relative_bins(run->figures, paper.relative_percent.edges), overflow);
@@ -167,11 +191,15 @@ void print_variant_notes(const Study& s, std::vector<std::string>& notes) {
 }
 
 void print_table2(const Study& s, TableFormat format, std::ostream& out) {
-  TextTable t;
-  t.header = {"p (keep probability)", ""};
-  for (double p : s.ref.table2_p) t.header.push_back(table_number(p));
-  std::vector<std::string> paper = {"paper", "MSE"};
-  for (double m : s.ref.table2_mse) paper.push_back(table_number(m));
+  TypedTable t;
+  t.columns = {label_column("p (keep probability)", "source"), label_column("", "quantity")};
+  for (double p : s.ref.table2_p) {
+    std::string name = "p_";  // appended: see bin_columns
+    name += shortest_double(p);
+    t.columns.push_back(number_column(table_number(p), name));
+  }
+  std::vector<TableCell> paper = {"paper", label_cell("MSE", "mse")};
+  for (double m : s.ref.table2_mse) paper.push_back(number_cell(m, table_number(m)));
   t.rows.push_back(paper);
   std::vector<std::string> notes;
   std::vector<const Run*> read;
@@ -182,21 +210,25 @@ void print_table2(const Study& s, TableFormat format, std::ostream& out) {
           ? NAN
           : s.ref.table2_p[static_cast<std::size_t>(paper_min - s.ref.table2_mse.begin())];
   for (const auto& v : s.manifest.variants) {
-    std::vector<std::string> test = {ours(v), "test MSE (z-score units)"};
-    std::vector<std::string> train = {ours(v), "training loss, last epoch"};
+    std::vector<TableCell> test = {source_cell(ours(v)),
+                                   label_cell("test MSE (z-score units)", "test_mse")};
+    std::vector<TableCell> train = {source_cell(ours(v)),
+                                    label_cell("training loss, last epoch", "train_loss")};
     double best = NAN, best_p = NAN;
     for (double p : s.ref.table2_p) {
       const Run* run = s.find(v.table2, p);
       if (run) read.push_back(run);
       if (run && !run->failure.empty()) {
-        test.push_back("diverged");
-        train.push_back("diverged");
+        test.push_back(missing_cell("diverged"));
+        train.push_back(missing_cell("diverged"));
         continue;
       }
       const double mse = run ? normalised_test_mse(run->record) : NAN;
       const auto& h = run ? run->record.training.history : std::vector<EpochRecord>{};
-      test.push_back(table_number(mse, 3));
-      train.push_back(h.empty() ? "-" : table_number(h.back().train_loss, 3));
+      test.push_back(number_cell(mse, table_number(mse, 3)));
+      train.push_back(h.empty()
+                          ? missing_cell("-")
+                          : number_cell(h.back().train_loss, table_number(h.back().train_loss, 3)));
       if (!std::isnan(mse) && !(mse >= best)) {
         best = mse;
         best_p = p;
@@ -250,29 +282,36 @@ void print_table3(const Study& s, TableFormat format, std::ostream& out) {
                    "prediction error of the surface-1 test samples", s.ref.table3, s.reference_file,
                    sources, checks_about(s.ref, "Table 3"));
 
-  TextTable t;
-  t.header = {"Surface 1 test set", "paper"};
-  for (const auto& [label, run] : sources) t.header.push_back(label);
-  const auto row = [&](const std::string& label, const std::string& paper, auto&& value) {
-    std::vector<std::string> r = {label, paper};
+  // Rows are quantities: csv/json carry each row's unit in its key.
+  TypedTable t;
+  t.columns = {label_column("Surface 1 test set", "quantity"), number_column("paper", "paper")};
+  for (const auto& [label, run] : sources)
+    t.columns.push_back(number_column(label, machine_name(label)));
+  const auto row = [&](const TableCell& label, const TableCell& paper, auto&& value) {
+    std::vector<TableCell> r = {label, paper};
     for (const auto& [l, run] : sources) r.push_back(value(*run));
     t.rows.push_back(r);
   };
   double paper_n = 0;
   for (double c : s.ref.table3.absolute_um.count) paper_n += c;
-  row("test samples", integer(paper_n),
-      [](const Run& r) { return std::to_string(r.figures.samples); });
-  row("max |e| (µm)", um(s.ref.table3_max_abs_um),
-      [](const Run& r) { return um(r.figures.max_abs); });
-  row("mean |e| (µm)", "-", [](const Run& r) { return um(r.figures.mean_abs); });
-  row("|e| < 0.5 µm (%)", fixed(s.ref.table3_share_below_0_5um),
-      [](const Run& r) { return fixed(r.figures.share_abs_below(0.5)); });
-  row("relative error > 10 % (%)", fixed(s.ref.table3_share_rel_above_10),
-      [](const Run& r) { return fixed(100.0 - r.figures.share_rel_below(10)); });
-  row("final training loss (z-score units)", table_number(s.ref.figure5_final_mse),
+  row(label_cell("test samples", "test_samples"), integer_cell(paper_n),
+      [](const Run& r) { return count_cell(r.figures.samples); });
+  row(label_cell("max |e| (µm)", "max_abs_um"), um_cell(s.ref.table3_max_abs_um),
+      [](const Run& r) { return um_cell(r.figures.max_abs); });
+  row(label_cell("mean |e| (µm)", "mean_abs_um"), missing_cell("-"),
+      [](const Run& r) { return um_cell(r.figures.mean_abs); });
+  row(label_cell("|e| < 0.5 µm (%)", "share_abs_below_0.5um_percent"),
+      fixed_cell(s.ref.table3_share_below_0_5um),
+      [](const Run& r) { return fixed_cell(r.figures.share_abs_below(0.5)); });
+  row(label_cell("relative error > 10 % (%)", "share_rel_above_10_percent"),
+      fixed_cell(s.ref.table3_share_rel_above_10),
+      [](const Run& r) { return fixed_cell(100.0 - r.figures.share_rel_below(10)); });
+  row(label_cell("final training loss (z-score units)", "final_train_loss"),
+      number_cell(s.ref.figure5_final_mse, table_number(s.ref.figure5_final_mse)),
       [](const Run& r) {
         const auto& h = r.record.training.history;
-        return h.empty() ? std::string("-") : table_number(h.back().train_loss, 3);
+        return h.empty() ? missing_cell("-")
+                         : number_cell(h.back().train_loss, table_number(h.back().train_loss, 3));
       });
   print_table_title(out, format, "Surface 1 in the text (below Fig. 6; Fig. 5's final MSE)");
   t.print(out, format);
@@ -291,64 +330,68 @@ void print_table3(const Study& s, TableFormat format, std::ostream& out) {
 void print_fine_tune_table(const Study& s, TableFormat format, std::ostream& out, int surface,
                            const PaperSurfaceText& paper) {
   const auto& shares = s.ref.fine_tune_percent;
-  TextTable t;
-  t.header = {"Surface " + std::to_string(surface) + ", fine-tuned with", "source"};
-  for (double p : shares) t.header.push_back(table_number(p) + " %");
+  TypedTable t;
+  t.columns = {label_column("Surface " + std::to_string(surface) + ", fine-tuned with", "quantity"),
+               label_column("source", "source")};
+  for (double p : shares) {
+    std::string name = "fine_tune_";  // appended: see bin_columns
+    name += shortest_double(p);
+    t.columns.push_back(number_column(table_number(p) + " %", name, "percent"));
+  }
   const auto files = [&](const StudyVariant& v) -> const std::map<double, fs::path>& {
     return surface == 2 ? v.surface2 : v.surface3;
   };
   // `paper_at(p)`: the paper's value at share p, NaN where it gives none.
-  const auto metric = [&](const std::string& label, auto&& paper_at, auto&& ours_of) {
-    std::vector<std::string> r = {label, "paper"};
+  // Rows are quantities: csv/json carry the quantity (with its unit) on
+  // every row, the continuation rows included.
+  const auto metric = [&](const std::string& label, const std::string& key, auto&& paper_at,
+                          auto&& ours_of) {
+    std::vector<TableCell> r = {label_cell(label, key), "paper"};
     for (double p : shares) r.push_back(paper_at(p));
     t.rows.push_back(r);
     for (const auto& v : s.manifest.variants) {
-      std::vector<std::string> o = {"", ours(v)};
+      std::vector<TableCell> o = {label_cell("", key), source_cell(ours(v))};
       for (double p : shares) {
         const Run* run = s.find(files(v), p);
-        o.push_back(run ? ours_of(*run) : "-");
+        o.push_back(run ? ours_of(*run) : missing_cell("-"));
       }
       t.rows.push_back(o);
     }
   };
-  const auto at_0_15 = [](double p, double at0, double at15, auto&& fmt) -> std::string {
-    return p == 0 ? fmt(at0) : p == kFineTuneReported ? fmt(at15) : "-";
+  const auto at_0_15 = [](double p, double at0, double at15, auto&& fmt) -> TableCell {
+    return p == 0 ? fmt(at0) : p == kFineTuneReported ? fmt(at15) : missing_cell("-");
   };
   metric(
-      "test samples",
+      "test samples", "test_samples",
       [&](double p) {
         for (std::size_t i = 0; i < shares.size(); ++i) {
-          if (shares[i] == p) return integer(s.ref.test_samples[i]);
+          if (shares[i] == p) return integer_cell(s.ref.test_samples[i]);
         }
-        return std::string("-");
+        return missing_cell("-");
       },
-      [](const Run& r) { return std::to_string(r.figures.samples); });
+      [](const Run& r) { return count_cell(r.figures.samples); });
   metric(
-      "max |e| (µm)",
-      [&](double p) { return at_0_15(p, paper.max_abs_at_0, paper.max_abs_at_15, um); },
-      [](const Run& r) { return um(r.figures.max_abs); });
+      "max |e| (µm)", "max_abs_um",
+      [&](double p) { return at_0_15(p, paper.max_abs_at_0, paper.max_abs_at_15, um_cell); },
+      [](const Run& r) { return um_cell(r.figures.max_abs); });
   metric(
-      "|e| < 1 µm (%)",
+      "|e| < 1 µm (%)", "share_abs_below_1um_percent",
       [&](double p) {
-        return at_0_15(p, paper.share_below_1um_at_0, paper.share_below_1um_at_15,
-                       [](double v) { return fixed(v); });
+        return at_0_15(p, paper.share_below_1um_at_0, paper.share_below_1um_at_15, fixed_cell);
       },
-      [](const Run& r) { return fixed(r.figures.share_abs_below(1.0)); });
+      [](const Run& r) { return fixed_cell(r.figures.share_abs_below(1.0)); });
   metric(
-      "mean |e| (µm)", [&](double p) { return at_0_15(p, NAN, paper.mean_abs_at_15, um); },
-      [](const Run& r) { return um(r.figures.mean_abs); });
+      "mean |e| (µm)", "mean_abs_um",
+      [&](double p) { return at_0_15(p, NAN, paper.mean_abs_at_15, um_cell); },
+      [](const Run& r) { return um_cell(r.figures.mean_abs); });
   metric(
-      "relative error < 10 % (%)",
-      [&](double p) {
-        return at_0_15(p, NAN, paper.share_rel_below_10_at_15, [](double v) { return fixed(v); });
-      },
-      [](const Run& r) { return fixed(r.figures.share_rel_below(10)); });
+      "relative error < 10 % (%)", "share_rel_below_10_percent",
+      [&](double p) { return at_0_15(p, NAN, paper.share_rel_below_10_at_15, fixed_cell); },
+      [](const Run& r) { return fixed_cell(r.figures.share_rel_below(10)); });
   metric(
-      "|e| < 0.4 µm (%)",
-      [&](double p) {
-        return at_0_15(p, NAN, paper.share_below_0_4um_at_15, [](double v) { return fixed(v); });
-      },
-      [](const Run& r) { return fixed(r.figures.share_abs_below(0.4)); });
+      "|e| < 0.4 µm (%)", "share_abs_below_0.4um_percent",
+      [&](double p) { return at_0_15(p, NAN, paper.share_below_0_4um_at_15, fixed_cell); },
+      [](const Run& r) { return fixed_cell(r.figures.share_abs_below(0.4)); });
   const int table = surface == 2 ? 4 : 5;
   print_table_title(out, format,
                     "Seed 000 Table " + std::to_string(table) + " (test sets) and the text of " +
@@ -395,10 +438,14 @@ void print_bins_at_15(const Study& s, TableFormat format, std::ostream& out, int
 }
 
 void print_normaliser_table(const Study& s, TableFormat format, std::ostream& out) {
-  TextTable t;
+  TypedTable t;
   std::vector<const Run*> read;
-  t.header = {"Normaliser at 15 %", "test samples",  "max |e| (µm)",
-              "|e| < 1 µm (%)",     "mean |e| (µm)", "relative error < 10 % (%)"};
+  t.columns = {label_column("Normaliser at 15 %", "normaliser"),
+               number_column("test samples", "test_samples"),
+               number_column("max |e| (µm)", "max_abs", "um"),
+               number_column("|e| < 1 µm (%)", "share_abs_below_1um", "percent"),
+               number_column("mean |e| (µm)", "mean_abs", "um"),
+               number_column("relative error < 10 % (%)", "share_rel_below_10", "percent")};
   for (const char* surface : {"surface2", "surface3"}) {
     for (const auto& n : s.manifest.normaliser) {
       const Run& r = s.at(std::string(surface) == "surface2" ? n.surface2 : n.surface3);
@@ -406,9 +453,9 @@ void print_normaliser_table(const Study& s, TableFormat format, std::ostream& ou
       const std::string label =
           std::string(surface == std::string("surface2") ? "surface 2" : "surface 3") + ", " +
           n.name + (n.name == s.manifest.normaliser_default ? " (default)" : "");
-      t.rows.push_back({label, std::to_string(r.figures.samples), um(r.figures.max_abs),
-                        fixed(r.figures.share_abs_below(1.0)), um(r.figures.mean_abs),
-                        fixed(r.figures.share_rel_below(10))});
+      t.rows.push_back({label, count_cell(r.figures.samples), um_cell(r.figures.max_abs),
+                        fixed_cell(r.figures.share_abs_below(1.0)), um_cell(r.figures.mean_abs),
+                        fixed_cell(r.figures.share_rel_below(10))});
     }
   }
   print_table_title(out, format,
