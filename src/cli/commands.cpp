@@ -5,6 +5,7 @@
 
 #include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/share_paths.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
@@ -188,6 +189,14 @@ int version_command(std::ostream& out) {
   const Provenance p = make_provenance(0);
   out << "cnclab " << p.cnclab_version << " (git " << p.git_commit << ")\n";
   for (const auto& [name, version] : p.libraries) out << "  " << name << " " << version << "\n";
+  // Where shared configs, experiments and reference numbers come from
+  // after the project's own (core/share_paths.hpp).
+  const ShareRoots share = installed_share_roots();
+  out << "shared files:";
+  if (share.roots.empty()) out << " " << share.none_note();
+  out << "\n";
+  for (const auto& root : share.roots)
+    out << "  " << root.dir.string() << " (" << root.why << ")\n";
   return 0;
 }
 

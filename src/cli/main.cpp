@@ -5,6 +5,7 @@
 
 #include "cli/builtins.hpp"
 #include "cli/cli_wiring.hpp"
+#include "cli/init_command.hpp"
 #include "cnclab/core/error.hpp"
 
 namespace {
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   cnclab::add_sweep_commands(app, action);
   cnclab::add_tool_commands(app, action);
   cnclab::add_surface_commands(app, action);
+  cnclab::add_init_command(app, action);
 
   try {
     app.parse(argc, argv);

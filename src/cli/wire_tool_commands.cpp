@@ -93,12 +93,12 @@ void add_tables(CLI::App& app, CommandAction& action) {
       "tables", "Print a paper's tables from result files beside the paper's numbers");
   tables->add_option("table", a->table, "Table name (none: list the tables)");
   tables->add_option("--results", a->options.results_dir, kResultsRootHelp)->capture_default_str();
-  tables->add_option("--experiments", a->options.experiments_dir, "Experiments folder")
-      ->capture_default_str();
-  tables->add_option("--reference", a->options.reference_dir, "Paper numbers folder")
-      ->capture_default_str();
-  tables->add_option("--configs", a->options.configs_dir, "Configs folder (study manifests)")
-      ->capture_default_str();
+  tables->add_option("--experiments", a->options.experiments_dir,
+                     "Experiments folder (default: ./experiments, else the installed ones)");
+  tables->add_option("--reference", a->options.reference_dir,
+                     "Paper numbers folder (default: ./results/reference, else the installed)");
+  tables->add_option("--configs", a->options.configs_dir,
+                     "Configs folder, study manifests (default: ./configs, else the installed)");
   tables
       ->add_option("--format", a->format,
                    "Output: text (aligned), md, latex for people; csv, json numbers only "

@@ -163,12 +163,17 @@ TEST_F(Cli, NegativeOrFractionalCountsAreUsageErrors) {
 
 // An experiment copied out of the repository finds the shared configs
 // through CNCLAB_CONFIG_PATH or the current directory's configs/, and says
-// where it looked when it cannot.
+// where it looked when it cannot. build/cnclab also finds them in the source
+// tree it was built from (core/share_paths.hpp); a copy of the executable
+// outside the build tree, with no share folder beside it, does not (unless
+// cnclab is installed in the compiled-in CMAKE_INSTALL_PREFIX).
 TEST_F(Cli, CopiedExperimentFindsConfigsThroughTheConfigPathOrSaysWhereItLooked) {
   fs::create_directories(dir_ / "studies");
   fs::copy_file(kExperiment, dir_ / "studies/my.yaml");
   const std::string trainer = "configs/trainers/sgdm_minibatch.yaml";
-  const Result missing = cnclab("validate studies/my.yaml");
+  fs::create_directories(dir_ / "bin");
+  fs::copy_file(kCnclab, dir_ / "bin/cnclab");
+  const Result missing = sh((dir_ / "bin/cnclab").string() + " validate studies/my.yaml");
   expect_one_line_error(missing, 2,
                         "studies/my.yaml:8:10: include " + trainer +
                             ": not found; looked in: "
@@ -178,15 +183,23 @@ TEST_F(Cli, CopiedExperimentFindsConfigsThroughTheConfigPathOrSaysWhereItLooked)
             std::string::npos)
       << missing.err;
   EXPECT_NE(missing.err.find("CNCLAB_CONFIG_PATH"), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find("no cnclab share folder (installed, next to the executable " +
+                             (dir_ / "share/cnclab").string() + ": absent"),
+            std::string::npos)
+      << missing.err;
+
+  const Result via_source = cnclab("validate studies/my.yaml");
+  EXPECT_EQ(via_source.code, 0) << via_source.err;
+  EXPECT_NE(via_source.out.find("momentum: 0.9"), std::string::npos) << via_source.out;
 
   const std::string configs = CNCLAB_SOURCE_DIR "/configs";
-  const Result via_path = sh("CNCLAB_CONFIG_PATH=/nonexistent:" + configs + " " + kCnclab +
-                             " validate studies/my.yaml");
+  const Result via_path = sh("CNCLAB_CONFIG_PATH=/nonexistent:" + configs + " " +
+                             (dir_ / "bin/cnclab").string() + " validate studies/my.yaml");
   EXPECT_EQ(via_path.code, 0) << via_path.err;
   EXPECT_NE(via_path.out.find("momentum: 0.9"), std::string::npos) << via_path.out;
 
   fs::create_directory_symlink(configs, dir_ / "configs");
-  const Result via_cwd = cnclab("validate studies/my.yaml");
+  const Result via_cwd = sh((dir_ / "bin/cnclab").string() + " validate studies/my.yaml");
   EXPECT_EQ(via_cwd.code, 0) << via_cwd.err;
 }
 
@@ -260,8 +273,8 @@ TEST_F(Cli, TrainbrExperimentValidatesWithMatlabDefaultsAndRuns) {
 }
 
 TEST_F(Cli, HelpExplainsWithExample) {
-  for (const char* sub :
-       {"run", "validate", "show", "reproduce", "sweep", "sweep merge", "compare", "version"}) {
+  for (const char* sub : {"run", "validate", "show", "reproduce", "sweep", "sweep merge", "compare",
+                          "version", "init"}) {
     const Result r = cnclab(std::string(sub) + " --help");
     EXPECT_EQ(r.code, 0) << sub;
     EXPECT_NE(r.out.find("Example"), std::string::npos) << sub << r.out;
@@ -619,8 +632,9 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
   ASSERT_EQ(cmp.code, 0) << cmp.err;
   EXPECT_NE(cmp.out.find("\nconfig,trochoid.step,"), std::string::npos) << cmp.out;
   EXPECT_NE(cmp.out.find("\nmetric,loops,"), std::string::npos) << cmp.out;
-  // No reference folder in the working directory: the table is skipped with a note.
-  EXPECT_NE(r.out.find("(table ik not printed"), std::string::npos) << r.out;
+  // No reference folder in the working directory: build/cnclab reads the
+  // paper's numbers from the source tree (core/share_paths.hpp).
+  EXPECT_NE(r.out.find("Seed 004 Table 5"), std::string::npos) << r.out;
 
   const Result t = cnclab("tables ik --reference " CNCLAB_SOURCE_DIR "/results/reference");
   ASSERT_EQ(t.code, 0) << t.err << t.out;
@@ -650,13 +664,14 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
   EXPECT_NE(t.out.find(sources), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("\nsources: results/ik_x/ik_x-seed4-"), std::string::npos) << t.out;
 
-  // No search or trainbr results: said in the notes, the rest printed.
-  EXPECT_NE(t.out.find("- search: no results for any axis; X not available: "
-                       "experiments/ik_search/search_x.yaml: sweep job file not found"),
+  // No search or trainbr results: said in the notes, the rest printed. The
+  // project has no such experiment files: the source tree's are used.
+  EXPECT_NE(t.out.find("- search: no results for any axis; X not available: no result for " +
+                       fs::path(CNCLAB_SOURCE_DIR "/experiments/ik_search/search_x.yaml").string()),
             std::string::npos)
       << t.out;
-  EXPECT_NE(t.out.find("- trainbr: no results for any axis; X not available: "
-                       "experiments/ik_trainbr/ik_x.yaml: experiment file not found"),
+  EXPECT_NE(t.out.find("- trainbr: no results for any axis; X not available: no result for " +
+                       fs::path(CNCLAB_SOURCE_DIR "/experiments/ik_trainbr/ik_x.yaml").string()),
             std::string::npos)
       << t.out;
   EXPECT_EQ(t.out.find("X trainbr"), std::string::npos) << t.out;
@@ -680,8 +695,8 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
   EXPECT_NE(b.out.find("- trainbr *: Y, Z, A, C from ours (no trainbr result)"), std::string::npos)
       << b.out;
   EXPECT_EQ(b.out.find("- trainbr: X not available"), std::string::npos) << b.out;
-  EXPECT_NE(b.out.find("- trainbr: C not available: experiments/ik_trainbr/ik_c.yaml: "
-                       "experiment file not found"),
+  EXPECT_NE(b.out.find("- trainbr: C not available: no result for " +
+                       fs::path(CNCLAB_SOURCE_DIR "/experiments/ik_trainbr/ik_c.yaml").string()),
             std::string::npos)
       << b.out;
 

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cnclab/core/override.hpp"
+#include "cnclab/core/share_paths.hpp"
 #include "cnclab/core/source_location.hpp"
 
 namespace cnclab {
@@ -33,11 +34,15 @@ struct ConfigSearch {
   // CNCLAB_CONFIG_PATH: configs folders, each laid out like the repository's
   // configs/ (trainers/, machines/, surfaces/, ...), searched in order.
   std::vector<std::filesystem::path> config_path;
-  // The current directory: its configs/ is searched last; "" searches none.
+  // The current directory: its configs/ is searched after the config path;
+  // "" searches none.
   std::filesystem::path current_dir;
+  // cnclab's own share roots (share_paths.hpp): ROOT/configs of each is
+  // searched last (an installed cnclab's configs, or the source tree's).
+  ShareRoots shared;
 
-  // CNCLAB_CONFIG_PATH split at ':' (empty entries skipped) and the current
-  // directory of the process.
+  // CNCLAB_CONFIG_PATH split at ':' (empty entries skipped), the current
+  // directory of the process and installed_share_roots().
   static ConfigSearch from_environment();
 };
 
@@ -151,7 +156,9 @@ class ConfigReader {
 //     a. ANCESTOR/configs/REST for every folder from the naming file's upward
 //        that has a configs/ folder (the project or repository root),
 //     b. ENTRY/REST for every entry of search.config_path (CNCLAB_CONFIG_PATH),
-//     c. CWD/configs/REST for search.current_dir.
+//     c. CWD/configs/REST for search.current_dir,
+//     d. ROOT/configs/REST for every root of search.shared (an installed
+//        cnclab's share folder, or the source tree of a build-tree binary).
 // Other relative names are searched only next to the naming file.
 struct ConfigLookup {
   std::optional<std::filesystem::path> found;  // the first existing candidate

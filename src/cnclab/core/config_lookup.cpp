@@ -19,6 +19,7 @@ ConfigSearch ConfigSearch::from_environment() {
   }
   std::error_code ec;
   search.current_dir = fs::current_path(ec);  // "" (none) if it was removed
+  search.shared = installed_share_roots();
   return search;
 }
 
@@ -65,6 +66,12 @@ ConfigLookup lookup_config_path(const fs::path& naming_file, const std::string& 
   if (!search.current_dir.empty() &&
       consider(search.current_dir / configs / rest, "configs/ of the current directory")) {
     return out;
+  }
+  for (const auto& root : search.shared.roots) {
+    if (consider(root.dir / configs / rest, "cnclab's configs, " + root.why)) return out;
+  }
+  if (search.shared.roots.empty() && !search.shared.absent.empty()) {
+    out.notes.push_back(search.shared.none_note());
   }
   return out;
 }

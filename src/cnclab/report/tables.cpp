@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "cnclab/core/share_paths.hpp"
 #include "cnclab/report/targets.hpp"
 
 namespace cnclab {
@@ -14,6 +15,32 @@ namespace cnclab {
 double normalised_test_mse(const RunRecord& r) {
   const ScalingRecord& y = r.target_scaling;
   return (y.transform(r.test_predictions) - y.transform(r.test_targets)).array().square().mean();
+}
+
+namespace {
+
+// NAME under `dir` when given, else FOLDER/NAME from the project or cnclab's share.
+std::filesystem::path tables_input(const std::filesystem::path& dir, const char* folder,
+                                   const std::filesystem::path& name) {
+  if (!dir.empty()) return dir / name;
+  const std::filesystem::path relative = std::filesystem::path(folder) / name;
+  const ShareLookup lookup = find_shared(relative);
+  if (!lookup.found) throw MissingResults(lookup.not_found_message(relative));
+  return *lookup.found;
+}
+
+}  // namespace
+
+std::filesystem::path TablesOptions::experiment_file(const std::filesystem::path& name) const {
+  return tables_input(experiments_dir, "experiments", name);
+}
+
+std::filesystem::path TablesOptions::reference_file(const std::filesystem::path& name) const {
+  return tables_input(reference_dir, "results/reference", name);
+}
+
+std::filesystem::path TablesOptions::config_file(const std::filesystem::path& name) const {
+  return tables_input(configs_dir, "configs", name);
 }
 
 ResultStore table_store(const TablesOptions& options) {

@@ -18,17 +18,31 @@
 namespace cnclab {
 
 struct TablesOptions {
-  std::filesystem::path results_dir = "results";              // where `run`/`reproduce` wrote
-  std::filesystem::path experiments_dir = "experiments";      // the experiment YAML files
-  std::filesystem::path reference_dir = "results/reference";  // transcribed paper numbers
-  std::filesystem::path configs_dir = "configs";              // study manifests (configs/studies)
-  TableFormat format = TableFormat::text;                     // `--format`
+  std::filesystem::path results_dir = "results";  // where `run`/`reproduce` wrote
+  // Where a table's inputs are: the experiment YAML files, the transcribed
+  // paper numbers and the study manifests (configs/studies). A folder given
+  // (--experiments, --reference, --configs) is the only place; "" finds each
+  // file as experiments/NAME, results/reference/NAME or configs/NAME in the
+  // project (the current directory) or else in cnclab's share folders
+  // (core/share_paths.hpp): use experiment_file(), reference_file() and
+  // config_file().
+  std::filesystem::path experiments_dir;
+  std::filesystem::path reference_dir;
+  std::filesystem::path configs_dir;
+  TableFormat format = TableFormat::text;  // `--format`
   // The profiles: entry the results were made with (`reproduce --quick`:
   // "quick"); experiments load with it to find their result files.
   std::string profile;
   // `--check`: after the tables, each table's declared targets (targets.hpp)
   // against its measurements, PASS/FAIL; exit 1 on any FAIL.
   bool check = false;
+
+  // The input file NAME ("step_error/surface1.yaml", "ik_table5.yaml",
+  // "studies/ik_tables.yaml") as described above; MissingResults listing
+  // every place looked when a searched name is found nowhere.
+  std::filesystem::path experiment_file(const std::filesystem::path& name) const;
+  std::filesystem::path reference_file(const std::filesystem::path& name) const;
+  std::filesystem::path config_file(const std::filesystem::path& name) const;
 };
 
 // A table's measured quantities by name ("tuned.surface1.max_abs_um"), the

@@ -223,7 +223,7 @@ TableCheck check_table(const TableEntry& table, const TablesOptions& options, st
     print_table_notes(out, options.format, {"table " + table.name + ": no targets declared"});
     return c;
   }
-  const fs::path manifest = options.configs_dir / table.manifest;
+  const fs::path manifest = options.config_file(table.manifest);
   const std::vector<Target> targets = read_targets(manifest);
   if (targets.empty()) {
     print_table_notes(

@@ -356,7 +356,7 @@ void add_architectures(Measurements& m, const NarxStudyRuns& r) {
 }  // namespace
 
 void print_contour_error_tables(const TablesOptions& o, std::ostream& out) {
-  const fs::path ref_file = o.reference_dir / "seed002_contour_error.yaml";
+  const fs::path ref_file = o.reference_file("seed002_contour_error.yaml");
   if (!fs::exists(ref_file)) throw MissingResults(ref_file.string() + ": not found");
   const ConfigDocument ref_doc = ConfigDocument::load(ref_file);
   const ConfigReader ref = ref_doc.root();

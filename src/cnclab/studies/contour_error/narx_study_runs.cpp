@@ -95,7 +95,7 @@ double NarxStudyRuns::metric(const std::string& name) const {
 }
 
 NarxStudyRuns load_narx_study(const TablesOptions& o, const std::string& file) {
-  const fs::path experiment = o.experiments_dir / "contour_error" / file;
+  const fs::path experiment = o.experiment_file(fs::path("contour_error") / file);
   if (!fs::exists(experiment)) throw MissingResults(experiment.string() + ": not found");
   const SweepJob job = load_sweep_job(experiment, {}, o.profile);
   const SweepJobState state = sweep_job_state(job, o.results_dir);

@@ -29,7 +29,7 @@ IkAxisRun checked(const std::string& axis, const fs::path& source, LoadedExperim
 // An ordinary experiment's result: experiments/<folder>/ik_<axis>.yaml.
 IkAxisRun load_experiment_axis(const TablesOptions& o, const std::string& folder,
                                const std::string& axis) {
-  const fs::path file = o.experiments_dir / folder / ("ik_" + lower(axis) + ".yaml");
+  const fs::path file = o.experiment_file(fs::path(folder) / ("ik_" + lower(axis) + ".yaml"));
   if (!fs::exists(file)) throw MissingResults(file.string() + ": experiment file not found");
   const ResultStore store = table_store(o);
   LoadedExperiment loaded = store.load(file);
@@ -40,7 +40,8 @@ IkAxisRun load_experiment_axis(const TablesOptions& o, const std::string& folder
 // The trial the search job selected: its selection result (sweep_job.hpp,
 // found by the job's resolved config and plan) names it.
 IkAxisRun load_search_axis(const TablesOptions& o, const std::string& axis, std::string& note) {
-  const fs::path file = o.experiments_dir / "ik_search" / ("search_" + lower(axis) + ".yaml");
+  const fs::path file =
+      o.experiment_file(fs::path("ik_search") / ("search_" + lower(axis) + ".yaml"));
   if (!fs::exists(file)) throw MissingResults(file.string() + ": sweep job file not found");
   const SweepJob job = load_sweep_job(file, {}, o.profile);
   const SweepPlan plan =

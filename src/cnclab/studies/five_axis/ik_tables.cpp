@@ -364,7 +364,7 @@ void add_axis(Measurements& m, const std::string& prefix, std::size_t axis, cons
 
 void print_ik_tables(const TablesOptions& options, std::ostream& out) {
   const std::vector<IkVariant> variants = load_ik_variants(options);
-  const fs::path reference_file = options.reference_dir / "ik_table5.yaml";
+  const fs::path reference_file = options.reference_file("ik_table5.yaml");
   const Reference ref = read_reference(reference_file);
   print_table5(variants, ref, reference_file, options.format, out);
   print_machine_error(variants, options.format, out);

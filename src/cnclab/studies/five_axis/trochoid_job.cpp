@@ -11,6 +11,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/core/share_paths.hpp"
 #include "cnclab/core/units.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/job_result.hpp"
@@ -86,7 +87,8 @@ const FieldList<TrochoidReportOptions>& report_fields() {
                  Rule::positive())
           .custom(
               custom_info("compare_with",
-                          "Table 3 transcribed (CSV), relative to the working directory; "
+                          "Table 3 transcribed (CSV), relative to the working directory "
+                          "or else to cnclab's share folder (results/reference/...); "
                           "absent: no comparison",
                           FieldKind::string),
               [](const ConfigReader& r, R& rep) {
@@ -303,7 +305,9 @@ TrochoidOutcome run_trochoid_job(const TrochoidJob& job) {
       << fixed_decimals(
              2 * std::asin(job.report.engagement_spacing / o.cutter_diameter) * kDegPerRad, 2)
       << " deg)\n";
-  if (job.report.compare_with) compare_with_table3(*job.report.compare_with, g.radius, out);
+  if (job.report.compare_with) {
+    compare_with_table3(require_shared(*job.report.compare_with), g.radius, out);
+  }
   res.report = out.str();
   return res;
 }

@@ -33,8 +33,8 @@ StepErrorRun load_run(const fs::path& experiment, const ResultStore& store) {
 
 StepErrorStudy load_step_error_study(const TablesOptions& o) {
   StepErrorStudy s;
-  s.manifest = read_step_error_manifest(o.configs_dir / "studies" / "step_error_tables.yaml");
-  s.reference_file = o.reference_dir / "seed000_step_error.yaml";
+  s.manifest = read_step_error_manifest(o.config_file("studies/step_error_tables.yaml"));
+  s.reference_file = o.reference_file("seed000_step_error.yaml");
   s.ref = read_seed000_reference(s.reference_file);
   std::vector<fs::path> files;
   for (const auto& v : s.manifest.variants) {

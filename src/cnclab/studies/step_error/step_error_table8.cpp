@@ -9,10 +9,10 @@
 namespace cnclab {
 namespace fs = std::filesystem;
 void print_step_error_table8(const StepErrorStudy& s, const TablesOptions& o, std::ostream& out) {
-  const fs::path job_file = o.experiments_dir / "step_error" / "table8_timing.yaml";
   StepErrorTimingResult timing;
   fs::path timing_file;
   try {
+    const fs::path job_file = o.experiment_file("step_error/table8_timing.yaml");
     if (!fs::exists(job_file)) throw MissingResults(job_file.string() + ": not found");
     const StepErrorTimingJob job = load_step_error_timing_job(job_file, {}, o.profile);
     const StoredResult stored = table_store(o).get(step_error_timing_key(job));
