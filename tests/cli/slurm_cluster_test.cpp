@@ -44,10 +44,12 @@ const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedma
 constexpr int kTestPort = 16817;
 constexpr auto kWaitLimit = std::chrono::seconds(120);
 
-// 6 trials (3 keep probabilities x 2 learning rates) of about 3 s each.
+// 6 trials (3 keep probabilities x 2 learning rates) of about 3 s each on an idle
+// core (20000 epochs): long enough that a task is still mid-trial when the
+// test cancels or warns it, on a loaded machine or not.
 std::string sweep_words() {
   return kExperiment +
-         " trainer.epochs=6000 dataset.options.samples=300 model.hidden=[16,8] "
+         " trainer.epochs=20000 dataset.options.samples=300 model.hidden=[16,8] "
          "model.dropout.keep_probability=0.8,0.9,1.0 trainer.learning_rate=1e-3,1e-2 "
          "--data-dir data";
 }
@@ -170,7 +172,7 @@ TEST(SlurmCluster, ArraySweepSurvivesCancelAndPreemptionAndMatchesLocalRun) {
     return s.count(array + "_0") && s.at(array + "_0") == "RUNNING" && s.count(array + "_1") &&
            s.at(array + "_1") == "RUNNING";
   })) << "the first two array tasks never ran together";
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // mid-trial
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));  // mid-trial
   ASSERT_EQ(run_shell(dir, cluster.env() + "scancel " + array + "_0").code, 0);
   ASSERT_EQ(run_shell(dir, cluster.env() + "scancel --signal=USR1 --batch " + array + "_1").code,
             0);
