@@ -200,9 +200,11 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
 
   std::vector<TrialJob> pool_jobs;
   for (std::size_t i : todo) {
-    pool_jobs.push_back({pool_jobs.size(), &*plan.trials[i].experiment,
+    pool_jobs.push_back({pool_jobs.size(),
+                         &*plan.trials[i].experiment,
                          trial_result_path(dir, plan.trials[i].id),
-                         trial_error_path(dir, plan.trials[i].id), {}});
+                         trial_error_path(dir, plan.trials[i].id),
+                         {}});
   }
   PoolOptions pool;
   pool.jobs = jobs;
