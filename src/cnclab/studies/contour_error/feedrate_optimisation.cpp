@@ -38,12 +38,13 @@ std::size_t optimisation_lower_caps(const FeedrateOptimisationOptions& o,
                                     const ReferenceTrajectory& r,
                                     const std::vector<double>& predicted,
                                     const std::vector<double>& s_knots, PathSpeedCap& cap) {
-  const double target = o.safety_factor * o.tolerance;
+  const double bound = o.tolerance - o.prediction_margin;
+  const double target = o.safety_factor * bound;
   std::size_t over = 0;
   for (Eigen::Index k = 0; k < r.samples(); ++k) {
     const double eps = predicted[static_cast<std::size_t>(k)];
     if (!(eps > target)) continue;
-    if (eps > o.tolerance) ++over;
+    if (eps > bound) ++over;
     const double speed = r.velocity.row(k).norm();
     const double wanted = speed * std::pow(target / eps, 1.0 / o.error_exponent);
     const double s = optimisation_arc_length_at(cap.u, s_knots, r.u[static_cast<std::size_t>(k)]);
@@ -65,6 +66,10 @@ void FeedrateOptimisationOptions::validate() const {
   }
   if (!(safety_factor > 0.0 && safety_factor <= 1.0)) {
     throw OptionError("safety_factor", shortest_double(safety_factor), "must be in (0, 1]");
+  }
+  if (!(prediction_margin >= 0.0 && prediction_margin < tolerance)) {
+    throw OptionError("prediction_margin", shortest_double(prediction_margin),
+                      "must be in [0, tolerance " + shortest_double(tolerance) + ") [mm]");
   }
   if (!(error_exponent > 0.0 && std::isfinite(error_exponent))) {
     throw OptionError("error_exponent", shortest_double(error_exponent), "must be > 0");
@@ -142,10 +147,10 @@ FeedrateOptimisationResult optimise_feedrate(const PlanarPath& path, ContourPred
     rec.min_cap = *std::min_element(res.cap.speed.begin(), res.cap.speed.end());
     if (it == 0) rec.min_cap = res.cap.speed.front();
     res.history.push_back(rec);
-    if (rec.worst_predicted <= options.tolerance) {
+    if (rec.worst_predicted <= options.tolerance - options.prediction_margin) {
       res.status = OptimisationStatus::converged;
-      res.reason = "worst predicted contour error " + shortest_double(rec.worst_predicted * 1e3) +
-                   " um <= tolerance after " + std::to_string(it + 1) + " plan(s)";
+      res.reason = "worst predicted contour error " + fixed_decimals(rec.worst_predicted * 1e3, 2) +
+                   " um <= tolerance - margin after " + std::to_string(it + 1) + " plan(s)";
       res.history.back().seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       return res;
@@ -163,7 +168,7 @@ FeedrateOptimisationResult optimise_feedrate(const PlanarPath& path, ContourPred
       res.reason = "the cap would fall to " + shortest_double(lowest) + " mm/s < min_speed " +
                    shortest_double(options.min_speed) +
                    " mm/s: slowing down does not bring the predicted error (worst " +
-                   shortest_double(rec.worst_predicted * 1e3) + " um) under the tolerance";
+                   fixed_decimals(rec.worst_predicted * 1e3, 2) + " um) under the tolerance";
       return res;
     }
     planner.speed_cap = res.cap;

@@ -12,14 +12,15 @@
 //  1. plan the minimum-time feedrate under the axis limits (plan_feedrate);
 //  2. interpolate its 1 ms reference and run the predictor over it from rest:
 //     predicted |eps_c| per tick;
-//  3. for every tick k with |eps_k| > s eps_max (s = safety_factor < 1),
+//  3. for every tick k with |eps_k| > s (eps_max - m) (s = safety_factor < 1,
+//     m = prediction_margin, an allowance for the predictor's own error),
 //     lower the path-speed cap (PathSpeedCap, a bound on the NLP's path
 //     speed at grid nodes) at every cap knot within `margin` mm of arc length
 //     of the tick to
-//        v_k (s eps_max / |eps_k|)^(1 / error_exponent),
+//        v_k (s (eps_max - m) / |eps_k|)^(1 / error_exponent),
 //     v_k the tick's path speed in this plan (so a cap only ever falls);
 //  4. replan under the axis limits and the cap; repeat from 2 until the worst
-//     predicted |eps| <= eps_max (converged) or max_iterations plans.
+//     predicted |eps| <= eps_max - m (converged) or max_iterations plans.
 // The knots of the cap are the unconstrained plan's grid nodes (about
 // planner.grid_spacing apart), starting at the largest path speed the axis
 // velocity limits allow (no effect).
@@ -38,6 +39,10 @@ struct FeedrateOptimisationOptions {
   // s: caps aim at s eps_max, so the next plan lands under eps_max despite
   // the error's not quite following the assumed power law. In (0, 1].
   double safety_factor = 0.9;
+  // m: what the predictor may under-predict the machine's contour error by
+  // [mm]; the loop plans for a predicted error within eps_max - m. 0 trusts
+  // the predictor. In [0, tolerance).
+  double prediction_margin = 0.0;
   // p in |eps| ~ v^p near a tick: the cap scales by (s eps_max/|eps|)^(1/p).
   // The lag error of a P position loop grows like v (tangential) and the
   // centripetal part like v^2 (normal): 1 is cautious (more slowdown, fewer
@@ -65,7 +70,7 @@ const char* to_string(OptimisationStatus status) noexcept;
 struct OptimisationIteration {
   double worst_predicted = 0.0;  // max predicted |eps| over the ticks [mm]
   double time = 0.0;             // traversal time [s]
-  std::size_t ticks_over = 0;    // ticks with predicted |eps| > eps_max
+  std::size_t ticks_over = 0;    // ticks with predicted |eps| > eps_max - m
   double min_cap = 0.0;          // smallest cap knot this plan was made with [mm/s]
   double seconds = 0.0;          // wall time of planning and prediction
 };
