@@ -133,8 +133,28 @@ EXPECTED = {
                       "fig11_prediction_error_y", "fig13_contour_error",
                       "fig14_contour_prediction_error"],
     "narx_training": ["closed_loop_stage"],
+    "feedrate": ["feedrate_eps10um", "feedrate_eps5um"],
 }
 MAGIC = {"pdf": b"%PDF", "svg": b"<?xml"}
+
+
+def feedrate_ticks(results, rng, ticks=1500):
+    """The per-tick file of the contour-error feedrate job (feedrate_job.hpp):
+    per tolerance and method time, feed, simulated and (for the predictor's
+    plans) predicted contour error [mm]."""
+    folder = os.path.join(results, "contour_error_feedrate")
+    os.makedirs(folder)
+    with h5py.File(os.path.join(folder, "contour_error_feedrate-0123abcd-ticks.h5"), "w") as f:
+        for label, scale in (("eps10um", 1.0), ("eps5um", 0.5)):
+            for method, n in (("unconstrained", ticks // 2), ("constrained", ticks),
+                              ("uniform", ticks), ("constant", ticks)):
+                g = f.create_group(f"{label}/{method}")
+                t = np.arange(n) * 1e-3
+                g["time"] = t
+                g["feed"] = 200 * np.sin(np.pi * t / t[-1]) ** 2
+                g["simulated"] = scale * 8e-3 * np.abs(np.sin(9 * t)) + 1e-4 * rng.random(n)
+                if method in ("unconstrained", "constrained"):
+                    g["predicted"] = scale * 7e-3 * np.abs(np.sin(9 * t))
 
 
 def main():
@@ -147,6 +167,7 @@ def main():
         os.makedirs(results)
         step_error_results(source, results, rng)
         contour_error_results(results, tmp, rng)
+        feedrate_ticks(results, rng)
         with open(os.path.join(source, "configs/studies/step_error_tables.yaml")) as f:
             variants = list(yaml.safe_load(f)["variants"])
         expected = dict(EXPECTED, step_error=[

@@ -91,7 +91,7 @@ double velocity_acceleration_time(const PlanarPath& path, const PlanarLimits& li
 }
 
 ConstantFeedrateProfile constant_feedrate_time(const PlanarPath& path, const PlanarLimits& limits,
-                                               int samples) {
+                                               int samples, double max_feed) {
   limits.validate();
   Vec2 m0 = Vec2::Zero(), m1 = Vec2::Zero(), m2 = Vec2::Zero();
   for (int k = 0; k < samples; ++k) {
@@ -122,6 +122,7 @@ ConstantFeedrateProfile constant_feedrate_time(const PlanarPath& path, const Pla
     if (m1[i] > 0) f_max = std::min(f_max, std::sqrt(L.acceleration / m1[i]));
     if (m2[i] > 0) f_max = std::min(f_max, std::cbrt(L.jerk / m2[i]));
   }
+  f_max = std::min(f_max, max_feed);
   ConstantFeedrateProfile best;
   best.time = kInf;
   constexpr int kFeedSteps = 400, kAccelSteps = 100;

@@ -6,6 +6,8 @@
 //    path parameter (Bobrow, Dubowsky & Gibson 1985; Shin & McKay 1985);
 //  - an upper bound: the time of a feasible profile that ramps with S-curves
 //    to the largest constant feedrate the limits allow and back to rest.
+#include <limits>
+
 #include "cnclab/motion/axis_limits.hpp"
 #include "cnclab/motion/planar_path.hpp"
 
@@ -36,8 +38,11 @@ struct ConstantFeedrateProfile {
 //   F m0_i <= V_i,  a_t m0_i + F^2 m1_i <= A_i,  j_t m0_i + 3 F a_t m1_i + F^3 m2_i <= J_i.
 // The S-curve (scurve.hpp) with limits (F, a_t, j_t) over the arc length is
 // such a profile; the smallest S-curve time over a grid of F and a_t is
-// returned. Maxima are taken on `samples` parameter samples.
-ConstantFeedrateProfile constant_feedrate_time(const PlanarPath& path, const PlanarLimits& limits,
-                                               int samples = 20001);
+// returned. Maxima are taken on `samples` parameter samples. `max_feed`
+// [mm/s] caps F (the best constant-feed profile at most that fast; the
+// contour-error study's constant-feed baseline bisects on it).
+ConstantFeedrateProfile constant_feedrate_time(
+    const PlanarPath& path, const PlanarLimits& limits, int samples = 20001,
+    double max_feed = std::numeric_limits<double>::infinity());
 
 }  // namespace cnclab

@@ -32,7 +32,7 @@ std::vector<double> heuristic_guess(const std::vector<NodeCoefficients>& nodes, 
   std::vector<double> v(N + 1), x(4 * N + 2);
   for (int k = 0; k <= N; ++k) {
     const NodeCoefficients& c = nodes[k];
-    double cap = 1e19;
+    double cap = c.v_cap;
     if (max_abs(c.vel) > 0) cap = std::min(cap, 1.0 / max_abs(c.vel));
     if (max_abs(c.acc2) > 0) cap = std::min(cap, 1.0 / std::sqrt(max_abs(c.acc2)));
     if (max_abs(c.jerk3) > 0) cap = std::min(cap, std::cbrt(1.0 / max_abs(c.jerk3)));

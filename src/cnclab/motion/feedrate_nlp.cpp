@@ -24,9 +24,9 @@ int j_index(int interval) {
   return 4 * interval + 3;
 }
 
-// Largest v meeting the velocity ratios |vel_i| v <= 1.
+// Largest v meeting the velocity ratios |vel_i| v <= 1 and the path-speed cap.
 double velocity_bound(const NodeCoefficients& c) {
-  double bound = kInfinity;
+  double bound = std::min(kInfinity, c.v_cap);
   for (int i = 0; i < 2; ++i) {
     if (c.vel[i] != 0.0) bound = std::min(bound, 1.0 / std::abs(c.vel[i]));
   }

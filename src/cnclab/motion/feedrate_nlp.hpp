@@ -17,7 +17,8 @@
 //   v_k h + a_k h^2/2 + j_k h^3/6 = w_k+1 - w_k,
 //   v_k+1 = v_k + a_k h + j_k h^2/2,   a_k+1 = a_k + j_k h;
 // per node and axis i (ratios to the limits, in [-1, 1]):
-//   velocity      q1_i v                               (a bound on v_k)
+//   velocity      q1_i v                               (a bound on v_k,
+//                 also capped by v_cap, the path-speed cap, if any)
 //   acceleration  q2_i v^2 + q1_i a                    (interior nodes)
 //   jerk          q3_i v^3 + 3 q2_i v a + q1_i j       (both ends of every interval)
 // where q1, q2, q3 are dq/dw, d2q/dw2, d3q/dw3 divided by the limit and the
@@ -34,6 +35,9 @@ struct NodeCoefficients {
   std::array<double, 2> acc1{}, acc2{};             // q1_i, q2_i / (A_i T0^2)
   std::array<double, 2> jerk1{}, jerk2{}, jerk3{};  // q1_i, q2_i, q3_i / (J_i T0^3)
   double w = 0.0;                                   // path coordinate
+  // Upper bound on v from a path-speed cap (PathSpeedCap): speed = |q1| v / T0
+  // [mm/s] with q1 = dq/dw, so v <= cap T0 / |q1|. 1e19 (Ipopt's "none"): no cap.
+  double v_cap = 1e19;
 };
 
 struct WindowState {

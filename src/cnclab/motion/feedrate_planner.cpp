@@ -123,6 +123,11 @@ void FeedratePlannerOptions::validate() const {
       << " mm must be >= the stopping distance " << braking << " mm at these limits";
     throw OptionError("commit_intervals", std::to_string(commit_intervals), m.str());
   }
+  try {
+    speed_cap.validate();
+  } catch (const OptionError& e) {
+    throw OptionError("speed_cap." + e.field(), e.value(), e.rule());
+  }
   if (!(tolerance > 0.0)) throw OptionError("tolerance", std::to_string(tolerance), "must be > 0");
   if (max_iterations < 1) {
     throw OptionError("max_iterations", std::to_string(max_iterations), "must be >= 1");
@@ -183,8 +188,9 @@ FeedrateProfile plan_feedrate(const PlanarPath& path, const FeedratePlannerOptio
                           options.end_refinement_length, options.end_refinement);
   plan.nodes.resize(plan.grid.size());
   for (std::size_t k = 0; k < plan.grid.size(); ++k) {
-    plan.nodes[k] = feedrate_detail::node_coefficients(path.evaluate(plan.grid[k]), plan.grid[k],
-                                                       scaling, options.limits);
+    plan.nodes[k] =
+        feedrate_detail::node_coefficients(path.evaluate(plan.grid[k]), plan.grid[k], scaling,
+                                           options.limits, options.speed_cap.at(plan.grid[k]));
   }
   WindowSolver solver(options);
   const std::vector<WindowRecord> windows = plan_windows(options, solver, plan, progress);

@@ -34,6 +34,7 @@
 #include "cnclab/core/progress.hpp"
 #include "cnclab/motion/axis_limits.hpp"
 #include "cnclab/motion/feedrate_profile.hpp"
+#include "cnclab/motion/path_speed_cap.hpp"
 #include "cnclab/motion/planar_path.hpp"
 
 namespace cnclab {
@@ -89,6 +90,11 @@ struct FeedratePlannerOptions {
   int max_iterations = 500;           // Ipopt `max_iter` per window
   RegularityOptions regularity;       // cusp check before planning
   LimitRefinementOptions refinement;  // limits checked and enforced between nodes
+  // Optional path-speed bound |C'| du/dt <= speed_cap(u) at every grid node
+  // (an upper bound on the NLP's v_k beside the axis velocity limits);
+  // empty = none. The contour-error feedrate optimisation lowers it where
+  // the predicted contour error exceeds the tolerance.
+  PathSpeedCap speed_cap;
 
   void validate() const;
 };

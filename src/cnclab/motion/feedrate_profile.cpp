@@ -1,6 +1,10 @@
 #include "cnclab/motion/feedrate_profile.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
 
 namespace cnclab {
 
@@ -36,6 +40,27 @@ ParameterState FeedrateProfile::in_interval(std::size_t k, double tau) const {
   // Solver tolerance may leave u a hair outside the path at the very end.
   s.u = std::clamp(s.u, u.front(), u.back());
   return s;
+}
+
+FeedrateProfile time_scaled(const FeedrateProfile& profile, double factor) {
+  if (!(factor > 0.0 && factor <= 1.0)) {
+    throw OptionError("factor", shortest_double(factor), "must be in (0, 1]");
+  }
+  FeedrateProfile out;
+  out.u = profile.u;
+  out.t.resize(profile.t.size());
+  out.ud.resize(profile.ud.size());
+  out.udd.resize(profile.udd.size());
+  out.uddd.resize(profile.uddd.size());
+  for (std::size_t k = 0; k < profile.t.size(); ++k) {
+    out.t[k] = profile.t[k] / factor;
+    out.ud[k] = profile.ud[k] * factor;
+    out.udd[k] = profile.udd[k] * factor * factor;
+  }
+  for (std::size_t k = 0; k < profile.uddd.size(); ++k) {
+    out.uddd[k] = profile.uddd[k] * factor * factor * factor;
+  }
+  return out;
 }
 
 }  // namespace cnclab

@@ -66,4 +66,11 @@ struct FeedrateProfile {
   ParameterState in_interval(std::size_t k, double tau) const;
 };
 
+// The same path motion slowed down uniformly (a feed override): u~(t) =
+// u(f t) with 0 < f <= 1, so t~ = t / f, du/dt f, d2u/dt2 f^2, d3u/dt3 f^3.
+// Every axis velocity scales by f, acceleration by f^2, jerk by f^3, so the
+// axis limits still hold. Windows and refinement records are dropped.
+// OptionError("factor") unless 0 < factor <= 1.
+FeedrateProfile time_scaled(const FeedrateProfile& profile, double factor);
+
 }  // namespace cnclab

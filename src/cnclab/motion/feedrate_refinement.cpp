@@ -51,8 +51,8 @@ double time_to(double v, double a, double j, double h, double dw) {
 // over [first, last] with each interval in `split` cut at its parameter
 // midpoint; the new node's state is the current cubic's at the time it
 // passes there, so the starting point is the current plan, exactly.
-ScaledPlan bisected(const PlanarPath& path, const PlanarLimits& limits, const Scaling& scaling,
-                    const ScaledPlan& plan, const LocalWindow& window) {
+ScaledPlan bisected(const PlanarPath& path, const FeedratePlannerOptions& options,
+                    const Scaling& scaling, const ScaledPlan& plan, const LocalWindow& window) {
   const std::vector<double>& x = plan.x;
   ScaledPlan local;
   auto add_node = [&](double u, const NodeCoefficients& c, double v, double a) {
@@ -73,7 +73,8 @@ ScaledPlan bisected(const PlanarPath& path, const PlanarLimits& limits, const Sc
     if (next_split != window.split.end() && *next_split == k) {
       ++next_split;
       const double u = 0.5 * (plan.grid[k] + plan.grid[k + 1]);
-      const NodeCoefficients c = node_coefficients(path.evaluate(u), u, scaling, limits);
+      const NodeCoefficients c =
+          node_coefficients(path.evaluate(u), u, scaling, options.limits, options.speed_cap.at(u));
       const double tau = time_to(v, a, j, h, c.w - plan.nodes[k].w);
       add_interval(tau, j);
       add_node(u, c, v + a * tau + j * tau * tau / 2, a + j * tau);
@@ -108,7 +109,7 @@ std::string describe(int round, const ScaledPlan& plan, const LocalWindow& w) {
 int replan(const PlanarPath& path, const FeedratePlannerOptions& options, const Scaling& scaling,
            WindowSolver& solver, const LocalWindow& w, int round, ScaledPlan& plan,
            std::vector<LimitRatios>& ratios) {
-  ScaledPlan local = bisected(path, options.limits, scaling, plan, w);
+  ScaledPlan local = bisected(path, options, scaling, plan, w);
   const std::size_t n = w.last;
   const WindowSolution s =
       solver.solve(local.nodes, {plan.x[4 * w.first], plan.x[4 * w.first + 1]}, local.x,

@@ -3,6 +3,7 @@
 #include <IpSolveStatistics.hpp>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
@@ -25,7 +26,7 @@ Scaling Scaling::for_path(const PlanarPath& path, const PlanarLimits& limits) {
 }
 
 NodeCoefficients node_coefficients(const PathPoint& p, double u, const Scaling& s,
-                                   const PlanarLimits& limits) {
+                                   const PlanarLimits& limits, double speed_cap) {
   const double g = s.du_dw();
   const Vec2 q1 = p.d1 * g, q2 = p.d2 * g * g, q3 = p.d3 * g * g * g;
   const double T0 = s.T0;
@@ -40,6 +41,8 @@ NodeCoefficients node_coefficients(const PathPoint& p, double u, const Scaling& 
     c.jerk3[i] = q3[i] / (L.jerk * T0 * T0 * T0);
   }
   c.w = (u - s.u_begin) / g;
+  const double q1_norm = q1.norm();
+  if (std::isfinite(speed_cap) && q1_norm > 0.0) c.v_cap = speed_cap * T0 / q1_norm;
   return c;
 }
 

@@ -21,9 +21,10 @@ struct Scaling {
   static Scaling for_path(const PlanarPath& path, const PlanarLimits& limits);
 };
 
-// Coefficients of the node at parameter u, path derivatives `p` there.
+// Coefficients of the node at parameter u, path derivatives `p` there;
+// `speed_cap` [mm/s] the path-speed cap there (infinity: none).
 NodeCoefficients node_coefficients(const PathPoint& p, double u, const Scaling& s,
-                                   const PlanarLimits& limits);
+                                   const PlanarLimits& limits, double speed_cap);
 
 // A plan in scaled units over the whole path: grid nodes (parameter u), their
 // coefficients, and the solution in the NLP layout (x[4k] = v_k,

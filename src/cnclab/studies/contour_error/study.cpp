@@ -1,18 +1,27 @@
 #include "cnclab/studies/contour_error/study.hpp"
 
+#include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/report/tables.hpp"
 #include "cnclab/studies/contour_error/contour_error_tables.hpp"
+#include "cnclab/studies/contour_error/feedrate_job.hpp"
+#include "cnclab/studies/contour_error/feedrate_tables.hpp"
 #include "cnclab/studies/contour_error/narx_metrics.hpp"
 
 namespace cnclab {
 void register_contour_error_study() {
   register_contour_error_metrics();
+  register_job_kind(feedrate_job_kind());
   register_table(
       {"contour-error",
        "seed 002: NARX training methods, architecture sweep, contour-error estimates and the "
        "contour predictor's accuracy (simulated machine)",
        print_contour_error_tables, measure_contour_error_tables,
        "studies/contour_error_tables.yaml"});
+  register_table({"feedrate",
+                  "seed 002's application: contour-error constrained feedrate vs the "
+                  "unconstrained plan, the uniform slowdown and the best constant feed "
+                  "(simulated machine)",
+                  print_feedrate_tables, measure_feedrate_tables, ""});
 }
 
 }  // namespace cnclab

@@ -1,0 +1,134 @@
+#include "cnclab/studies/contour_error/feedrate_job.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include "cnclab/core/config.hpp"
+#include "cnclab/core/field_schema.hpp"
+#include "cnclab/experiment/spec.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+const FieldList<PathSectionOptions>& feedrate_job_section_fields() {
+  using S = PathSectionOptions;
+  static const auto fields =
+      FieldList<S>()
+          .field("start", &S::start, "arc length from the path start [mm]", Rule::non_negative())
+          .field("length", &S::length, "arc length of the section [mm]", Rule::positive());
+  return fields;
+}
+
+const FieldList<FeedrateOptimisationOptions>& feedrate_job_optimisation_fields() {
+  using O = FeedrateOptimisationOptions;
+  static const auto fields =
+      FieldList<O>()
+          .field("safety_factor", &O::safety_factor,
+                 "s: caps aim at s eps_max (feedrate_optimisation.hpp)",
+                 Rule::in(0, false, 1, true))
+          .field("error_exponent", &O::error_exponent,
+                 "p in |eps| ~ v^p: caps scale by (s eps_max / |eps|)^(1/p)", Rule::positive())
+          .field("margin", &O::margin, "arc length each side of an exceeding tick [mm]",
+                 Rule::non_negative())
+          .field("max_iterations", &O::max_iterations, "plans, the first included",
+                 Rule::at_least(1))
+          .field("min_speed", &O::min_speed, "a cap below this [mm/s]: infeasible",
+                 Rule::positive());
+  return fields;
+}
+
+const FieldList<VerificationOptions>& feedrate_job_verification_fields() {
+  using V = VerificationOptions;
+  static const auto fields =
+      FieldList<V>()
+          .field("seed", &V::seed, "the simulated machine's scale-noise seed")
+          .field("required_share", &V::required_share,
+                 "share of ticks within eps_max for a reference to meet it",
+                 Rule::in(0, false, 1, true))
+          .field("bisection_steps", &V::bisection_steps, "bisection steps of each baseline",
+                 Rule::at_least(1))
+          .field("min_factor", &V::min_factor,
+                 "slowest slowdown factor / share of the best constant feed tried",
+                 Rule::in(0, false, 1, false));
+  return fields;
+}
+
+}  // namespace
+
+const FieldList<FeedrateJob>& feedrate_job_fields() {
+  using J = FeedrateJob;
+  static const auto fields =
+      FieldList<J>()
+          .field("predictor", &J::predictor,
+                 "the narx experiment whose trained predictor plans (relative to this file); "
+                 "its dataset gives the path, limits and machine")
+          .section("section", &J::section, feedrate_job_section_fields(),
+                   "the part of the dataset's path")
+          .field("tolerances", &J::tolerances, "eps_max values [µm]", Rule::positive())
+          .field("prediction_margin", &J::prediction_margin,
+                 "what the predictor may under-predict the machine's contour error by [µm]; "
+                 "the loop plans for a predicted error within tolerance - margin",
+                 Rule::non_negative())
+          .section("optimisation", &J::optimisation, feedrate_job_optimisation_fields(),
+                   "the predictive optimisation (feedrate_optimisation.hpp)")
+          .section("verification", &J::verification, feedrate_job_verification_fields(),
+                   "the simulated machine check and the baselines");
+  return fields;
+}
+
+std::vector<FieldInfo> feedrate_file_fields() {
+  std::vector<FieldInfo> fields = job_file_fields("feedrate_optimisation");
+  for (auto& f : feedrate_job_fields().info()) fields.push_back(std::move(f));
+  return fields;
+}
+
+FeedrateJob load_feedrate_job(const fs::path& file, const std::vector<std::string>& overrides,
+                              const std::string& profile) {
+  ConfigDocument doc = ConfigDocument::load(file, profile);
+  for (const auto& text : overrides) doc.apply(parse_override(text));
+  const ConfigReader root = doc.root();
+  if (root.get<std::string>("kind", "") != "feedrate_optimisation") {
+    root.fail("kind", "must be feedrate_optimisation");
+  }
+  FeedrateJob job;
+  job.source_file = file;
+  job.name = read_experiment_name(root);
+  job.description = root.get<std::string>("description", "");
+  feedrate_job_fields().read(root, job);
+  job.predictor_file = upstream_file(root, "predictor", job.predictor, file.parent_path());
+  root.check(!job.tolerances.empty(), "tolerances", "must list at least one tolerance [µm]");
+  for (const double t : job.tolerances) {
+    root.check(t > job.prediction_margin, "tolerances",
+               "every tolerance must exceed prediction_margin " +
+                   std::to_string(job.prediction_margin) + " µm");
+  }
+  root.section("optimisation").validate([&] { job.optimisation.validate(); });
+  root.section("verification").validate([&] { job.verification.validate(); });
+  doc.check_all_consumed();
+  return job;
+}
+
+std::string to_yaml(const FeedrateJob& job) {
+  using YAML::Key, YAML::Value;
+  YAML::Emitter out;
+  out << YAML::BeginMap << Key << "kind" << Value << "feedrate_optimisation" << Key << "name"
+      << Value << job.name << Key << "description" << Value << job.description;
+  feedrate_job_fields().emit(out, job);
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+JobKind feedrate_job_kind() {
+  JobKind kind = job_kind("feedrate_optimisation",
+                          "predictive feedrate optimisation with a contour-error constraint, "
+                          "verified on the simulated machine (seed 002)",
+                          load_feedrate_job, run_feedrate_job);
+  kind.schema = [] {
+    return object_schema(feedrate_file_fields(),
+                         "kind feedrate_optimisation: the fastest feedrate within a contour "
+                         "tolerance, by the trained NARX predictor");
+  };
+  return kind;
+}
+
+}  // namespace cnclab

@@ -1,0 +1,69 @@
+#pragma once
+// The contour-error feedrate job (`kind: feedrate_optimisation`, issue 18):
+// on a section of the seed-002 dataset's random NURBS path, at the
+// dataset's axis limits and on its simulated machine, for each tolerance:
+// the predictive feedrate optimisation (feedrate_optimisation.hpp) with the
+// trained NARX predictor of an upstream narx experiment, verified on the
+// simulated machine, and the baselines (contour_verification.hpp).
+//
+// YAML (experiments/contour_error/feedrate.yaml):
+//   kind: feedrate_optimisation
+//   name: contour_error_feedrate
+//   description: ...
+//   predictor: narx.yaml            # the narx experiment, relative to this file
+//   section: {start: 0, length: 150}     # arc length of the dataset's path [mm]
+//   tolerances: [10, 5, 3]          # eps_max [µm]
+//   prediction_margin: 0            # [µm], the loop plans for eps_max - margin
+//   optimisation: {safety_factor, error_exponent, margin, max_iterations, min_speed, grid_spacing}
+//   verification: {seed, required_share, bisection_steps, min_factor}
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cnclab/core/fields.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/result_store.hpp"
+#include "cnclab/studies/contour_error/contour_verification.hpp"
+#include "cnclab/studies/contour_error/feedrate_optimisation.hpp"
+
+namespace cnclab {
+
+struct PathSectionOptions {
+  double start = 0.0;     // arc length from the path start [mm], >= 0
+  double length = 150.0;  // [mm], > 0; start + length within the path
+};
+
+struct FeedrateJob {
+  std::string name, description;
+  std::string predictor = "narx.yaml";   // as written
+  std::filesystem::path predictor_file;  // resolved against the job file's folder
+  PathSectionOptions section;
+  std::vector<double> tolerances = {10.0, 5.0, 3.0};  // [µm]
+  // What the predictor may under-predict the machine by [µm]
+  // (FeedrateOptimisationOptions::prediction_margin); < every tolerance.
+  double prediction_margin = 0.0;
+  FeedrateOptimisationOptions optimisation;  // tolerance and limits set per run
+  VerificationOptions verification;          // tolerance and machine set per run
+  std::filesystem::path source_file;
+};
+
+// The declared keys below kind, name and description.
+const FieldList<FeedrateJob>& feedrate_job_fields();
+std::vector<FieldInfo> feedrate_file_fields();  // every key, for the schema
+
+// Strict load with profile and overrides (ConfigError naming file and key).
+FeedrateJob load_feedrate_job(const std::filesystem::path& file,
+                              const std::vector<std::string>& overrides = {},
+                              const std::string& profile = {});
+std::string to_yaml(const FeedrateJob& job);
+
+// Runs the job and writes <results>/<name>/<name>-ticks.h5 (per tolerance and
+// method: time, u, feed, predicted and simulated contour error per tick; the
+// history) and the standard result naming it (metrics per tolerance and
+// method), or reuses a current result (same config, same predictor).
+JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& context);
+
+// The registered kind.
+JobKind feedrate_job_kind();
+
+}  // namespace cnclab

@@ -1,0 +1,116 @@
+#include "cnclab/studies/contour_error/feedrate_tables.hpp"
+
+#include <cmath>
+
+#include "cnclab/core/format.hpp"
+#include "cnclab/report/text_table.hpp"
+#include "cnclab/report/typed_table.hpp"
+#include "cnclab/studies/contour_error/feedrate_job.hpp"
+
+namespace cnclab {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kFeedrateFile = "contour_error/feedrate.yaml";
+constexpr const char* kFeedrateMethods[] = {"unconstrained", "constrained", "uniform", "constant"};
+
+struct FeedrateTableInput {
+  FeedrateJob job;
+  StoredResult result;
+};
+
+FeedrateTableInput feedrate_table_input(const TablesOptions& options) {
+  const fs::path file = options.experiment_file(kFeedrateFile);
+  FeedrateTableInput in{load_feedrate_job(file, {}, options.profile), {}};
+  const ResultKey key{in.job.name, std::nullopt, to_yaml(in.job), file, true};
+  in.result = table_store(options).get(key);
+  return in;
+}
+
+std::string feedrate_table_label(double um) {
+  return "eps" + shortest_double(um) + "um";
+}
+
+double feedrate_metric(const RunRecord& r, const std::string& name) {
+  const auto it = r.metrics.find(name);
+  return it == r.metrics.end() ? NAN : it->second;
+}
+
+}  // namespace
+
+Measurements measure_feedrate_tables(const TablesOptions& options) {
+  const FeedrateTableInput in = feedrate_table_input(options);
+  Measurements m;
+  for (const double tol : in.job.tolerances) {
+    const std::string label = feedrate_table_label(tol);
+    for (const char* method : kFeedrateMethods) {
+      const std::string p = label + "_" + method + "_";
+      m[label + "." + method + ".time_s"] = feedrate_metric(in.result.record, p + "time");
+      m[label + "." + method + ".max_um"] = feedrate_metric(in.result.record, p + "max");
+      m[label + "." + method + ".share_within"] =
+          feedrate_metric(in.result.record, p + "share_within");
+    }
+    m[label + ".ratio_uniform_constrained"] =
+        feedrate_metric(in.result.record, label + "_ratio_uniform_constrained");
+  }
+  return m;
+}
+
+void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
+  const FeedrateTableInput in = feedrate_table_input(options);
+  const RunRecord& r = in.result.record;
+  const TableFormat format = options.format;
+  TypedTable t;
+  t.columns = {number_column("eps_max [µm]", "tolerance", "µm"),
+               label_column("method", "method"),
+               number_column("time [s]", "time", "s"),
+               number_column("max [µm]", "max", "µm"),
+               number_column("within eps_max [%]", "within", "%"),
+               label_column("meets (>= required share)", "meets")};
+  std::vector<std::string> notes;
+  for (const double tol : in.job.tolerances) {
+    const std::string label = feedrate_table_label(tol);
+    const auto status = r.facts.find(label + "_status");
+    if (std::isnan(feedrate_metric(r, label + "_constrained_time"))) {
+      notes.push_back(label + ": " + (status == r.facts.end() ? "not run" : status->second));
+      continue;
+    }
+    for (const char* method : kFeedrateMethods) {
+      const std::string p = label + "_" + method + "_";
+      const double time = feedrate_metric(r, p + "time"), max = feedrate_metric(r, p + "max");
+      const double share = feedrate_metric(r, p + "share_within") * 100;
+      const bool meets = share >= in.job.verification.required_share * 100 - 1e-9;
+      t.rows.push_back({number_cell(tol, shortest_double(tol)), label_cell(method, method),
+                        number_cell(time, fixed_decimals(time, 3)),
+                        number_cell(max, fixed_decimals(max, 1)),
+                        number_cell(share, fixed_decimals(share, 2)),
+                        label_cell(meets ? "yes" : "no", meets ? "yes" : "no")});
+    }
+    const double ratio = feedrate_metric(r, label + "_ratio_uniform_constrained");
+    notes.push_back(label + ": uniform slowdown / constrained time = " + fixed_decimals(ratio, 2) +
+                    "; constrained / unconstrained = " +
+                    fixed_decimals(feedrate_metric(r, label + "_constrained_time") /
+                                       feedrate_metric(r, label + "_unconstrained_time"),
+                                   2) +
+                    "; " + (status == r.facts.end() ? "" : status->second));
+  }
+  print_table_title(out, format,
+                    "Contour-error constrained feedrate (seed 002's application), " +
+                        shortest_double(in.job.section.length) +
+                        " mm of the seed-002 path, "
+                        "simulated machine: exact contour error of the tool per 1 ms tick");
+  t.print(out, format);
+  notes.push_back(
+      "methods: unconstrained = minimum time under the axis limits; constrained = "
+      "the NARX-predicted local feed limits (feedrate_optimisation.hpp); uniform = "
+      "the unconstrained plan slowed by one factor (bisection on the simulated "
+      "machine); constant = the best constant-feed S-curve (bisection on the feed)");
+  notes.push_back("prediction_margin " + shortest_double(in.job.prediction_margin) +
+                  " µm; required share " +
+                  shortest_double(in.job.verification.required_share * 100) + " %; job wall " +
+                  fixed_decimals(feedrate_metric(r, "wall_seconds"), 1) + " s");
+  print_table_notes(out, format, notes);
+  print_table_sources(out, format, {in.result.file});
+}
+
+}  // namespace cnclab

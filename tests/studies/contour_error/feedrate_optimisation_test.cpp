@@ -1,0 +1,125 @@
+// The contour-error feedrate optimisation on a short path with a predictor
+// fitted in the test: a linear ARX model of each simulated axis (least
+// squares on a different path), embedded in a one-unit tanh NARX in its
+// linear range. Checked against the simulated machine, the truth the
+// predictor only approximates.
+#include "cnclab/studies/contour_error/feedrate_optimisation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cstdio>
+
+#include "cnclab/core/error.hpp"
+#include "cnclab/motion/analytic_paths.hpp"
+#include "cnclab/studies/contour_error/contour_verification.hpp"
+
+namespace cnclab {
+namespace {
+
+constexpr std::size_t kDelays = 4;  // input and feedback delays of the ARX
+constexpr double kLinear = 1e-3;    // tanh argument scale: tanh(h) = h (1 - h^2/3)
+
+// e(t) = sum_j b_j v(t-j) + sum_k a_k e(t-k) + c, j = 0..3, k = 1..4, fitted
+// by least squares to one axis of a simulated run, then written as a NARX
+// with one tanh unit: h = kLinear (normalised ARX), out = h-linear / kLinear.
+NarxAxisModel fitted_linear_narx(const Eigen::VectorXd& v, const Eigen::VectorXd& e) {
+  const double vr = 300.0, er = 0.2;  // normalisation ranges [-vr, vr] mm/s, [-er, er] mm
+  const auto n = v.size(), first = static_cast<Eigen::Index>(kDelays);
+  Eigen::MatrixXd X(n - first, 2 * kDelays + 1);
+  Eigen::VectorXd y(n - first);
+  for (Eigen::Index t = first; t < n; ++t) {
+    for (Eigen::Index j = 0; j < first; ++j) X(t - first, j) = v[t - j] / vr;
+    for (Eigen::Index k = 1; k <= first; ++k) X(t - first, first + k - 1) = e[t - k] / er;
+    X(t - first, 2 * first) = 1.0;
+    y[t - first] = e[t] / er;
+  }
+  const Eigen::VectorXd w = X.colPivHouseholderQr().solve(y);
+  NarxOptions o;
+  o.input_delays = o.feedback_delays = kDelays;
+  o.hidden = 1;
+  NarxAxisModel m{
+      o, Eigen::VectorXd(2 * kDelays + 3),  // W1 (8), b1, W2, b2
+      MinMaxNormaliser(Eigen::VectorXd::Constant(1, -vr), Eigen::VectorXd::Constant(1, vr)),
+      MinMaxNormaliser(Eigen::VectorXd::Constant(1, -er), Eigen::VectorXd::Constant(1, er))};
+  m.params.head(2 * kDelays) = kLinear * w.head(2 * kDelays);  // W1
+  m.params[2 * kDelays] = kLinear * w[2 * kDelays];            // b1
+  m.params[2 * kDelays + 1] = 1.0 / kLinear;                   // W2
+  m.params[2 * kDelays + 2] = 0.0;                             // b2
+  return m;
+}
+
+// The predictor: both axes fitted on a 40 mm circle at its planned feed.
+ContourPredictor fitted_predictor(const VerificationOptions& v) {
+  const CirclePath train(Vec2(50, 50), 12.0, 0.0, 3.4);
+  const ReferenceTrajectory r = interpolate(train, plan_feedrate(train));
+  const MachineResponse m = simulate_machine(v.machine, r, 7);
+  return ContourPredictor(fitted_linear_narx(r.velocity.col(0), m.following_error.col(0)),
+                          fitted_linear_narx(r.velocity.col(1), m.following_error.col(1)));
+}
+
+// An S-bend of ~30 mm with radii of curvature down to a few mm.
+const CubicBezierPath& test_path() {
+  static const CubicBezierPath path({Vec2(0, 0), Vec2(20, 0), Vec2(0, 12), Vec2(20, 12)});
+  return path;
+}
+
+TEST(FeedrateOptimisation, ConstraintHoldsOnTheSimulatedMachine) {
+  VerificationOptions v;
+  ContourPredictor predictor = fitted_predictor(v);
+  const FeedrateProfile free = plan_feedrate(test_path());
+  const ReferenceTrajectory free_ref = interpolate(test_path(), free);
+  const ContourCheck free_check = check_on_machine(test_path(), free_ref, v);
+  // A tolerance half the unconstrained plan's simulated maximum: binding.
+  FeedrateOptimisationOptions o;
+  o.tolerance = 0.5 * free_check.max;
+  const FeedrateOptimisationResult res = optimise_feedrate(test_path(), predictor, o);
+  for (const auto& h : res.history) {
+    std::printf("plan: worst predicted %.2f um, time %.4f s, %zu ticks over, min cap %.1f mm/s\n",
+                h.worst_predicted * 1e3, h.time, h.ticks_over, h.min_cap);
+  }
+  ASSERT_EQ(res.status, OptimisationStatus::converged) << res.reason;
+  ASSERT_GE(res.history.size(), 2u);
+  EXPECT_GT(res.history.front().worst_predicted, o.tolerance);
+  EXPECT_LE(res.history.back().worst_predicted, o.tolerance);
+  EXPECT_LT(res.history.back().worst_predicted, res.history.front().worst_predicted);
+  EXPECT_GE(res.profile.total_time(), res.unconstrained_time());
+  EXPECT_NEAR(res.unconstrained_time(), free.total_time(), 1e-9);
+  v.tolerance = o.tolerance;
+  const ContourCheck check = check_on_machine(test_path(), res.reference, v);
+  std::printf(
+      "tolerance %.2f um: simulated max %.2f um (unconstrained %.2f), share within %.4f, "
+      "time %.4f s (unconstrained %.4f)\n",
+      o.tolerance * 1e3, check.max * 1e3, free_check.max * 1e3, check.share_within, check.time,
+      free.total_time());
+  EXPECT_GE(check.share_within, 0.999);
+  EXPECT_LT(check.max, free_check.max);
+}
+
+TEST(FeedrateOptimisation, UnreachableToleranceStopsWithAReason) {
+  VerificationOptions v;
+  ContourPredictor predictor = fitted_predictor(v);
+  FeedrateOptimisationOptions o;
+  o.tolerance = 1e-7;  // 0.1 nm: below what any slowdown reaches (the model's offset)
+  o.max_iterations = 6;
+  const FeedrateOptimisationResult res = optimise_feedrate(test_path(), predictor, o);
+  EXPECT_NE(res.status, OptimisationStatus::converged);
+  EXPECT_FALSE(res.reason.empty());
+  EXPECT_LE(res.history.size(), 6u);
+}
+
+TEST(FeedrateOptimisation, OptionsAreValidated) {
+  FeedrateOptimisationOptions o;
+  o.safety_factor = 1.5;
+  EXPECT_THROW(o.validate(), OptionError);
+  o = {};
+  o.tolerance = -1;
+  EXPECT_THROW(o.validate(), OptionError);
+  o = {};
+  o.max_iterations = 0;
+  EXPECT_THROW(o.validate(), OptionError);
+}
+
+}  // namespace
+}  // namespace cnclab
