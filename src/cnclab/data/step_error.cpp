@@ -39,8 +39,10 @@ void step_error_inputs(const ToolPathLine& path, std::size_t i, std::size_t k,
   x(base + 12) = path.tool_radius;
 }
 
-Dataset generate_step_error_dataset(const StepErrorDatasetOptions& o) {
-  o.validate();
+namespace {
+
+// The dataset of options already validated.
+Dataset step_error_dataset_of_valid(const StepErrorDatasetOptions& o) {
   const std::size_t n = o.num_samples(), k = o.curve_points;
   check_memory(static_cast<double>(n) * static_cast<double>(o.num_inputs() + 7) * 8.0,
                "step_error dataset (" + std::to_string(n) + " samples x " +
@@ -79,9 +81,20 @@ Dataset generate_step_error_dataset(const StepErrorDatasetOptions& o) {
   return d;
 }
 
+}  // namespace
+
+Dataset generate_step_error_dataset(const StepErrorDatasetOptions& o) {
+  o.validate();
+  return step_error_dataset_of_valid(o);
+}
+
 StepErrorGenerator::StepErrorGenerator(StepErrorDatasetOptions options)
     : options_(std::move(options)) {
   options_.validate();
+}
+
+Dataset StepErrorGenerator::generate(Rng&) const {
+  return step_error_dataset_of_valid(options_);
 }
 
 namespace {

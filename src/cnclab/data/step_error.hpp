@@ -51,6 +51,7 @@ struct StepErrorDatasetOptions {
   std::size_t num_inputs() const { return 3 * curve_points + 13; }
 };
 
+// options.validate(), then the dataset.
 Dataset generate_step_error_dataset(const StepErrorDatasetOptions& options);
 
 // The 3K + 13 inputs of segment i (< path.u.size() - 1) of a planned line,
@@ -81,7 +82,9 @@ class StepErrorGenerator : public DatasetGenerator {
   int version() const override { return 1; }
   DatasetShape shape() const override { return {options_.num_samples(), options_.num_inputs(), 1}; }
   std::string options_yaml() const override;
-  Dataset generate(Rng&) const override { return generate_step_error_dataset(options_); }
+  // From the options the constructor validated (not again: a CAD face's
+  // path-on-face check is not free).
+  Dataset generate(Rng&) const override;
   bool uses_seed() const override { return false; }  // pure geometry
   const StepErrorDatasetOptions& options() const { return options_; }
 
