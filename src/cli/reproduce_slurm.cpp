@@ -48,7 +48,15 @@ class GraphSubmitter {
         cnclab_(fs::read_symlink("/proc/self/exe").string()),
         workdir_(fs::current_path()),
         record_(read_reproduce_record(options.results_dir)) {
-    if (!slurm.dry_run) jobs_ = squeue_jobs();
+    // A submission must know what is in flight; a dry run shows it when it can.
+    if (!slurm.dry_run) {
+      jobs_ = squeue_jobs();
+    } else if (find_on_path("squeue")) {
+      try {
+        jobs_ = squeue_jobs();
+      } catch (const Error&) {
+      }
+    }
   }
 
   void submit_graph(const std::vector<GraphNode>& graph) {
