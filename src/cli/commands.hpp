@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cnclab/experiment/command_options.hpp"
+#include "cnclab/experiment/job_kinds.hpp"
 
 namespace cnclab {
 
@@ -31,6 +32,15 @@ int show_command(const std::vector<std::string>& result_files, const CommandOpti
 // upstream results are unchanged; prints per experiment ran/reused and why.
 int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
                       std::ostream& out, std::ostream& log);
+// What reproduce runs from `paths`: training experiments (the graph) and
+// `kind: <job>` files (job_kinds.hpp, after the graph); a file whose kind
+// cannot be read stays in the graph, to be reported there.
+struct ReproduceInputs {
+  std::vector<std::filesystem::path> files;
+  std::vector<std::pair<std::filesystem::path, JobKind>> jobs;
+};
+ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths);
+
 int version_command(std::ostream& out);
 // `cnclab gcode trochoid CONFIG.yaml -o FILE.nc`: the tool path of a `kind:
 // gcode` file written atomically to `output`, its report printed.

@@ -151,26 +151,12 @@ class GraphRun {
       }
       upstream.push_back({up_name, result_identity(*state_[j].record)});
     }
-    const LoadedExperiment& exp = *node.experiment;
     if (options_.force) return "--force";
-    try {
-      std::optional<StoredResult> stored = store_.existing(result_key(exp));
-      if (!stored) return "no result for this resolved config yet";
-      RunRecord& existing = stored->record;
-      std::string why = staleness(existing.upstream, upstream);
-      // The dataset file name carries the generator version (not part of the
-      // resolved config): a new generator version makes a new dataset.
-      const fs::path dataset = dataset_cache_file(exp.spec.dataset, generator_seed(exp.spec), "");
-      if (why.empty() && fs::path(existing.dataset_file).filename() != dataset.filename()) {
-        why = "dataset generator changed (" + dataset.filename().string() + ")";
-      }
-      if (!why.empty()) return why;
-      state_[i].record = std::move(existing);
-      settle(i, "reused", "config and upstream results unchanged");
-      return std::nullopt;
-    } catch (const IoError& e) {
-      return std::string("result unreadable (") + e.what() + ")";
-    }
+    CurrentResult current = current_result(*node.experiment, upstream, store_);
+    if (!current.record) return current.why;
+    state_[i].record = std::move(current.record);
+    settle(i, "reused", "config and upstream results unchanged");
+    return std::nullopt;
   }
 
   // Experiment i's trial, or nullopt when what it needs first failed (its
@@ -363,15 +349,10 @@ std::vector<JobPrework> jobs_prework(const std::vector<std::pair<fs::path, JobKi
 
 }  // namespace
 
-int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
-                      std::ostream& out, std::ostream& log) {
+ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths) {
   const auto found = find_experiments(paths);
   if (found.empty()) throw ConfigError("reproduce: no experiment files found");
-  // `kind: <job>` files (job_kinds.hpp) take no part in the training graph
-  // and run after it; a file whose kind cannot be read stays in the graph, to
-  // be reported there.
-  std::vector<fs::path> files;
-  std::vector<std::pair<fs::path, JobKind>> jobs;
+  ReproduceInputs inputs;
   for (const auto& file : found) {
     std::optional<JobKind> kind;
     try {
@@ -379,11 +360,19 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
     } catch (const ConfigError&) {
     }
     if (kind) {
-      jobs.emplace_back(file, std::move(*kind));
+      inputs.jobs.emplace_back(file, std::move(*kind));
     } else {
-      files.push_back(file);
+      inputs.files.push_back(file);
     }
   }
+  return inputs;
+}
+
+int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
+                      std::ostream& out, std::ostream& log) {
+  const ReproduceInputs inputs = reproduce_inputs(paths);
+  const std::vector<fs::path>& files = inputs.files;
+  const std::vector<std::pair<fs::path, JobKind>>& jobs = inputs.jobs;
   const std::vector<GraphNode> graph = load_graph(files, options.profile);
   GraphRun graph_run(graph, jobs_prework(jobs, options), options, log);
   clean_stale_partials({options.results_dir, options.datasets_dir}, log);

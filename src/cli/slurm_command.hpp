@@ -35,6 +35,42 @@ int slurm_sweep_command(const std::filesystem::path& experiment,
                         const SweepCommandOptions& options, const SlurmOptions& slurm,
                         std::ostream& out, std::ostream& log);
 
+// Job names: "cnclab-<name><suffix>", characters other than letters,
+// digits, '-', '_' as '_' (sbatch's #SBATCH lines split at spaces).
+std::string slurm_job_name(const std::string& name, const char* suffix);
+
+// Runs `sbatch --parsable ARGS...` and returns the job id. Error "sbatch
+// rejected WHAT (exit N): its message".
+std::string submit_batch(const std::vector<std::string>& args, const std::string& what);
+
+// sbatch, squeue and scontrol on PATH, or an Error saying --slurm needs them.
+void check_slurm_clients();
+
+// A sweep's submission within `reproduce --slurm`: the array waits for the
+// upstream jobs, and its final job makes the sweep job's result.
+struct SweepSlurmRequest {
+  std::string after;  // the array's dependency ("afterany:12:13"); "" none
+  // The job after the array (and after earlier arrays still in flight),
+  // submitted even when no trial is left to submit; empty: `cnclab sweep
+  // merge DIR`, and nothing when no trial is left (plain `sweep --slurm`).
+  std::vector<std::string> final_command;
+};
+struct SweepSlurmResult {
+  std::filesystem::path dir;
+  std::size_t total = 0, to_submit = 0, done = 0, in_flight = 0;  // trials
+  std::string array_job, final_job;  // "" when not submitted (or a dry run)
+  bool final_rejected = false;       // plain sweep --slurm: merge by hand
+};
+// The body of `sweep --slurm` (options checked by the caller): submits the
+// trials neither done nor in flight as an array plus its final job, or
+// prints them (dry run). Error when sbatch rejects a script.
+SweepSlurmResult submit_sweep_slurm(const std::filesystem::path& experiment,
+                                    const std::vector<std::string>& words,
+                                    std::optional<std::uint64_t> seed,
+                                    const SweepCommandOptions& options, const SlurmOptions& slurm,
+                                    const SweepSlurmRequest& request, std::ostream& out,
+                                    std::ostream& log);
+
 // Trials complete / failed / running / pending / not queued, the array
 // tasks' states (squeue; sacct when accounting is on), the best trial so far.
 int status_command(const std::filesystem::path& dir, std::ostream& out);
@@ -43,6 +79,8 @@ int status_command(const std::filesystem::path& dir, std::ostream& out);
 // (wire_sweep_commands.cpp).
 void add_slurm_sweep_options(CLI::App& sweep, SlurmSweepOptions& slurm,
                              SweepCommandOptions& options);
+// The same --slurm options on `cnclab reproduce` (reproduce_slurm.hpp).
+void add_slurm_reproduce_options(CLI::App& reproduce, SlurmSweepOptions& slurm);
 // `cnclab status`.
 void add_status_command(CLI::App& app, CommandAction& action);
 

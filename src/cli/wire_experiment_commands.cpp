@@ -5,6 +5,8 @@
 
 #include "cli/cli_wiring.hpp"
 #include "cli/commands.hpp"
+#include "cli/reproduce_slurm.hpp"
+#include "cli/slurm_command.hpp"
 #include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/report/compare.hpp"
@@ -98,6 +100,7 @@ struct ReproduceArgs {
   CommandOptions common;
   std::vector<std::string> paths;
   bool quick = false;
+  SlurmSweepOptions slurm;  // --slurm and its options
 };
 
 void add_reproduce(CLI::App& app, CommandAction& action) {
@@ -125,13 +128,16 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
   reproduce->add_flag("--quick", a->quick,
                       "Same as --profile quick: fewer epochs and samples, same code paths "
                       "(about a minute per study; ROOT/quick)");
+  add_slurm_reproduce_options(*reproduce, a->slurm);
   reproduce->footer(
       "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
       "experiments/friedman\n"
       "Experiments run upstream first (needs:, init_from:); a result whose resolved config and "
       "upstream results are unchanged is reused. Each line says ran/reused and why.\n"
       "  cnclab reproduce --quick experiments/step_error   # the quick profile\n"
-      "  cnclab reproduce --check   # and check the studies' targets (exit 1 on a FAIL)");
+      "  cnclab reproduce --check   # and check the studies' targets (exit 1 on a FAIL)\n"
+      "  cnclab reproduce experiments/ik experiments/ik_search --slurm --partition short "
+      "--time 01:00:00   # as Slurm jobs");
   reproduce->callback([reproduce, a, &action] {
     if (a->quick) {
       if (!a->common.profile.empty() && a->common.profile != "quick") {
@@ -140,7 +146,12 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
       a->common.profile = "quick";
     }
     apply_profile_dir(*reproduce, "--out", a->common.profile, a->common.results_dir);
-    action = [a] { return reproduce_command(a->paths, a->common, std::cout, std::cerr); };
+    action = [a] {
+      if (a->slurm.enabled) {
+        return reproduce_slurm_command(a->paths, a->common, a->slurm.slurm, std::cout, std::cerr);
+      }
+      return reproduce_command(a->paths, a->common, std::cout, std::cerr);
+    };
   });
 }
 

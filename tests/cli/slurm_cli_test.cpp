@@ -14,6 +14,7 @@
 #include "cnclab/sweep/slurm_queue.hpp"
 #include "cnclab/sweep/slurm_submission.hpp"
 #include "cnclab/sweep/slurm_tools.hpp"
+#include "common/fake_slurm.hpp"
 #include "common/process.hpp"
 #include "common/temp_dir.hpp"
 
@@ -21,10 +22,12 @@ namespace cnclab {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::fake_slurm;
 using testing::run_shell;
 using testing::ShellResult;
 using testing::slurp;
 using testing::TempDir;
+using testing::write_tool;
 
 const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
 const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
@@ -35,33 +38,6 @@ std::string sweep_words(const std::string& epochs = "5") {
          " dataset.options.samples=200 model.hidden=[8] "
          "model.dropout.keep_probability=0.8,0.9,1.0 trainer.learning_rate=1e-3,1e-2 "
          "--data-dir data --out r --dir sw";
-}
-
-void write_tool(const fs::path& bin, const std::string& name, const std::string& body) {
-  fs::create_directories(bin);
-  std::ofstream(bin / name) << "#!/bin/bash\n" << body << "\n";
-  fs::permissions(bin / name, fs::perms::owner_all);
-}
-
-// Fake Slurm clients in dir/bin: sbatch answers job ids 100, 101, ... (and
-// logs its arguments), squeue prints dir/queue.txt, scontrol and scancel log.
-std::string fake_slurm(const fs::path& dir) {
-  const fs::path bin = dir / "bin";
-  write_tool(bin, "sbatch",
-             "n=$(cat " + (dir / "next_id").string() +
-                 " 2>/dev/null || echo 100)\n"
-                 "echo $((n + 1)) > " +
-                 (dir / "next_id").string() +
-                 "\n"
-                 "echo \"sbatch $*\" >> " +
-                 (dir / "calls.txt").string() + "\necho $n");
-  write_tool(bin, "squeue", "cat " + (dir / "queue.txt").string() + " 2>/dev/null; exit 0");
-  write_tool(bin, "sacct", "echo 'Slurm accounting storage is disabled' >&2; exit 1");
-  for (const char* tool : {"scontrol", "scancel"}) {
-    write_tool(bin, tool,
-               std::string("echo \"") + tool + " $*\" >> " + (dir / "calls.txt").string());
-  }
-  return "PATH='" + bin.string() + ":/usr/bin:/bin' ";
 }
 
 TEST(SlurmParse, SqueueAndSacctLines) {

@@ -4,7 +4,8 @@
 // another the pre-emption warning (it finishes its running trial and
 // requeues itself), resubmit, wait, and compare the merged summary with a
 // local `--jobs 2` run trial for trial (bit-identical metrics and network
-// parameters), with no trial run twice. Independent reference: the local run
+// parameters), with no trial run twice; then `reproduce --slurm` of a small
+// graph with a sweep job against a local reproduce. Independent reference: the local run
 // shares no code with the Slurm path beyond the trial itself.
 //
 // Skipped (not failed) when the daemons cannot run here: not root, or
@@ -138,6 +139,63 @@ std::map<std::string, int> finished_runs(const fs::path& sweep) {
   return runs;
 }
 
+// The result files under `folder` (results/<name>/) by file name.
+std::map<std::string, fs::path> results_in(const fs::path& folder) {
+  std::map<std::string, fs::path> files;
+  for (const auto& e : fs::directory_iterator(folder)) {
+    if (e.path().extension() == ".h5") files[e.path().filename().string()] = e.path();
+  }
+  return files;
+}
+
+// `reproduce --slurm` of a graph (b needs a) and a `kind: sweep` of a: the
+// jobs run in dependency order and give the local reproduce's results bit
+// for bit; run again, everything is reused and nothing submitted.
+void reproduce_graph_on(const LocalCluster& cluster, const fs::path& dir) {
+  fs::create_directories(dir);
+  std::ofstream(dir / "a.yaml") << "include: " << kExperiment
+                                << "\nname: a\ntrainer: {epochs: 3}\n"
+                                   "dataset: {options: {samples: 200}}\n";
+  std::ofstream(dir / "b.yaml") << "include: a.yaml\nname: b\ninit_from: {experiment: a.yaml}\n";
+  std::ofstream(dir / "s.yaml") << "kind: sweep\nname: s\nexperiment: a.yaml\nsweep:\n"
+                                   "  parameters: {trainer.learning_rate: [0.001, 0.01]}\n";
+  const std::string files = " a.yaml b.yaml s.yaml --data-dir data";
+  const ShellResult local =
+      run_shell(dir, kCnclab + " reproduce" + files + " --out local --jobs 2 --quiet");
+  ASSERT_EQ(local.code, 0) << local.out << local.err;
+  const std::string submit =
+      cluster.env() + kCnclab + " reproduce" + files + " --out slurm --slurm";
+  const ShellResult first = run_shell(dir, submit);
+  ASSERT_EQ(first.code, 0) << first.out << first.err;
+  ASSERT_TRUE(wait_for([&] { return queue_empty(dir, cluster); })) << "jobs still queued";
+  // a's folder also holds the sweep's trials (results of a's file).
+  for (const char* name : {"a", "b"}) {
+    const auto local_files = results_in(dir / "local" / name);
+    const auto slurm_files = results_in(dir / "slurm" / name);
+    ASSERT_EQ(local_files.size(), slurm_files.size()) << name;
+    for (const auto& [file, path] : local_files) {
+      ASSERT_TRUE(slurm_files.count(file)) << file;
+      const RunRecord l = read_result(path);
+      const RunRecord r = read_result(slurm_files.at(file));
+      EXPECT_EQ(l.metrics, r.metrics) << file;
+      EXPECT_EQ(l.parameters, r.parameters) << file;
+      EXPECT_EQ(l.upstream.size(), r.upstream.size()) << file;
+    }
+  }
+  // The sweep job's final job selected the same trial as the local run.
+  const auto selected = [](const std::string& text) {
+    const auto at = text.find("  trial: ");
+    return at == std::string::npos ? std::string("none") : text.substr(at, 27);
+  };
+  EXPECT_EQ(selected(slurp(dir / "slurm/s/selection.yaml")),
+            selected(slurp(dir / "local/s/selection.yaml")));
+  EXPECT_NE(selected(slurp(dir / "local/s/selection.yaml")), "none");
+  const ShellResult again = run_shell(dir, submit);
+  ASSERT_EQ(again.code, 0) << again.out << again.err;
+  EXPECT_EQ(again.out.find("submitted"), std::string::npos) << again.out;
+  EXPECT_NE(again.out.find("s" + std::string(28, ' ') + "reused"), std::string::npos) << again.out;
+}
+
 TEST(SlurmCluster, ArraySweepSurvivesCancelAndPreemptionAndMatchesLocalRun) {
   const std::string why = why_not_runnable();
   if (!why.empty()) GTEST_SKIP() << "no local Slurm: " << why;
@@ -221,6 +279,8 @@ TEST(SlurmCluster, ArraySweepSurvivesCancelAndPreemptionAndMatchesLocalRun) {
   // No trial ran to its end twice (cancelled runs never reached the end).
   for (const auto& [id, n] : finished_runs(dir / "slurm/sw")) EXPECT_EQ(n, 1) << id;
   EXPECT_EQ(finished_runs(dir / "slurm/sw").size(), 6u);
+
+  reproduce_graph_on(cluster, dir / "graph");
 }
 
 }  // namespace

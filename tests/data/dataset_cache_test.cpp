@@ -1,5 +1,6 @@
 // The dataset cache: hit, miss on any change of the generator config,
-// --regenerate, and concurrent producers generating a dataset only once.
+// --regenerate, and concurrent producers generating a dataset only once
+// (an O_EXCL lock file naming its holder).
 #include "cnclab/data/dataset_cache.hpp"
 
 #include <gtest/gtest.h>
@@ -80,6 +81,15 @@ TEST(DatasetCache, HitMissAndRegenerate) {
   EXPECT_FALSE(obtain_dataset(friedman(100), 7, dir.path(), nullptr).reused);
 }
 
+// <dir>/.<stem>.lock beside a dataset file (built in place: GCC 12 warns
+// -Wrestrict, falsely, on "." + std::string here).
+fs::path lock_file_of(const fs::path& dataset) {
+  std::string name = dataset.stem().string();
+  name.insert(0, 1, '.');
+  name.append(".lock");
+  return dataset.parent_path() / name;
+}
+
 TEST(DatasetCache, ConcurrentProducersGenerateOnce) {
   testing::TempDir dir;
   // Big enough that generation takes a while; several processes start
@@ -115,6 +125,46 @@ TEST(DatasetCache, ConcurrentProducersGenerateOnce) {
   EXPECT_EQ(reused, kProcesses - 1);
   EXPECT_EQ(files_in(dir.path()), 1u);
   EXPECT_TRUE(obtain_dataset(spec, 3, dir.path(), nullptr).reused);
+  // The lock file is gone once the dataset is published.
+  EXPECT_FALSE(fs::exists(lock_file_of(dataset_cache_file(spec, 3, dir.path()))));
+}
+
+std::string this_host() {
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  return host;
+}
+
+// The lock file names its holder (host and pid; O_EXCL works over NFS where
+// flock may not): a live holder is waited for, one that died on this host
+// is not.
+TEST(DatasetCache, LockFileOfALiveHolderIsWaitedForAndOfADeadOneRemoved) {
+  testing::TempDir dir;
+  const DatasetSpec spec = friedman(300);
+  const fs::path lock = lock_file_of(dataset_cache_file(spec, 5, dir.path()));
+  // Held by this (live) process: the child waits until the file goes.
+  std::ofstream(lock) << this_host() << " " << ::getpid() << "\n";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) ::_exit(obtain_dataset(spec, 5, dir.path(), nullptr).reused ? 10 : 20);
+  ::usleep(400000);
+  int status = 0;
+  EXPECT_EQ(::waitpid(child, &status, WNOHANG), 0) << "did not wait for the lock's holder";
+  EXPECT_EQ(files_in(dir.path()), 0u);
+  fs::remove(lock);
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 20);  // it generated
+
+  // Left by a process that has exited (pid reaped): removed, not waited for.
+  const pid_t gone = ::fork();
+  ASSERT_GE(gone, 0);
+  if (gone == 0) ::_exit(0);
+  ::waitpid(gone, &status, 0);
+  std::ofstream(lock) << this_host() << " " << gone << "\n";
+  // --regenerate always takes the lock (a hit would not).
+  EXPECT_FALSE(obtain_dataset(spec, 5, dir.path(), nullptr, true).reused);
+  EXPECT_FALSE(fs::exists(lock));
 }
 
 }  // namespace

@@ -36,13 +36,15 @@ std::filesystem::path dataset_cache_file(const DatasetSpec& spec, std::uint64_t 
 // tampered) or was made by another generator config is regenerated, and so is
 // every file when `regenerate` is set.
 //
-// Concurrent callers (parallel sweep trials, shards on one machine, several
-// `cnclab run`s) produce a dataset once: whoever misses the cache takes an
-// exclusive flock(2) on <dir>/.<generator>-<hash>.lock, checks the cache
-// again, and only then generates; the others wait and read the file it wrote.
-// The file itself is written atomically (temporary + rename), so a reader
-// never sees a torn dataset even without the lock. The lock files are left in
-// place (removing them would race with a waiting process).
+// Concurrent callers (parallel sweep trials, shards, Slurm jobs on several
+// nodes sharing the cache folder, several `cnclab run`s) produce a dataset
+// once: whoever misses the cache creates the lock file
+// <dir>/.<generator>-<hash>.lock exclusively (O_EXCL, which holds on NFS
+// where flock(2) may not; it names the holder's host and pid), checks the
+// cache again, and only then generates; the others wait and read the file it
+// wrote. The lock file is removed when done; one left by a process killed on
+// this host is removed by the next caller. The dataset file itself is written
+// atomically (temporary + rename), so a reader never sees a torn dataset.
 // `progress` (optional) hears of the generation's stages when it generates.
 CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed,
                              const std::filesystem::path& dir, std::ostream* log,

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/data/dataset_cache.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -95,6 +96,24 @@ std::string staleness(const std::vector<UpstreamRef>& recorded,
   }
   if (identities.size() != upstream.size()) return "its upstream experiments changed";
   return "";
+}
+
+CurrentResult current_result(const LoadedExperiment& exp,
+                             const std::vector<CurrentUpstream>& upstream,
+                             const ResultStore& store) {
+  try {
+    std::optional<StoredResult> stored = store.existing(result_key(exp));
+    if (!stored) return {std::nullopt, "no result for this resolved config yet"};
+    std::string why = staleness(stored->record.upstream, upstream);
+    const fs::path dataset = dataset_cache_file(exp.spec.dataset, generator_seed(exp.spec), "");
+    if (why.empty() && fs::path(stored->record.dataset_file).filename() != dataset.filename()) {
+      why = "dataset generator changed (" + dataset.filename().string() + ")";
+    }
+    if (!why.empty()) return {std::nullopt, why};
+    return {std::move(stored->record), ""};
+  } catch (const IoError& e) {
+    return {std::nullopt, std::string("result unreadable (") + e.what() + ")"};
+  }
 }
 
 }  // namespace cnclab

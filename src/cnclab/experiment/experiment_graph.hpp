@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cnclab/experiment/result_store.hpp"
 #include "cnclab/experiment/run_record.hpp"
 #include "cnclab/experiment/spec.hpp"
 
@@ -38,5 +39,19 @@ struct CurrentUpstream {
 // file at that path already has an unchanged config.
 std::string staleness(const std::vector<UpstreamRef>& recorded,
                       const std::vector<CurrentUpstream>& upstream);
+
+// The reuse rule of `cnclab reproduce` (local and --slurm): the stored
+// result of `experiment` (store.existing for its resolved config) when it is
+// current given its upstream results now, else why it must run: no result,
+// upstream changed (staleness), the dataset generator changed (the dataset
+// file name carries the generator version, which the resolved config does
+// not), or the result is unreadable.
+struct CurrentResult {
+  std::optional<RunRecord> record;  // set when current
+  std::string why;                  // why it must run, when not
+};
+CurrentResult current_result(const LoadedExperiment& experiment,
+                             const std::vector<CurrentUpstream>& upstream,
+                             const ResultStore& store);
 
 }  // namespace cnclab

@@ -33,12 +33,7 @@ std::string ResultStore::make_command(const ResultKey& key) const {
   std::string command = std::string("cnclab ") + (key.has_upstream ? "reproduce " : "run ") +
                         key.source_file.lexically_normal().string();
   if (!profile_.empty()) command += " --profile " + profile_;
-  // The root the CLI turns into this folder (results_folder): ROOT/P gives
-  // ROOT; an old-layout folder (no /P) is its own root.
-  fs::path root = results_dir_.lexically_normal();
-  if (!profile_.empty() && root.filename() == profile_) {
-    root = root.parent_path().empty() ? fs::path(".") : root.parent_path();
-  }
+  const fs::path root = results_root(results_dir_, profile_);
   if (root != fs::path("results")) command += " --out " + root.string();
   return command;
 }
@@ -132,6 +127,14 @@ ResultsFolder results_folder(const fs::path& root, const std::string& profile, b
                     "` wrote before results went to ROOT/PROFILE; using " + root.string() +
                     " as it is (move its contents into " + sub.string() +
                     " to use the new layout)"};
+}
+
+fs::path results_root(const fs::path& folder, const std::string& profile) {
+  fs::path root = folder.lexically_normal();
+  if (!profile.empty() && root.filename() == profile) {
+    root = root.parent_path().empty() ? fs::path(".") : root.parent_path();
+  }
+  return root;
 }
 
 }  // namespace cnclab

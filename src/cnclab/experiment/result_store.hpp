@@ -111,6 +111,11 @@ struct ResultsFolder {
 ResultsFolder results_folder(const std::filesystem::path& root, const std::string& profile,
                              bool root_given);
 
+// The root ROOT that results_folder turns into `folder` (ROOT/P gives ROOT;
+// an old-layout folder, without /P, is its own root): what a command run
+// again elsewhere (`cnclab ... --out ROOT --profile P`, a Slurm job) is given.
+std::filesystem::path results_root(const std::filesystem::path& folder, const std::string& profile);
+
 // A path for a table's `sources:` footer: relative to the working directory
 // when it lies below it, otherwise as given.
 std::string source_path_text(const std::filesystem::path& file);

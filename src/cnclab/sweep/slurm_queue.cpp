@@ -51,6 +51,17 @@ SlurmTaskStates parse_squeue_tasks(const std::string& text) {
   return tasks;
 }
 
+SlurmTaskStates parse_squeue_jobs(const std::string& text) {
+  SlurmTaskStates jobs;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto f = split_bars(line);
+    if (f.size() >= 3 && f[1] == "N/A") jobs[f[0]] = f[2];
+  }
+  return jobs;
+}
+
 SlurmTaskStates parse_sacct_tasks(const std::string& text) {
   // JobID|State with JobID "123_4" (one task), "123_[5-9]" (tasks not yet
   // started, all pending) or "123" (not an array).
@@ -67,14 +78,27 @@ SlurmTaskStates parse_sacct_tasks(const std::string& text) {
   return tasks;
 }
 
-SlurmTaskStates squeue_tasks() {
+namespace {
+
+// squeue's "<array job>|<task or N/A>|<state>" lines of the caller's jobs.
+std::string squeue_lines() {
   const ToolRun r = run_tool({"squeue", "-h", "-r", "--me", "-t", "all", "-o", "%F|%K|%T"});
   if (r.exit_code != 0) {
     throw Error("squeue failed (exit " + std::to_string(r.exit_code) +
                 "): " + trimmed_first_line(r.err + r.out) +
-                "; cannot tell which trials are queued or running");
+                "; cannot tell which jobs are queued or running");
   }
-  return parse_squeue_tasks(r.out);
+  return r.out;
+}
+
+}  // namespace
+
+SlurmTaskStates squeue_tasks() {
+  return parse_squeue_tasks(squeue_lines());
+}
+
+SlurmTaskStates squeue_jobs() {
+  return parse_squeue_jobs(squeue_lines());
 }
 
 std::optional<SlurmTaskStates> sacct_tasks(const std::vector<std::string>& array_jobs,

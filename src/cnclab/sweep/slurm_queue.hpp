@@ -32,8 +32,13 @@ SlurmTaskStates squeue_tasks();
 std::optional<SlurmTaskStates> sacct_tasks(const std::vector<std::string>& array_jobs,
                                            std::string& why);
 
+// The caller's single (non-array) jobs Slurm still knows, by job id -> state
+// (the same squeue query; lines with task "N/A"). Error as squeue_tasks.
+SlurmTaskStates squeue_jobs();
+
 // Parsers of the two tools' output (exposed for tests).
 SlurmTaskStates parse_squeue_tasks(const std::string& text);
+SlurmTaskStates parse_squeue_jobs(const std::string& text);
 SlurmTaskStates parse_sacct_tasks(const std::string& text);
 
 }  // namespace cnclab

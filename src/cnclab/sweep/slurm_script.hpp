@@ -59,4 +59,18 @@ std::string merge_script(const SlurmOptions& options, const std::string& job_nam
                          const std::filesystem::path& submission, const std::string& cnclab,
                          const std::filesystem::path& sweep_dir);
 
+// One plain job of `cnclab reproduce --slurm` (an experiment's `cnclab run`,
+// a `kind:` job, a sweep job's final `cnclab run` after its array): runs
+// `command` once. --requeue: a pre-empted job starts again from the
+// beginning (a training run keeps no checkpoint; its partial file is never
+// read as a result).
+struct SlurmJobScript {
+  std::string job_name;              // #SBATCH --job-name
+  std::string what;                  // a comment line: what the job makes
+  std::filesystem::path workdir;     // #SBATCH --chdir
+  std::filesystem::path log;         // #SBATCH --output (%j: the job id)
+  std::vector<std::string> command;  // cnclab run FILE --out ... (quoted here)
+};
+std::string job_script(const SlurmOptions& options, const SlurmJobScript& job);
+
 }  // namespace cnclab

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/io/atomic_file.hpp"
@@ -59,9 +60,7 @@ std::vector<std::vector<std::string>> split_into_tasks(const std::vector<std::st
   return lists;
 }
 
-SlurmSubmission create_submission(const fs::path& dir,
-                                  std::vector<std::vector<std::string>> tasks) {
-  const fs::path root = dir / "slurm";
+std::pair<fs::path, std::size_t> create_submission_folder(const fs::path& root) {
   std::error_code ec;
   fs::create_directories(root, ec);
   if (ec) throw IoError(root.string() + ": cannot create the folder: " + ec.message());
@@ -72,14 +71,20 @@ SlurmSubmission create_submission(const fs::path& dir,
     }
   }
   // create_directory fails on an existing folder: two submitters never share one.
-  SlurmSubmission s;
+  fs::path folder;
   for (;; ++next) {
-    s.folder = root / submission_name(next);
-    if (fs::create_directory(s.folder, ec)) break;
-    if (ec) throw IoError(s.folder.string() + ": cannot create the folder: " + ec.message());
+    folder = root / submission_name(next);
+    if (fs::create_directory(folder, ec)) break;
+    if (ec) throw IoError(folder.string() + ": cannot create the folder: " + ec.message());
   }
-  s.number = next;
-  fs::create_directories(s.folder / "logs", ec);
+  fs::create_directories(folder / "logs", ec);
+  return {folder, next};
+}
+
+SlurmSubmission create_submission(const fs::path& dir,
+                                  std::vector<std::vector<std::string>> tasks) {
+  SlurmSubmission s;
+  std::tie(s.folder, s.number) = create_submission_folder(dir / "slurm");
   std::string text;
   for (const auto& ids : tasks) {
     for (std::size_t k = 0; k < ids.size(); ++k) text += (k ? "," : "") + ids[k];

@@ -18,6 +18,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cnclab {
@@ -34,6 +35,12 @@ struct SlurmSubmission {
 // tasks, as shards split a plan); tasks 0 = one list per trial.
 std::vector<std::vector<std::string>> split_into_tasks(const std::vector<std::string>& ids,
                                                        std::size_t tasks);
+
+// Creates the next free <root>/submit-NNN (and its logs/), NNN one above the
+// highest there; two submitters never share one. Returns it and NNN.
+// IoError naming the folder.
+std::pair<std::filesystem::path, std::size_t> create_submission_folder(
+    const std::filesystem::path& root);
 
 // Creates the next free <dir>/slurm/submit-NNN (and its logs/) and writes
 // tasks.txt. IoError naming the folder.
