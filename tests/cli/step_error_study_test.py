@@ -90,6 +90,7 @@ def main():
         for failure in check_machine_tables(texts["csv"], texts["json"]):
             check(False, f"machine-readable tables: {failure}")
         check_csv(csv_tables(texts["csv"]))
+        check_seed_spread(csv_tables(texts["csv"]), tables_results)
         check_trivial_predictor(tables_results, source)
         check_targets(cnclab, source, common, tmp)
         run(["bash", os.path.join(source, "scripts/figures/run"), tables_results], source)
@@ -110,15 +111,15 @@ def check_sources(text, source):
     (except the normaliser table, which has none), then result files that
     exist."""
     lines = [l[len("sources: "):] for l in text.splitlines() if l.startswith("sources: ")]
-    # Tables 2, 3, surface-1 text, 4, 6, 5, 7, normaliser, 8.
-    check(len(lines) == 9, f"one sources line per table: {len(lines)}")
+    # Tables 2, 3, surface-1 text, 4, 6, 5, 7, normaliser, seed spread, 8.
+    check(len(lines) == 10, f"one sources line per table: {len(lines)}")
     for line in lines:
         files = line.split(", ")
         for f in files:
             check(os.path.isfile(os.path.join(source, f)), f"sources: {f} exists")
         check(sum(f.endswith("seed000_step_error.yaml") for f in files) <= 1, f"reference once: {line}")
         check(any(f.endswith(".h5") for f in files), f"sources name result files: {line}")
-    check(sum(l.startswith("results/reference/seed000_step_error.yaml") for l in lines) == 8,
+    check(sum(l.startswith("results/reference/seed000_step_error.yaml") for l in lines) == 9,
           "the paper's numbers are named where they are used")
 
 
@@ -181,6 +182,57 @@ def check_csv(tables):
             check(float(r[1]) > 0 and float(r[3]) > 0, f"Table 8 {r[0]}: positive times")
     norm = find(tables, "Beyond the paper: z-score normaliser")
     check(len(norm) == 5, "normaliser table: keep/refit x surfaces 2, 3")
+
+
+def trial_figures(results, sweep, group_key):
+    """Per value of `group_key` (a function of the resolved config), the mean
+    |e| and the share of |e| < 0.5 µm of each trial of the seed sweep
+    `sweep`, from the trial files' stored predictions and targets."""
+    groups = {}
+    for path in glob.glob(os.path.join(results, sweep, "sweep-*", "trials", "*.h5")):
+        with h5py.File(path, "r") as f:
+            text = f["config"][()]
+            config = yaml.safe_load(text.decode() if isinstance(text, bytes) else text)
+            err = np.abs(np.ravel(f["test/predictions"][:]) - np.ravel(f["test/targets"][:]))
+        groups.setdefault(group_key(config), []).append(
+            {"mean_abs_um": float(np.mean(err)),
+             "share_abs_below_0.5um_percent": 100.0 * float(np.mean(err < 0.5))})
+    return groups
+
+
+def check_seed_spread(tables, results):
+    """The seed-spread table (issue 20 item 3): its mean and std columns
+    against numpy's mean and std (ddof=1) of the figures computed here from
+    each trial's stored predictions, grouped by the trial's own config; the
+    seed count against the quick profile's 2 repeats."""
+    rows = find(tables, "Seed-to-seed spread")
+    header = rows[0]
+    check(header == ["row", "quantity", "paper", "one_run", "seeds_mean", "seeds_std", "seeds"],
+          f"seed spread header {header}")
+    table = {(r[0], r[1]): dict(zip(header, r)) for r in rows[1:]}
+    expected = {}
+    s1 = trial_figures(results, "step_error_tuned_seeds_surface1",
+                       lambda c: float(c["model"]["dropout"]["keep_probability"]))
+    check(sorted(s1) == [0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0], f"surface-1 sweep points {sorted(s1)}")
+    expected["surface1"] = s1.get(1.0, [])
+    for surface in (2, 3):
+        g = trial_figures(results, f"step_error_tuned_seeds_surface{surface}_ft15",
+                          lambda c: c["init_from"]["normaliser"])
+        for name, runs in g.items():
+            expected[f"surface{surface}_ft15_{name}"] = runs
+    check(len(expected) == 5, f"seed groups {sorted(expected)}")
+    for row, runs in expected.items():
+        check(len(runs) == 2, f"{row}: 2 seeds in the quick profile, {len(runs)} trial files")
+        for quantity in ("mean_abs_um", "share_abs_below_0.5um_percent"):
+            if (row, quantity) not in table:
+                check(quantity != "mean_abs_um", f"seed spread row {row} {quantity}")
+                continue
+            values = np.array([r[quantity] for r in runs])
+            got = table[(row, quantity)]
+            for column, want in (("seeds_mean", values.mean()), ("seeds_std", values.std(ddof=1))):
+                check(abs(float(got[column]) - want) <= 1e-9 * max(1.0, abs(want)),
+                      f"seed spread {row} {quantity} {column}: {got[column]} != {want}")
+            check(got["seeds"] == str(len(runs)), f"seed spread {row}: seeds {got['seeds']}")
 
 
 def run_code(args, cwd):
@@ -253,7 +305,9 @@ def check_trivial_predictor(results, source):
     """The final quick networks against predicting the mean of their own
     training targets (read from the dataset file)."""
     for name in final_networks(source):
-        paths = glob.glob(os.path.join(results, name, f"{name}-seed*-*.h5"))
+        # seed 2023, the experiments' own: the seed sweeps store their trials of
+        # the same experiment at other seeds beside it (issue 20 item 3).
+        paths = glob.glob(os.path.join(results, name, f"{name}-seed2023-*.h5"))
         check(len(paths) == 1, f"one result of {name} ({paths})")
         if len(paths) != 1:
             continue

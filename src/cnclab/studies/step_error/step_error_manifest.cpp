@@ -1,5 +1,6 @@
 #include "cnclab/studies/step_error/step_error_manifest.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "cnclab/core/config.hpp"
@@ -64,6 +65,18 @@ StudyManifest read_step_error_manifest(const fs::path& file) {
   for (const char* choice : {"keep", "refit"}) {
     const ConfigReader c = n.section(choice);
     m.normaliser.push_back({choice, read_path(c, "surface2"), read_path(c, "surface3")});
+  }
+  if (root.has("repeats")) {
+    const ConfigReader r = root.section("repeats");
+    StudyRepeats rep;
+    rep.variant = r.require<std::string>("variant");
+    const bool known = std::any_of(m.variants.begin(), m.variants.end(),
+                                   [&](const StudyVariant& v) { return v.name == rep.variant; });
+    if (!known) r.fail("variant", "must name one of the variants");
+    rep.surface1 = read_path(r, "surface1");
+    rep.surface2_ft15 = read_path(r, "surface2_ft15");
+    rep.surface3_ft15 = read_path(r, "surface3_ft15");
+    m.repeats = std::move(rep);
   }
   // The study's targets: read by `--check` (report/targets.hpp), not here.
   if (root.has("targets")) root.raw("targets");

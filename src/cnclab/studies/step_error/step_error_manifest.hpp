@@ -18,9 +18,15 @@
 //     default: refit             # or keep
 //     keep: {surface2: FILE, surface3: FILE}
 //     refit: {surface2: FILE, surface3: FILE}
+//   repeats:                     # optional: seed-to-seed spread (step_error_repeats.hpp)
+//     variant: tuned             # the variant whose headline rows are repeated
+//     surface1: FILE             # kind: sweep over model.dropout.keep_probability (Table 2's
+//     p, 1.0) surface2_ft15: FILE        # kind: sweep over init_from (refit and keep chains)
+//     surface3_ft15: FILE
 //   targets: [...]                 # `--check` (report/targets.hpp; names: step_error_measures.hpp)
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,10 +45,19 @@ struct NormaliserChoice {
   std::filesystem::path surface2, surface3;
 };
 
+// The `kind: sweep` files that repeat a variant's headline rows over seeds
+// (sweep repeats): surface 1 with Table 2's keep probabilities, and the 15 %
+// fine-tunings with the normaliser refitted and kept.
+struct StudyRepeats {
+  std::string variant;  // a variant of `variants`
+  std::filesystem::path surface1, surface2_ft15, surface3_ft15;
+};
+
 struct StudyManifest {
   std::vector<StudyVariant> variants;        // file order; "paper" first
   std::string normaliser_default;            // "keep" or "refit"
   std::vector<NormaliserChoice> normaliser;  // keep, refit
+  std::optional<StudyRepeats> repeats;
 };
 
 // Throws MissingResults when the file is absent (the study is not set up),

@@ -3,25 +3,45 @@
 #include <cmath>
 #include <string>
 
+#include "cnclab/report/statistics.hpp"
 #include "cnclab/report/text_table.hpp"
 
 namespace cnclab {
 namespace {
 
-// The figures of one run under `prefix`, as Tables 3-7 and the normaliser
-// table print them (step_error_tables.cpp: the rows' lambdas).
 void add_run(Measurements& m, const std::string& prefix, const StepErrorRun& r) {
-  const ErrorFigures& f = r.figures;
-  m[prefix + ".test_samples"] = static_cast<double>(f.samples);
-  m[prefix + ".max_abs_um"] = f.max_abs;
-  m[prefix + ".mean_abs_um"] = f.mean_abs;
-  m[prefix + ".share_abs_below_0.4um"] = f.share_abs_below(0.4);
-  m[prefix + ".share_abs_below_0.5um"] = f.share_abs_below(0.5);
-  m[prefix + ".share_abs_below_1um"] = f.share_abs_below(1.0);
-  m[prefix + ".share_rel_below_10pct"] = f.share_rel_below(10);
-  m[prefix + ".share_rel_above_10pct"] = 100.0 - f.share_rel_below(10);
-  const auto& h = r.record.training.history;
-  m[prefix + ".final_train_loss"] = h.empty() ? NAN : h.back().train_loss;
+  for (const auto& [name, value] : run_figures(r)) m[prefix + "." + name] = value;
+}
+
+// Mean, std and n of each figure over a point's seeds, under `prefix`.
+void add_seeds(Measurements& m, const std::string& prefix, const RepeatedPoint& point) {
+  if (point.runs.empty()) return;
+  for (const auto& [name, value] : point.runs.front()) {
+    const SampleSummary s = summarize(point.sample(name));
+    m[prefix + "." + name + ".mean"] = s.mean;
+    m[prefix + "." + name + ".std"] = s.std;
+    m[prefix + "." + name + ".n"] = static_cast<double>(s.n);
+  }
+}
+
+void add_repeats(Measurements& m, const StepErrorRepeats& r) {
+  const std::string prefix = r.variant + ".seeds.";
+  for (const auto& point : r.surface1.points) {
+    const double p = point.number();
+    if (p == 1.0) {
+      add_seeds(m, prefix + "surface1", point);
+    } else {
+      RepeatedPoint mse = point;
+      for (auto& figures : mse.runs) figures = {{"test_mse", figures.at("test_mse")}};
+      add_seeds(m, prefix + "table2.p" + table_number(p), mse);
+    }
+  }
+  for (const auto* sweep : {&r.surface2_ft15, &r.surface3_ft15}) {
+    const std::string surface = sweep == &r.surface2_ft15 ? "surface2" : "surface3";
+    for (const auto& point : sweep->points) {
+      add_seeds(m, prefix + surface + ".ft15." + point.value, point);
+    }
+  }
 }
 
 // Table 2 of one variant: test MSE per keep probability, and the best p
@@ -46,6 +66,23 @@ void add_table2(Measurements& m, const std::string& variant, const StepErrorStud
 
 }  // namespace
 
+// As Tables 3-7 and the normaliser table print them (step_error_tables.cpp:
+// the rows' lambdas).
+std::map<std::string, double> run_figures(const StepErrorRun& r) {
+  const ErrorFigures& f = r.figures;
+  const auto& h = r.record.training.history;
+  return {{"test_samples", static_cast<double>(f.samples)},
+          {"max_abs_um", f.max_abs},
+          {"mean_abs_um", f.mean_abs},
+          {"share_abs_below_0.4um", f.share_abs_below(0.4)},
+          {"share_abs_below_0.5um", f.share_abs_below(0.5)},
+          {"share_abs_below_1um", f.share_abs_below(1.0)},
+          {"share_rel_below_10pct", f.share_rel_below(10)},
+          {"share_rel_above_10pct", 100.0 - f.share_rel_below(10)},
+          {"final_train_loss", h.empty() ? NAN : h.back().train_loss},
+          {"test_mse", normalised_test_mse(r.record)}};
+}
+
 Measurements step_error_measures(const StepErrorStudy& s) {
   Measurements m;
   for (const auto& v : s.manifest.variants) {
@@ -63,6 +100,7 @@ Measurements step_error_measures(const StepErrorStudy& s) {
     add_run(m, "normaliser." + n.name + ".surface2", s.at(n.surface2));
     add_run(m, "normaliser." + n.name + ".surface3", s.at(n.surface3));
   }
+  if (s.repeats) add_repeats(m, *s.repeats);
   return m;
 }
 

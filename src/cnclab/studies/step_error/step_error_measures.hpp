@@ -14,11 +14,25 @@
 // with <figure> one of test_samples, max_abs_um, mean_abs_um,
 // share_abs_below_0.4um, share_abs_below_0.5um, share_abs_below_1um (%),
 // share_rel_below_10pct, share_rel_above_10pct (%), final_train_loss (z-score
-// units, last epoch). <p> and <percent> as the tables print them (0.5, 15).
+// units, last epoch), test_mse (z-score units, Table 2's). <p> and <percent>
+// as the tables print them (0.5, 15).
+//
+// Over the seeds of the manifest's `repeats:` (step_error_repeats.hpp), for
+// its variant:
+//   <variant>.seeds.surface1.<figure>.{mean,std,n}            keep 1.0 (no dropout)
+//   <variant>.seeds.table2.p<p>.test_mse.{mean,std,n}
+//   <variant>.seeds.<surface2|surface3>.ft15.<keep|refit>.<figure>.{mean,std,n}
+// (std over the seeds, n - 1; n the complete trials).
+#include <map>
+#include <string>
+
 #include "cnclab/report/tables.hpp"
 #include "cnclab/studies/step_error/step_error_study.hpp"
 
 namespace cnclab {
+
+// The <figure>s above of one complete run, by name.
+std::map<std::string, double> run_figures(const StepErrorRun& run);
 
 Measurements step_error_measures(const StepErrorStudy& study);
 // Loads the study (load_step_error_study) and measures it: TableEntry::measure.

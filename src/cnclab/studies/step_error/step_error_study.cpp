@@ -8,10 +8,16 @@ namespace {
 
 StepErrorRun load_run(const fs::path& experiment, const ResultStore& store) {
   StoredResult stored = store.get(experiment, Accept::complete_or_failed);
+  return step_error_run(std::move(stored.record), stored.file);
+}
+
+}  // namespace
+
+StepErrorRun step_error_run(RunRecord record, const fs::path& file) {
   StepErrorRun run;
-  run.name = stored.record.experiment;
-  run.file = stored.file;
-  run.record = std::move(stored.record);
+  run.name = record.experiment;
+  run.file = file;
+  run.record = std::move(record);
   if (run.record.provenance.status != "complete") {
     // Table 2 shows a diverged keep probability as such; elsewhere it is an
     // error (load_step_error_study).
@@ -28,8 +34,6 @@ StepErrorRun load_run(const fs::path& experiment, const ResultStore& store) {
                               std::vector<double>(t.data(), t.data() + t.size()));
   return run;
 }
-
-}  // namespace
 
 StepErrorStudy load_step_error_study(const TablesOptions& o) {
   StepErrorStudy s;
@@ -58,6 +62,7 @@ StepErrorStudy load_step_error_study(const TablesOptions& o) {
   for (const auto& f : files) {
     if (!s.runs.at(f).failure.empty()) throw Error(s.runs.at(f).failure);
   }
+  if (s.manifest.repeats) s.repeats = load_step_error_repeats(*s.manifest.repeats, o);
   return s;
 }
 

@@ -5,6 +5,7 @@
 // the paper's numbers (results/reference/seed000_step_error.yaml).
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "cnclab/report/tables.hpp"
 #include "cnclab/studies/step_error/step_error_manifest.hpp"
 #include "cnclab/studies/step_error/step_error_reference.hpp"
+#include "cnclab/studies/step_error/step_error_repeats.hpp"
 #include "cnclab/studies/step_error/step_error_stats.hpp"
 
 namespace cnclab {
@@ -25,11 +27,16 @@ struct StepErrorRun {
   std::string failure;  // non-empty: training failed (no figures)
 };
 
+// The run of a result read from `file`: figures when complete, `failure`
+// otherwise. Error when a complete result is not one step-error target in µm.
+StepErrorRun step_error_run(RunRecord record, const std::filesystem::path& file);
+
 struct StepErrorStudy {
   StudyManifest manifest;
   Seed000Reference ref;
   std::filesystem::path reference_file;
   std::map<std::filesystem::path, StepErrorRun> runs;  // experiment file -> its result
+  std::optional<StepErrorRepeats> repeats;             // when the manifest has `repeats:`
   const StepErrorRun& at(const std::filesystem::path& file) const { return runs.at(file); }
   const StepErrorRun* find(const std::map<double, std::filesystem::path>& files, double key) const {
     const auto it = files.find(key);
@@ -37,7 +44,8 @@ struct StepErrorStudy {
   }
 };
 
-// Every result the manifest names, read before anything is printed. Throws
+// Every result the manifest names (the seed sweeps of `repeats:` too), read
+// before anything is printed. Throws
 // MissingResults (naming the command that makes it) for a missing result,
 // Error for a failed one outside Table 2 (which shows divergence as such).
 StepErrorStudy load_step_error_study(const TablesOptions& options);

@@ -9,6 +9,7 @@
 
 #include "cnclab/core/format.hpp"
 #include "cnclab/report/typed_table.hpp"
+#include "cnclab/studies/step_error/step_error_spread_table.hpp"
 #include "cnclab/studies/step_error/step_error_study.hpp"
 #include "cnclab/studies/step_error/step_error_table8.hpp"
 
@@ -236,8 +237,15 @@ void print_table2(const Study& s, TableFormat format, std::ostream& out) {
     }
     t.rows.push_back(test);
     t.rows.push_back(train);
-    notes.push_back(ours(v) + ": lowest test MSE at p = " + table_number(best_p) +
-                    " (paper: minimum at p = " + table_number(paper_best_p) + ").");
+    notes.push_back(ours(v) +
+                    ": the run shown has its lowest test MSE at p = " + table_number(best_p) +
+                    " (paper: minimum at p = " + table_number(paper_best_p) + ")" +
+                    (s.repeats && s.repeats->variant == v.name
+                         ? "; over seeds:"
+                         : "; one run per p, no seed repeats: not a finding."));
+    if (s.repeats && s.repeats->variant == v.name) {
+      for (auto& n : table2_seed_notes(*s.repeats)) notes.push_back(n);
+    }
   }
   print_table_title(
       out, format, "Seed 000 Table 2: dropout keep probability p and MSE (surface 1, 70/30 split)");
@@ -462,10 +470,12 @@ void print_normaliser_table(const Study& s, TableFormat format, std::ostream& ou
                     "Beyond the paper: z-score normaliser at fine-tuning, kept from the upstream "
                     "network or refitted on the new surface's training share");
   t.print(out, format);
-  print_table_notes(
-      out, format,
-      {"The paper does not say which it does; the default (" + s.manifest.normaliser_default +
-       ") is the better-performing one and is what Tables 4-7 use."});
+  std::vector<std::string> notes = {"The paper does not say which it does; Tables 4-7 use " +
+                                    s.manifest.normaliser_default + "."};
+  if (s.repeats) {
+    for (auto& n : normaliser_seed_notes(*s.repeats)) notes.push_back(n);
+  }
+  print_table_notes(out, format, notes);
   print_sources(out, format, {}, read);  // no paper numbers here
 }
 
@@ -481,6 +491,7 @@ void print_step_error_tables(const TablesOptions& options, std::ostream& out) {
   print_fine_tune_table(study, f, out, 3, study.ref.surface3);
   print_bins_at_15(study, f, out, 3);
   print_normaliser_table(study, f, out);
+  print_step_error_spread(study, f, out);
   print_step_error_table8(study, options, out);
 }
 

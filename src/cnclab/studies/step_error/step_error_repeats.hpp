@@ -1,0 +1,59 @@
+#pragma once
+// The seed-to-seed spread of the step-error study's headline rows (issue 20
+// item 3): the `kind: sweep` files the manifest's `repeats:` names
+// (experiments/step_error/tuned/seeds_*.yaml), each one swept key with
+// `repeats` seeds per value, read as `cnclab tables step-error` needs them:
+// per point (value of the key) the figures of every complete trial
+// (run_figures, step_error_measures.hpp), so a table row gives their mean ±
+// std and a note Welch's test between two points (step_error_seed_notes.hpp).
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cnclab/report/tables.hpp"
+#include "cnclab/studies/step_error/step_error_manifest.hpp"
+
+namespace cnclab {
+
+// One value of the swept key over its seeds.
+struct RepeatedPoint {
+  // The value as the plan writes it ("0.5"); of an init_from mapping, its
+  // normaliser ("refit", "keep").
+  std::string value;
+  // run_figures of each complete trial, in repeat order, and its seed.
+  std::vector<std::map<std::string, double>> runs;
+  std::vector<std::uint64_t> seeds;
+  std::size_t planned = 0;  // trials planned at this value (complete or not)
+
+  double number() const;  // value as a number; NaN when it is not one
+  // `figure` over the complete trials, NaN values left out.
+  std::vector<double> sample(const std::string& figure) const;
+};
+
+struct RepeatedSweep {
+  std::filesystem::path file;                                 // the kind: sweep file
+  std::filesystem::path dir;                                  // results/<name>/sweep-<plan hash>
+  std::string key;                                            // the swept key
+  std::vector<RepeatedPoint> points;                          // plan order
+  std::vector<std::filesystem::path> sources;                 // the result files read
+  const RepeatedPoint* find(const std::string& value) const;  // nullptr when absent
+  const RepeatedPoint* find(double number) const;
+};
+
+struct StepErrorRepeats {
+  std::string variant;                         // the variant whose headline rows these repeat
+  RepeatedSweep surface1;                      // model.dropout.keep_probability: Table 2's p, 1.0
+  RepeatedSweep surface2_ft15, surface3_ft15;  // init_from: refit and keep chains
+};
+
+// The complete trials of one sweep file with one swept key under the
+// tables' results folder and profile. MissingResults naming the command
+// that makes them while any trial has not run; ConfigError when the file
+// sweeps other than one key.
+RepeatedSweep load_repeated_sweep(const std::filesystem::path& file, const TablesOptions& options);
+StepErrorRepeats load_step_error_repeats(const StudyRepeats& repeats, const TablesOptions& options);
+
+}  // namespace cnclab

@@ -1,0 +1,25 @@
+#pragma once
+// The seed-to-seed spread of the step-error study's headline rows (issue 20
+// item 3; the manifest's `repeats:`, step_error_repeats.hpp): one table with,
+// per row, the paper's single number, our run that Tables 2-7 show, and the
+// mean ± std over the seed sweep; and the notes that compare settings only
+// as far as Welch's test supports (step_error_seed_notes.hpp).
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cnclab/report/text_table.hpp"
+#include "cnclab/studies/step_error/step_error_study.hpp"
+
+namespace cnclab {
+
+// Table 2 over seeds: the lowest mean test MSE against the next lowest p,
+// and no dropout (keep 1.0) against that p.
+std::vector<std::string> table2_seed_notes(const StepErrorRepeats& repeats);
+// Keep vs refit at 15 %, mean |e| per surface.
+std::vector<std::string> normaliser_seed_notes(const StepErrorRepeats& repeats);
+
+// The table; prints nothing when the study has no repeats.
+void print_step_error_spread(const StepErrorStudy& study, TableFormat format, std::ostream& out);
+
+}  // namespace cnclab
