@@ -91,7 +91,7 @@ def main():
             check(False, f"machine-readable tables: {failure}")
         check_csv(csv_tables(texts["csv"]))
         check_seed_spread(csv_tables(texts["csv"]), tables_results)
-        check_trivial_predictor(tables_results, source)
+        check_trivial_predictor(cnclab, tables_results, source)
         check_targets(cnclab, source, common, tmp)
         run(["bash", os.path.join(source, "scripts/figures/run"), tables_results], source)
         pngs = glob.glob(os.path.join(tables_results, "figures", "step_error", "*.png"))
@@ -288,26 +288,38 @@ def test_sample_rows(rows):
 
 
 def final_networks(source):
-    """Experiment names of the last variant's surface-1 and 15 % networks
+    """Experiment files of the last variant's surface-1 and 15 % networks
     (the tuned variant when present: the one meant to meet the targets; the
     paper variant's quick runs are a few epochs of per-sample SGD)."""
     base = os.path.join(source, "configs", "studies")
     with open(os.path.join(base, "step_error_tables.yaml")) as f:
         variant = list(yaml.safe_load(f)["variants"].values())[-1]
-    names = []
-    for rel in (variant["surface1"], variant["surface2"][15], variant["surface3"][15]):
-        with open(os.path.normpath(os.path.join(base, rel))) as f:
-            names.append(yaml.safe_load(f)["name"])
-    return names
+    return [os.path.normpath(os.path.join(base, rel))
+            for rel in (variant["surface1"], variant["surface2"][15], variant["surface3"][15])]
 
 
-def check_trivial_predictor(results, source):
+def own_result(cnclab, source, results, experiment):
+    """The result of the experiment file itself: the one whose stored config is
+    the file's resolved config (`cnclab validate --full`). The seed sweeps
+    store their trials of the same experiment (other seeds, other dropout)
+    beside it (issue 20 item 3)."""
+    resolved = yaml.safe_load(run([cnclab, "validate", "--full", "--profile", "quick", experiment],
+                                  source))
+    name = resolved["name"]
+    paths = []
+    for path in glob.glob(os.path.join(results, name, f"{name}-*.h5")):
+        with h5py.File(path, "r") as f:
+            text = f["config"][()]
+        if yaml.safe_load(text.decode() if isinstance(text, bytes) else text) == resolved:
+            paths.append(path)
+    return name, paths
+
+
+def check_trivial_predictor(cnclab, results, source):
     """The final quick networks against predicting the mean of their own
     training targets (read from the dataset file)."""
-    for name in final_networks(source):
-        # seed 2023, the experiments' own: the seed sweeps store their trials of
-        # the same experiment at other seeds beside it (issue 20 item 3).
-        paths = glob.glob(os.path.join(results, name, f"{name}-seed2023-*.h5"))
+    for experiment in final_networks(source):
+        name, paths = own_result(cnclab, source, results, experiment)
         check(len(paths) == 1, f"one result of {name} ({paths})")
         if len(paths) != 1:
             continue
