@@ -28,8 +28,8 @@ using testing::slurp;
 using testing::TempDir;
 using testing::write_tool;
 
-const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
-const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
+using testing::kSlurmTestCnclab;
+using testing::kSlurmTestExperiment;
 
 using Edges = std::map<std::string, std::set<std::string>>;
 
@@ -38,7 +38,7 @@ using Edges = std::map<std::string, std::set<std::string>>;
 const Edges kNeeds = {{"a", {}}, {"b", {"a"}}, {"c", {"a", "b"}}, {"d", {}}};
 
 void write_graph(const fs::path& dir) {
-  std::ofstream(dir / "a.yaml") << "include: " << kExperiment
+  std::ofstream(dir / "a.yaml") << "include: " << kSlurmTestExperiment
                                 << "\nname: a\ntrainer: {epochs: 2}\n"
                                    "dataset: {options: {samples: 200}}\n";
   std::ofstream(dir / "b.yaml") << "include: a.yaml\nname: b\nneeds: [a.yaml]\n";
@@ -85,8 +85,8 @@ std::map<std::string, Call> sbatch_calls(const std::string& text) {
 TEST(ReproduceSlurm, DryRunDependenciesAreTheGraphsNeeds) {
   TempDir tmp;
   write_graph(tmp.path());
-  const ShellResult r =
-      run_shell(tmp.path(), kCnclab + " reproduce" + kFiles + " --slurm --dry-run --time 0:10:00");
+  const ShellResult r = run_shell(
+      tmp.path(), kSlurmTestCnclab + " reproduce" + kFiles + " --slurm --dry-run --time 0:10:00");
   ASSERT_EQ(r.code, 0) << r.out << r.err;
   const auto calls = sbatch_calls(r.out);
   for (const auto& [name, needs] : kNeeds) {
@@ -111,9 +111,10 @@ TEST(ReproduceSlurm, ReusesCurrentResultsAndRerunSubmitsNothingInFlight) {
   TempDir tmp;
   write_graph(tmp.path());
   // a is current: no job for it, and b and c do not wait for it.
-  ASSERT_EQ(run_shell(tmp.path(), kCnclab + " run a.yaml --data-dir data --quiet").code, 0);
+  ASSERT_EQ(run_shell(tmp.path(), kSlurmTestCnclab + " run a.yaml --data-dir data --quiet").code,
+            0);
   const std::string path = fake_slurm(tmp.path());
-  const std::string submit = path + kCnclab + " reproduce" + kFiles + " --slurm";
+  const std::string submit = path + kSlurmTestCnclab + " reproduce" + kFiles + " --slurm";
   const ShellResult first = run_shell(tmp.path(), submit);
   ASSERT_EQ(first.code, 0) << first.out << first.err;
   EXPECT_NE(first.out.find("a" + std::string(28, ' ') + "reused"), std::string::npos) << first.out;
@@ -157,8 +158,8 @@ TEST(ReproduceSlurm, ReusesCurrentResultsAndRerunSubmitsNothingInFlight) {
 TEST(ReproduceSlurm, BadInputsGiveClearErrors) {
   TempDir tmp;
   write_graph(tmp.path());
-  const ShellResult none =
-      run_shell(tmp.path(), "PATH=/nonexistent " + kCnclab + " reproduce" + kFiles + " --slurm");
+  const ShellResult none = run_shell(
+      tmp.path(), "PATH=/nonexistent " + kSlurmTestCnclab + " reproduce" + kFiles + " --slurm");
   EXPECT_EQ(none.code, 1);
   EXPECT_NE(none.err.find("sbatch not found on PATH"), std::string::npos) << none.err;
   EXPECT_FALSE(fs::exists(tmp / "results"));
@@ -171,7 +172,7 @@ TEST(ReproduceSlurm, BadInputsGiveClearErrors) {
              "failed: Invalid partition name specified' >&2; exit 1;; esac\nexec '" +
                  (tmp / "bin/sbatch-accept").string() + "' \"$@\"");
   const ShellResult rejected =
-      run_shell(tmp.path(), path + kCnclab + " reproduce" + kFiles + " --slurm");
+      run_shell(tmp.path(), path + kSlurmTestCnclab + " reproduce" + kFiles + " --slurm");
   EXPECT_EQ(rejected.code, 1);
   EXPECT_NE(rejected.err.find("sbatch rejected the job of c (exit 1): sbatch: error: Batch job "
                               "submission failed: Invalid partition name specified"),
@@ -183,7 +184,8 @@ TEST(ReproduceSlurm, BadInputsGiveClearErrors) {
   EXPECT_FALSE(sbatch_calls(slurp(tmp / "calls.txt")).count("cnclab-d"));
 
   for (const char* bad : {" --slurm --jobs 2", " --partition short", " --slurm --signal TERM@5"}) {
-    const ShellResult r = run_shell(tmp.path(), path + kCnclab + " reproduce" + kFiles + bad);
+    const ShellResult r =
+        run_shell(tmp.path(), path + kSlurmTestCnclab + " reproduce" + kFiles + bad);
     EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
   }
 }

@@ -29,12 +29,12 @@ using testing::slurp;
 using testing::TempDir;
 using testing::write_tool;
 
-const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
-const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
+using testing::kSlurmTestCnclab;
+using testing::kSlurmTestExperiment;
 
 // 6 small trials.
 std::string sweep_words(const std::string& epochs = "5") {
-  return kExperiment + " trainer.epochs=" + epochs +
+  return kSlurmTestExperiment + " trainer.epochs=" + epochs +
          " dataset.options.samples=200 model.hidden=[8] "
          "model.dropout.keep_probability=0.8,0.9,1.0 trainer.learning_rate=1e-3,1e-2 "
          "--data-dir data --out r --dir sw";
@@ -70,7 +70,7 @@ TEST(SlurmParse, TasksDealtRoundRobinAndShellQuoting) {
 TEST(SlurmSweep, DryRunPrintsAValidArrayScriptAndWritesNothing) {
   TempDir tmp;
   const ShellResult r =
-      run_shell(tmp.path(), kCnclab + " sweep " + sweep_words() +
+      run_shell(tmp.path(), kSlurmTestCnclab + " sweep " + sweep_words() +
                                 " --slurm --dry-run --partition short --time 00:10:00 --mem 1G "
                                 "--max-concurrent 2 --signal USR2@60 --cpus-per-task 2");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -88,7 +88,8 @@ TEST(SlurmSweep, DryRunPrintsAValidArrayScriptAndWritesNothing) {
 TEST(SlurmSweep, SubmitsRecordsAndResubmitsOnlyWhatIsNeitherDoneNorInFlight) {
   TempDir tmp;
   const std::string path = fake_slurm(tmp.path());
-  const std::string submit = path + kCnclab + " sweep " + sweep_words() + " --slurm --tasks 3";
+  const std::string submit =
+      path + kSlurmTestCnclab + " sweep " + sweep_words() + " --slurm --tasks 3";
   const ShellResult first = run_shell(tmp.path(), submit);
   ASSERT_EQ(first.code, 0) << first.out << first.err;
   auto subs = read_submissions(tmp / "sw");
@@ -120,7 +121,7 @@ TEST(SlurmSweep, SubmitsRecordsAndResubmitsOnlyWhatIsNeitherDoneNorInFlight) {
   const ShellResult third = run_shell(tmp.path(), submit);
   EXPECT_EQ(third.code, 0);
   EXPECT_NE(third.out.find("nothing to submit"), std::string::npos) << third.out;
-  const ShellResult status = run_shell(tmp.path(), path + kCnclab + " status sw");
+  const ShellResult status = run_shell(tmp.path(), path + kSlurmTestCnclab + " status sw");
   EXPECT_EQ(status.code, 0) << status.err;
   EXPECT_NE(status.out.find("complete 0, failed 0, running 4, pending 2, not queued 0"),
             std::string::npos)
@@ -132,7 +133,7 @@ TEST(SlurmSweep, BadInputsGiveClearErrorsAndLeaveNoSubmission) {
   TempDir tmp;
   // No sbatch on PATH.
   const ShellResult none = run_shell(
-      tmp.path(), "PATH=/nonexistent " + kCnclab + " sweep " + sweep_words() + " --slurm");
+      tmp.path(), "PATH=/nonexistent " + kSlurmTestCnclab + " sweep " + sweep_words() + " --slurm");
   EXPECT_EQ(none.code, 1);
   EXPECT_NE(none.err.find("sbatch not found on PATH"), std::string::npos) << none.err;
   EXPECT_FALSE(fs::exists(tmp / "sw"));
@@ -141,8 +142,9 @@ TEST(SlurmSweep, BadInputsGiveClearErrorsAndLeaveNoSubmission) {
   const std::string path = fake_slurm(tmp.path());
   write_tool(tmp / "bin", "sbatch",
              "echo 'sbatch: error: invalid partition specified: nope' >&2\nexit 1");
-  const ShellResult rejected = run_shell(
-      tmp.path(), path + kCnclab + " sweep " + sweep_words() + " --slurm --partition nope");
+  const ShellResult rejected =
+      run_shell(tmp.path(),
+                path + kSlurmTestCnclab + " sweep " + sweep_words() + " --slurm --partition nope");
   EXPECT_EQ(rejected.code, 1);
   EXPECT_NE(rejected.err.find("sbatch rejected the job array (exit 1): sbatch: error: invalid "
                               "partition specified: nope"),
@@ -152,15 +154,16 @@ TEST(SlurmSweep, BadInputsGiveClearErrorsAndLeaveNoSubmission) {
   EXPECT_TRUE(fs::is_empty(tmp / "sw/slurm"));
 
   // The folder holds another sweep (other epochs: other trials).
-  const ShellResult other =
-      run_shell(tmp.path(), path + kCnclab + " sweep " + sweep_words("6") + " --slurm --dry-run");
+  const ShellResult other = run_shell(
+      tmp.path(), path + kSlurmTestCnclab + " sweep " + sweep_words("6") + " --slurm --dry-run");
   EXPECT_EQ(other.code, 2);
   EXPECT_NE(other.err.find("holds another sweep"), std::string::npos) << other.err;
 
   // Options that make no sense.
   for (const char* bad : {" --slurm --signal TERM@60", " --slurm --jobs 2", " --slurm --shard 1/2",
                           " --partition short"}) {
-    const ShellResult r = run_shell(tmp.path(), path + kCnclab + " sweep " + sweep_words() + bad);
+    const ShellResult r =
+        run_shell(tmp.path(), path + kSlurmTestCnclab + " sweep " + sweep_words() + bad);
     EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
   }
 }
@@ -172,7 +175,7 @@ TEST(SlurmSweep, WarningSignalDrainsTheTaskAndRequeuesIt) {
   TempDir tmp;
   const std::string path = fake_slurm(tmp.path());
   const ShellResult submitted = run_shell(
-      tmp.path(), path + kCnclab + " sweep " + sweep_words("8000") + " --slurm --tasks 1");
+      tmp.path(), path + kSlurmTestCnclab + " sweep " + sweep_words("8000") + " --slurm --tasks 1");
   ASSERT_EQ(submitted.code, 0) << submitted.err;
   const fs::path script = tmp / "sw/slurm/submit-001/sweep.sbatch";
   // exec: the signal below reaches the script's own shell, as Slurm's B: does.

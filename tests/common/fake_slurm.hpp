@@ -10,6 +10,12 @@ namespace cnclab::testing {
 
 namespace fs = std::filesystem;
 
+// The binary under test and the small experiment both Slurm CLI tests sweep
+// (CNCLAB_BINARY_DIR, CNCLAB_SOURCE_DIR: the test target's definitions).
+inline const std::string kSlurmTestCnclab = CNCLAB_BINARY_DIR "/cnclab";
+inline const std::string kSlurmTestExperiment =
+    CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
+
 inline void write_tool(const fs::path& bin, const std::string& name, const std::string& body) {
   fs::create_directories(bin);
   std::ofstream(bin / name) << "#!/bin/bash\n" << body << "\n";
