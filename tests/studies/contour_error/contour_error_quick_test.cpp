@@ -15,6 +15,7 @@
 #include "cnclab/studies/contour_error/narx_metrics.hpp"
 #include "cnclab/studies/contour_error/narx_study_runs.hpp"
 #include "cnclab/sweep/sweep_job.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
@@ -108,6 +109,26 @@ TEST(ContourErrorQuick, ReproduceAndTables) {
                           "fig13_contour_error.png", "fig14_contour_prediction_error.png"}) {
     EXPECT_TRUE(fs::exists(results / "figures" / "contour_error" / png)) << png;
   }
+  // A trial that ran and did not complete is named in the tables' notes, not
+  // silently left out of the means: replace one trial's result by the error
+  // note a crashed trial leaves.
+  const SweepJob methods_job =
+      load_sweep_job(experiments / "contour_error" / "training_methods.yaml", {}, "quick");
+  const SweepJobState state = sweep_job_state(methods_job, results);
+  const std::string lost = state.plan.trials.front().id;
+  fs::remove(trial_result_path(state.dir, lost));
+  std::ofstream(trial_error_path(state.dir, lost)) << "injected crash";
+  const NarxStudyRuns after = load_narx_study(t, "training_methods.yaml");
+  EXPECT_EQ(after.runs.size() + 1, after.trials);
+  ASSERT_EQ(after.not_completed.size(), 1u);
+  EXPECT_NE(after.not_completed[0].find(lost), std::string::npos) << after.not_completed[0];
+  EXPECT_NE(after.not_completed[0].find("error: injected crash"), std::string::npos);
+  std::ostringstream noted;
+  print_contour_error_tables(t, noted);
+  EXPECT_NE(
+      noted.str().find("1 of " + std::to_string(after.trials) + " planned trials did not complete"),
+      std::string::npos)
+      << noted.str();
 }
 
 }  // namespace

@@ -114,13 +114,20 @@ std::string stable_note() {
 }
 
 // `notes`, then the notes both study tables end with (what "stable" means,
-// the second try, each run that is not stable), then the files read.
+// the second try, each run that is not stable, each trial that did not
+// complete), then the files read.
 void print_training_notes(const NarxStudyRuns& r, std::vector<std::string> notes, TableFormat f,
                           std::ostream& out) {
   notes.push_back(stable_note());
   notes.push_back(kRetryNote);
   notes.push_back(second_try_note(r));
   for (auto& n : unstable_notes(r)) notes.push_back(std::move(n));
+  if (!r.not_completed.empty()) {
+    notes.push_back(std::to_string(r.not_completed.size()) + " of " + std::to_string(r.trials) +
+                    " planned trials did not complete and are not in the table (nor in its "
+                    "stable counts):");
+    for (const auto& n : r.not_completed) notes.push_back(n);
+  }
   print_table_notes(out, f, notes);
   print_table_sources(out, f, r.sources);
 }

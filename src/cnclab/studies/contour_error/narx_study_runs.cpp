@@ -6,6 +6,7 @@
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/sweep/sweep_job.hpp"
+#include "cnclab/sweep/sweep_plan.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -108,8 +109,16 @@ NarxStudyRuns load_narx_study(const TablesOptions& o, const std::string& file) {
                          " have no result under " + state.dir.string() + "; run `" +
                          store.make_command(sweep_job_key(job, state.plan)) + "` first");
   }
-  for (const auto& t : state.outcomes) {
-    if (t.status != TrialOutcome::Status::complete) continue;
+  for (std::size_t i = 0; i < state.outcomes.size(); ++i) {
+    const TrialOutcome& t = state.outcomes[i];
+    if (t.status != TrialOutcome::Status::complete) {
+      const PlannedTrial& planned = state.plan.trials[i];
+      out.not_completed.push_back(
+          "trial " + planned.id + " (" + point_text(state.plan.keys, planned.values) + ", seed " +
+          std::to_string(planned.seed) + "): " +
+          (t.status == TrialOutcome::Status::failed ? "failed" : "error") + ": " + t.reason);
+      continue;
+    }
     const fs::path path = state.dir / t.result_file;
     const RunRecord r = read_result(path);
     if (out.runs.empty()) {

@@ -41,9 +41,13 @@ inline constexpr double kStableFactor = 3.0;
 struct NarxStudyRuns {
   std::vector<std::string> axes;  // network axes of the first run (x, y)
   std::size_t train_samples = 0, validation_samples = 0;
-  std::vector<NarxStudyRun> runs;                // plan order
-  std::vector<std::filesystem::path> sources;    // the result files read
-  std::size_t trials = 0;                        // planned; runs.size() completed
+  std::vector<NarxStudyRun> runs;              // plan order
+  std::vector<std::filesystem::path> sources;  // the result files read
+  std::size_t trials = 0;                      // planned; runs.size() completed
+  // One line per trial that ran and did not complete: "trial <id> (key=value
+  // ..., seed S): failed: <reason>". The tables print them as notes, so a
+  // mean over 4 runs is never read as a mean over the 5 planned.
+  std::vector<std::string> not_completed;
   double metric(const std::string& name) const;  // of the first run (dataset-level numbers)
   bool stable(const NarxStudyRun& run) const;    // kStableFactor criterion above
 };
@@ -51,7 +55,7 @@ struct NarxStudyRuns {
 // The complete trials of experiments/contour_error/<file> under the tables'
 // results folder and profile. MissingResults naming the command that makes
 // them while any trial has not run; trials that ran and failed are left out
-// (trials - runs.size() says how many).
+// of `runs` and listed in `not_completed`.
 NarxStudyRuns load_narx_study(const TablesOptions& options, const std::string& file);
 
 }  // namespace cnclab
