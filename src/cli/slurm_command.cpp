@@ -10,6 +10,7 @@
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/sweep/slurm_fields.hpp"
 #include "cnclab/sweep/slurm_queue.hpp"
 #include "cnclab/sweep/slurm_reproduce_record.hpp"
 #include "cnclab/sweep/slurm_submission.hpp"
@@ -277,9 +278,11 @@ void check_slurm_clients() {
 SweepSlurmResult submit_sweep_slurm(const fs::path& experiment,
                                     const std::vector<std::string>& words,
                                     std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
-                                    const SlurmOptions& slurm, const SweepSlurmRequest& request,
-                                    std::ostream& out, std::ostream& log) {
+                                    const SlurmOptions& command_line,
+                                    const SweepSlurmRequest& request, std::ostream& out,
+                                    std::ostream& log) {
   const PreparedSweep prepared = prepare_sweep(experiment, words, seed, o);
+  const SlurmOptions slurm = resolve_slurm_options(command_line, experiment, o.common.profile);
   SweepSlurmResult result;
   result.dir = prepared.dir;
   const fs::path& dir = prepared.dir;
