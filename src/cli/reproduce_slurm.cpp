@@ -11,6 +11,7 @@
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/sweep/slurm_fields.hpp"
 #include "cnclab/sweep/slurm_queue.hpp"
 #include "cnclab/sweep/slurm_reproduce_record.hpp"
 #include "cnclab/sweep/slurm_submission.hpp"
@@ -169,7 +170,8 @@ class GraphSubmitter {
     js.workdir = workdir_;
     js.log = folder() / "logs" / (script_stem(name) + "-%j.out");
     js.command = run_command_words(file);
-    const std::string job = submit(job_script(slurm_, js), script, after, name);
+    const SlurmOptions slurm = resolve_slurm_options(slurm_, file, o_.profile);
+    const std::string job = submit(job_script(slurm, js), script, after, name);
     rows_.push_back({name, action(), job, shown_after(after), why});
     remember(file, {name, output, job, "", script.string()});
     return job;

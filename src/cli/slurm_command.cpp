@@ -10,6 +10,7 @@
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/sweep/slurm_fields.hpp"
 #include "cnclab/sweep/slurm_queue.hpp"
 #include "cnclab/sweep/slurm_reproduce_record.hpp"
 #include "cnclab/sweep/slurm_submission.hpp"
@@ -277,9 +278,11 @@ void check_slurm_clients() {
 SweepSlurmResult submit_sweep_slurm(const fs::path& experiment,
                                     const std::vector<std::string>& words,
                                     std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
-                                    const SlurmOptions& slurm, const SweepSlurmRequest& request,
-                                    std::ostream& out, std::ostream& log) {
+                                    const SlurmOptions& command_line,
+                                    const SweepSlurmRequest& request, std::ostream& out,
+                                    std::ostream& log) {
   const PreparedSweep prepared = prepare_sweep(experiment, words, seed, o);
+  const SlurmOptions slurm = resolve_slurm_options(command_line, experiment, o.common.profile);
   SweepSlurmResult result;
   result.dir = prepared.dir;
   const fs::path& dir = prepared.dir;
@@ -310,18 +313,20 @@ SweepSlurmResult submit_sweep_slurm(const fs::path& experiment,
   const std::string cnclab = fs::read_symlink("/proc/self/exe").string();
   check_sbatch_paths(dir);
   SlurmArrayScript array;
-  array.job_name = slurm_job_name(prepared.plan.experiment, "");
+  // squeue shows the sweep's name (a kind: sweep file's), else the experiment's.
+  const std::string& name = prepared.name.empty() ? prepared.plan.experiment : prepared.name;
+  array.job_name = slurm_job_name(name, "");
   array.workdir = fs::current_path();
   array.tasks = tasks.size();
   array.task_command = array_task_command(cnclab, experiment, words, seed, o, dir);
   const auto final_script = [&](const fs::path& submission) {
     if (request.final_command.empty()) {
-      return merge_script(slurm, slurm_job_name(prepared.plan.experiment, "-merge"), array.workdir,
-                          submission, cnclab, dir);
+      return merge_script(slurm, slurm_job_name(name, "-merge"), array.workdir, submission, cnclab,
+                          dir);
     }
-    return job_script(slurm, {slurm_job_name(prepared.plan.experiment, "-final"),
-                              "the sweep's result once its array has ended", array.workdir,
-                              submission / "logs" / "final.out", request.final_command});
+    return job_script(
+        slurm, {slurm_job_name(name, "-final"), "the sweep's result once its array has ended",
+                array.workdir, submission / "logs" / "final.out", request.final_command});
   };
   if (slurm.dry_run) {
     array.submission = dir / "slurm" / "submit-NNN";

@@ -24,6 +24,10 @@ namespace cnclab {
 struct SlurmSweepOptions {
   bool enabled = false;  // --slurm
   SlurmOptions slurm;
+  // The flags that may override a `slurm:` block, by block key.
+  std::vector<std::pair<std::string, const CLI::Option*>> block_flags;
+  // `slurm` with `given` set: the block keys whose flags were given.
+  SlurmOptions options() const;
 };
 
 // Submits the sweep's trials still to run as one job array (returns once

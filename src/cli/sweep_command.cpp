@@ -92,7 +92,7 @@ PreparedSweep prepare_sweep(const fs::path& experiment, const std::vector<std::s
   const std::string folder = target.folder.empty() ? plan.experiment : target.folder;
   fs::path dir =
       o.dir.empty() ? o.common.results_dir / folder / ("sweep-" + plan.hash().substr(0, 8)) : o.dir;
-  return {std::move(plan), std::move(dir), std::move(exec)};
+  return {std::move(plan), std::move(dir), std::move(exec), target.folder};
 }
 
 int sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
@@ -127,7 +127,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
   }
   const SweepSummary summary = summarize(plan, outcomes);
   write_summary(dir / "summary.h5", plan, outcomes, summary);
-  print_summary(out, plan, outcomes, summary, dir);
+  print_summary(out, plan, outcomes, summary, dir, prepared.name);
   out << "summary: " << (dir / "summary.h5").string() << "\n";
   return summary_exit_code(summary);
 }

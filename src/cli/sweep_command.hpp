@@ -36,6 +36,7 @@ struct PreparedSweep {
   SweepPlan plan;
   std::filesystem::path dir;
   SweepExecuteOptions exec;  // jobs (the kind: sweep file's if not given), shard, ...
+  std::string name;          // a kind: sweep file's name; "": the swept experiment's
 };
 PreparedSweep prepare_sweep(const std::filesystem::path& experiment,
                             const std::vector<std::string>& words,

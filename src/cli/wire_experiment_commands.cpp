@@ -148,7 +148,7 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
     apply_profile_dir(*reproduce, "--out", a->common.profile, a->common.results_dir);
     action = [a] {
       if (a->slurm.enabled) {
-        return reproduce_slurm_command(a->paths, a->common, a->slurm.slurm, std::cout, std::cerr);
+        return reproduce_slurm_command(a->paths, a->common, a->slurm.options(), std::cout, std::cerr);
       }
       return reproduce_command(a->paths, a->common, std::cout, std::cerr);
     };

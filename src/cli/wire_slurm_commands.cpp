@@ -1,9 +1,11 @@
 // CLI11 wiring of `cnclab sweep --slurm ...` and `cnclab status`
 // (slurm_command.hpp).
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
 #include "cli/slurm_command.hpp"
+#include "cnclab/sweep/slurm_fields.hpp"
 
 namespace cnclab {
 
@@ -36,9 +38,24 @@ void add_slurm_options(CLI::App& app, SlurmSweepOptions& s, const std::string& s
                            "--max-concurrent", "--tasks", "--signal"}) {
     app.get_option(name)->needs(slurm);
   }
+  // Each slurm: block key is the flag's name with '_' for '-'.
+  for (const auto& key : slurm_fields().keys()) {
+    std::string flag = "--" + key;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    s.block_flags.emplace_back(key, app.get_option(flag));
+  }
 }
 
 }  // namespace
+
+SlurmOptions SlurmSweepOptions::options() const {
+  SlurmOptions o = slurm;
+  o.given.clear();
+  for (const auto& [key, flag] : block_flags) {
+    if (flag->count() > 0) o.given.push_back(key);
+  }
+  return o;
+}
 
 void add_slurm_sweep_options(CLI::App& sweep, SlurmSweepOptions& s, SweepCommandOptions& o) {
   add_slurm_options(sweep, s,

@@ -104,7 +104,7 @@ void add_sweep_commands(CLI::App& app, CommandAction& action) {
       a->options.sweep_seed = seed_option(a->sweep_seed_text, "--sweep-seed");
       if (a->slurm.enabled) {
         return slurm_sweep_command(a->experiment, a->words, seed_option(a->seed_text, "--seed"),
-                                   a->options, a->slurm.slurm, std::cout, std::cerr);
+                                   a->options, a->slurm.options(), std::cout, std::cerr);
       }
       return sweep_command(a->experiment, a->words, seed_option(a->seed_text, "--seed"), a->options,
                            std::cout, std::cerr);

@@ -10,9 +10,12 @@
 //
 // Skipped (not failed) when the daemons cannot run here: not root, or
 // slurm-wlm / munge not installed.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -56,7 +59,8 @@ std::string sweep_words() {
 }
 
 // The cluster of scripts/slurm_local under `state`, stopped on destruction
-// (also when an assertion ends the test early).
+// (also when an assertion ends the test early), and by a watchdog when this
+// process ends without destructors (start_watchdog).
 class LocalCluster {
  public:
   explicit LocalCluster(fs::path state) : state_(std::move(state)) {}
@@ -64,11 +68,13 @@ class LocalCluster {
     if (started_) run_shell(state_.parent_path(), env() + kSlurmLocal + " stop");
     std::error_code ignored;
     fs::remove_all(state_, ignored);
+    if (watchdog_fd_ >= 0) ::close(watchdog_fd_);  // the watchdog's stop finds nothing left
   }
   LocalCluster(const LocalCluster&) = delete;
   LocalCluster& operator=(const LocalCluster&) = delete;
 
   ShellResult start() {
+    start_watchdog();
     started_ = true;  // stop even a half-started cluster
     return run_shell(state_.parent_path(), env() + kSlurmLocal + " start");
   }
@@ -80,8 +86,47 @@ class LocalCluster {
   }
 
  private:
+  // ctest ends a test past its TIMEOUT with SIGKILL, and its child processes
+  // with it: no destructor runs, and the daemons (detached from us) would
+  // keep running. So a watchdog outside our process tree (forked twice, a
+  // session of its own, stdio on /dev/null so that ctest's output pipes
+  // close) blocks reading a pipe whose write end only this process holds
+  // (O_CLOEXEC: the shells and daemons we start do not inherit it). However
+  // this process ends, the read returns and the watchdog stops the cluster.
+  // Chosen over a FIXTURES_CLEANUP test: that needs a fixed state directory
+  // and runs only under ctest, not when the binary is run or killed by hand;
+  // and over a deadline inside the test: it needs no copy of ctest's TIMEOUT.
+  void start_watchdog() {
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) return;
+    const std::string stop = env() + kSlurmLocal + " stop; rm -rf '" + state_.string() + "'";
+    const pid_t child = ::fork();
+    if (child == 0) {  // async-signal-safe calls only until exec
+      ::setsid();
+      if (::fork() != 0) ::_exit(0);
+      const int null = ::open("/dev/null", O_RDWR);
+      for (int fd = 0; fd < 3; ++fd) ::dup2(null, fd);
+      for (int fd = 3; fd < 1024; ++fd) {
+        if (fd != fds[0]) ::close(fd);
+      }
+      char byte = 0;
+      while (::read(fds[0], &byte, 1) < 0 && errno == EINTR) {
+      }
+      ::execl("/bin/bash", "bash", "-c", stop.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    ::close(fds[0]);
+    if (child > 0) {
+      ::waitpid(child, nullptr, 0);
+      watchdog_fd_ = fds[1];
+    } else {
+      ::close(fds[1]);
+    }
+  }
+
   fs::path state_;
   bool started_ = false;
+  int watchdog_fd_ = -1;  // the pipe's write end: closed, the watchdog stops the cluster
 };
 
 std::string why_not_runnable() {

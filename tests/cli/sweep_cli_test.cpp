@@ -528,6 +528,31 @@ sweep:
                      "bad.yaml:3:12: sweep.repeets: unknown key (did you mean 'repeats'?)");
 }
 
+// `cnclab sweep FILE` of a `kind: sweep` file names the sweep (the file's
+// `name:`) beside the experiment it sweeps, in the summary's header and in
+// the Slurm job names; a plain experiment's sweep names the experiment.
+TEST(SweepCli, SweepFileIsNamedByItsOwnName) {
+  TempDir dir;
+  std::ofstream(dir / "search.yaml")
+      << "kind: sweep\nname: lr_search\nexperiment: " << kExperiment
+      << "\noverrides: [trainer.epochs=2, dataset.options.samples=200, 'model.hidden=[8]']\n"
+         "sweep: {parameters: {trainer.learning_rate: [0.001, 0.01]}}\n";
+  const Result slurm = sh(dir.path(), kCnclab + " sweep search.yaml --out r --slurm --dry-run");
+  ASSERT_EQ(slurm.code, 0) << slurm.err;
+  EXPECT_NE(slurm.out.find("#SBATCH --job-name=cnclab-lr_search\n"), std::string::npos)
+      << slurm.out;
+  const Result r = sh(dir.path(), kCnclab + " sweep search.yaml --jobs 2 --quiet --out r");
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("== sweep lr_search (experiment friedman1_mlp): 2 trials"),
+            std::string::npos)
+      << r.out;
+  const Result plain = sh(dir.path(), kCnclab + " sweep " + kExperiment +
+                                          " trainer.epochs=2 dataset.options.samples=200 "
+                                          "model.hidden=[8] seed=1,2 --quiet --out r --dir p");
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_NE(plain.out.find("== sweep friedman1_mlp: 2 trials"), std::string::npos) << plain.out;
+}
+
 TEST(CompareCli, TwoKnownRunsShowOnlyDifferingKeysAndMetricDeltas) {
   TempDir dir;
   const std::string run = kCnclab + " run " + kExperiment +

@@ -7,7 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <fstream>
+#include <iterator>
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/data/dataset_spec.hpp"
@@ -164,6 +166,50 @@ TEST(DatasetCache, LockFileOfALiveHolderIsWaitedForAndOfADeadOneRemoved) {
   std::ofstream(lock) << this_host() << " " << gone << "\n";
   // --regenerate always takes the lock (a hit would not).
   EXPECT_FALSE(obtain_dataset(spec, 5, dir.path(), nullptr, true).reused);
+  EXPECT_FALSE(fs::exists(lock));
+}
+
+// /proc/PID/stat's state (the field after the command's ')'), '?' when gone.
+char process_state(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  const std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto paren = stat.rfind(')');
+  return paren == std::string::npos || paren + 2 >= stat.size() ? '?' : stat[paren + 2];
+}
+
+// A holder that has exited but was never reaped (a zombie: kill(pid, 0)
+// still succeeds) is dead too: the lock is removed, not waited for forever.
+TEST(DatasetCache, LockFileOfAZombieHolderIsRemoved) {
+  testing::TempDir dir;
+  const DatasetSpec spec = friedman(300);
+  const fs::path lock = lock_file_of(dataset_cache_file(spec, 6, dir.path()));
+  const pid_t zombie = ::fork();
+  ASSERT_GE(zombie, 0);
+  if (zombie == 0) ::_exit(0);
+  for (int i = 0; i < 200 && process_state(zombie) != 'Z'; ++i) ::usleep(10000);
+  ASSERT_EQ(process_state(zombie), 'Z');
+  ASSERT_EQ(::kill(zombie, 0), 0);  // what the lock checked before
+  std::ofstream(lock) << this_host() << " " << zombie << "\n";
+
+  // The waiter in a child, so that a wait forever fails here instead of hanging.
+  const pid_t waiter = ::fork();
+  ASSERT_GE(waiter, 0);
+  if (waiter == 0) ::_exit(obtain_dataset(spec, 6, dir.path(), nullptr).reused ? 10 : 20);
+  int status = 0;
+  pid_t ended = 0;
+  for (int i = 0; i < 1000 && ended == 0; ++i) {  // up to 10 s
+    ended = ::waitpid(waiter, &status, WNOHANG);
+    if (ended == 0) ::usleep(10000);
+  }
+  if (ended == 0) {
+    ::kill(waiter, SIGKILL);
+    ::waitpid(waiter, &status, 0);
+  }
+  int zombie_status = 0;
+  ::waitpid(zombie, &zombie_status, 0);
+  ASSERT_EQ(ended, waiter) << "waited for the zombie holder";
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 20);  // it generated
   EXPECT_FALSE(fs::exists(lock));
 }
 

@@ -98,6 +98,7 @@ TEST(FieldIdentity, EveryExperimentKeyChangesTheIdentityAndRoundTrips) {
        {"model.init.biases.low", "-1"}},
       {{"kind", "not emitted: only train here"},
        {"sweep", "read by `cnclab sweep`, not part of a trial's config"},
+       {"slurm", "read by --slurm, not part of the identity: SlurmBlockLeavesTheIdentity"},
        {"trainer", "EveryTrainerKeyChangesTheIdentityAndRoundTrips"},
        {"dataset.generator", "another generator needs other options: GeneratorOptions"},
        {"dataset.options", "GeneratorOptions"},
@@ -105,6 +106,19 @@ TEST(FieldIdentity, EveryExperimentKeyChangesTheIdentityAndRoundTrips) {
       {{"init_from.normaliser", {"init_from.experiment=" + files[0]}},
        {"split.validation_count", {"split.train_count=20"}},
        {"split.test_count", {"split.train_count=20"}}});
+}
+
+// A `slurm:` block (sweep/slurm_fields.hpp) says where a run goes, not what
+// it computes: the resolved config, whose hash names the result, is the
+// same with and without it.
+TEST(FieldIdentity, SlurmBlockLeavesTheIdentity) {
+  const std::string base = kBase + "trainer: {type: sgdm}\n";
+  const auto plain = parse_experiment(base, "e.yaml");
+  const auto with_block = parse_experiment(
+      base + "slurm: {partition: long, time: '2-00:00:00', cpus_per_task: 8, mem: 64G}\n", "e.yaml",
+      {"slurm.max_concurrent=3"});
+  EXPECT_EQ(with_block.resolved_yaml, plain.resolved_yaml);
+  EXPECT_EQ(hash_hex(with_block.resolved_yaml), hash_hex(plain.resolved_yaml));
 }
 
 TEST(FieldIdentity, GeneratorOptions) {

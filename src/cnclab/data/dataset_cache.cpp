@@ -21,12 +21,27 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
+// Whether process `pid` of this host has ended: no such process, or a zombie
+// (it has exited and waits only for its parent to reap it, which a parent
+// that forked it may never do; kill(pid, 0) still succeeds on it). The state
+// is the field after the command's closing parenthesis in /proc/PID/stat
+// (proc(5)); the command may itself hold ')' and spaces.
+bool dataset_lock_holder_ended(long pid) {
+  if (::kill(static_cast<pid_t>(pid), 0) != 0) return errno == ESRCH;
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  const std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto paren = stat.rfind(')');
+  if (paren == std::string::npos || paren + 2 >= stat.size()) return false;
+  const char state = stat[paren + 2];
+  return state == 'Z' || state == 'X';
+}
+
 // An exclusive lock held as a lock file for the object's lifetime: created
 // with O_CREAT | O_EXCL (atomic on local filesystems and NFSv3+, where
 // flock(2) may be local to one client) and holding "<host> <pid>\n" of its
 // holder; removed on destruction. A waiter polls. A lock file whose holder is
-// on this host and no longer runs (killed before it removed its lock) is
-// stale and removed; a holder on another host cannot be checked and is waited
+// on this host and no longer runs (killed before it removed its lock, or a
+// zombie) is stale and removed; a holder on another host cannot be checked and is waited
 // for, with a note every minute naming the file to remove if that node died.
 // Two waiters removing the same stale lock at once may both generate: the
 // dataset is then written twice, atomically and with the same content.
@@ -90,7 +105,7 @@ class DatasetLockFile {
     long pid = 0;
     if (!(in >> host >> pid) || pid <= 0) return false;
     if (holder_text(pid) != holder) return false;  // another host
-    return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+    return dataset_lock_holder_ended(pid);
   }
 
   fs::path path_;

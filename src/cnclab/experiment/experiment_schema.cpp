@@ -135,7 +135,8 @@ json with_header(json s, const std::string& title) {
 
 }  // namespace
 
-json train_file_schema(const std::vector<FieldInfo>& sweep_block) {
+json train_file_schema(const std::vector<FieldInfo>& sweep_block,
+                       const std::vector<FieldInfo>& slurm_block) {
   const auto info = experiment_fields().info();
   json s = object_schema(info, "a training experiment (kind: train, the default)");
   for (const auto& f : info) {
@@ -147,6 +148,10 @@ json train_file_schema(const std::vector<FieldInfo>& sweep_block) {
                                      ? open_schema(f.doc + "; checked by `cnclab sweep`")
                                      : object_schema(sweep_block, f.doc);
     }
+    if (f.key == "slurm") {
+      s["properties"]["slurm"] = slurm_block.empty() ? open_schema(f.doc + "; checked by `--slurm`")
+                                                     : object_schema(slurm_block, f.doc);
+    }
   }
   // The reader requires what the experiment is about (no silent defaults).
   for (const char* key : {"dataset", "model", "trainer"}) s["required"].push_back(key);
@@ -155,8 +160,9 @@ json train_file_schema(const std::vector<FieldInfo>& sweep_block) {
   return s;
 }
 
-json experiment_file_schema(const std::string& kind, const std::vector<FieldInfo>& sweep_block) {
-  std::vector<TaggedVariant> variants = {{"train", train_file_schema(sweep_block)}};
+json experiment_file_schema(const std::string& kind, const std::vector<FieldInfo>& sweep_block,
+                            const std::vector<FieldInfo>& slurm_block) {
+  std::vector<TaggedVariant> variants = {{"train", train_file_schema(sweep_block, slurm_block)}};
   for (const auto& k : registered_job_kinds()) {
     json s = k.schema ? k.schema()
                       : open_schema("kind " + k.kind + " (" + k.summary +

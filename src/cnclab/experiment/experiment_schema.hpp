@@ -16,16 +16,19 @@
 
 namespace cnclab {
 
-// The schema of a `kind: train` file (the default kind). `sweep_block`: the
-// declared keys of its `sweep:` block (sweep/sweep_fields.hpp; the sweep
-// module sits above this one); empty: an open object.
-nlohmann::json train_file_schema(const std::vector<FieldInfo>& sweep_block = {});
+// The schema of a `kind: train` file (the default kind). `sweep_block`,
+// `slurm_block`: the declared keys of its `sweep:` and `slurm:` blocks
+// (sweep/sweep_fields.hpp, sweep/slurm_fields.hpp; the sweep module sits
+// above this one); empty: an open object.
+nlohmann::json train_file_schema(const std::vector<FieldInfo>& sweep_block = {},
+                                 const std::vector<FieldInfo>& slurm_block = {});
 
 // The whole document schema: `kind` picks the train schema or a job kind's
 // (its JobKind::schema, or an open object saying its keys are not declared
 // yet). `kind` non-empty: that kind's schema alone, as a document. Throws
 // ConfigError for an unknown kind.
 nlohmann::json experiment_file_schema(const std::string& kind = "",
-                                      const std::vector<FieldInfo>& sweep_block = {});
+                                      const std::vector<FieldInfo>& sweep_block = {},
+                                      const std::vector<FieldInfo>& slurm_block = {});
 
 }  // namespace cnclab

@@ -321,7 +321,13 @@ const FieldList<ExperimentSpec>& experiment_fields() {
               custom_info("sweep",
                           "the sweep block, read only by `cnclab sweep` (README: "
                           "Sweeps)"),
-              [](const ConfigReader& r, E&) { r.raw("sweep"); }, nothing, never);
+              [](const ConfigReader& r, E&) { r.raw("sweep"); }, nothing, never)
+          .custom(
+              custom_info("slurm",
+                          "defaults of `--slurm`'s options, read only by `sweep --slurm` and "
+                          "`reproduce --slurm`; never part of the result's identity (README: "
+                          "Slurm)"),
+              [](const ConfigReader& r, E&) { r.raw("slurm"); }, nothing, never);
   return fields;
 }
 

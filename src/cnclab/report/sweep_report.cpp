@@ -40,7 +40,7 @@ std::string values_text(const SweepPlan& plan, std::size_t trial) {
 
 void print_summary(std::ostream& out, const SweepPlan& plan,
                    const std::vector<TrialOutcome>& outcomes, const SweepSummary& s,
-                   const fs::path& dir) {
+                   const fs::path& dir, const std::string& name) {
   const std::string& objective = plan.objective.metric;
   TextTable table;
   table.header = {"rank"};
@@ -61,9 +61,12 @@ void print_summary(std::ostream& out, const SweepPlan& plan,
     }
     table.rows.push_back(std::move(row));
   }
-  out << "== sweep " << plan.experiment << ": " << plan.trials.size() << " trials ("
-      << s.points.size() << " points x " << plan.repeats << " repeats, " << plan.method << "); "
-      << s.complete << " complete, " << s.failed + s.errors << " failed";
+  out << "== sweep "
+      << (name.empty() || name == plan.experiment ? plan.experiment
+                                                  : name + " (experiment " + plan.experiment + ")")
+      << ": " << plan.trials.size() << " trials (" << s.points.size() << " points x "
+      << plan.repeats << " repeats, " << plan.method << "); " << s.complete << " complete, "
+      << s.failed + s.errors << " failed";
   if (s.missing) out << ", " << s.missing << " not run";
   out << " ==\n";
   table.print_aligned(out);

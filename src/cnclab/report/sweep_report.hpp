@@ -3,6 +3,7 @@
 // trials and the best trial (`cnclab sweep`, `cnclab sweep merge`).
 #include <filesystem>
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "cnclab/sweep/sweep_plan.hpp"
@@ -10,9 +11,11 @@
 
 namespace cnclab {
 
-// The ranked table, failures and the best trial, for people.
+// The ranked table, failures and the best trial, for people. `name`: the
+// sweep's own name (a `kind: sweep` file's), shown with the experiment it
+// sweeps; "": the header names the experiment only.
 void print_summary(std::ostream& out, const SweepPlan& plan,
                    const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary,
-                   const std::filesystem::path& dir);
+                   const std::filesystem::path& dir, const std::string& name = "");
 
 }  // namespace cnclab

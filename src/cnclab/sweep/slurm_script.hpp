@@ -32,6 +32,9 @@ struct SlurmOptions {
   std::string signal = "USR1@120";  // warning SIG@SECONDS before a kill (#SBATCH --signal=B:...)
   std::size_t tasks = 0;            // array tasks; 0 = one per trial to run (<= kMaxArrayTasks)
   bool dry_run = false;             // print the scripts, submit and write nothing
+  // The keys (slurm_fields.hpp) set on the command line: they win over a
+  // file's `slurm:` block (resolve_slurm_options).
+  std::vector<std::string> given;
   // ConfigError naming the option: cpus_per_task 0, a signal not NAME@SECONDS
   // (NAME one of USR1, USR2; SECONDS 10..65535), a time or partition with spaces.
   void validate() const;

@@ -3,6 +3,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/spec.hpp"
+#include "cnclab/sweep/slurm_fields.hpp"
 
 namespace cnclab {
 namespace {
@@ -117,7 +118,10 @@ const FieldList<SweepJob>& sweep_job_fields() {
             [](const J& job) { return YAML::Node(job.experiment_as_written); })
         .field("overrides", &J::overrides, "key=value settings of every trial")
         .field("jobs", &J::jobs, "trials at once (0: the cores this process may use)")
-        .section("sweep", &J::sweep, sweep_fields(), "the sweep (as an experiment's sweep block)");
+        .section("sweep", &J::sweep, sweep_fields(), "the sweep (as an experiment's sweep block)")
+        .custom(
+            slurm_block_info(), [](const ConfigReader& r, J&) { r.raw("slurm"); },
+            [](const J&) { return YAML::Node(); }, [](const J&) { return false; });
   }();
   return fields;
 }
