@@ -8,7 +8,9 @@
 // from configs/surfaces/*.yaml into a temporary folder first. Times are CPU
 // seconds of this process and its children (the STEP reader's forked probe,
 // cad/occt_shape_io.cpp), so a loaded machine does not skew the ratio.
-// Medians over REPEATS (default 5). Run via scripts/bench_cad_step_error.
+// Medians over REPEATS (default 5). Run via `scripts/bench_cad_step_error
+// --in-process`; that script's own figures (each side a fresh `cnclab dataset
+// generate` process) are what users see and the figure.
 //
 // Where the STEP side's extra time goes: the read (fork, OCCT's STEP session
 // set-up, parse and transfer in the child, the BRep handover; about 50 ms

@@ -23,7 +23,6 @@ fig14_contour_prediction_error to RESULTS_DIR/figures/contour_error/ (or
 --out DIR/contour_error/; each to a temporary name, then renamed) in the
 style of paper_style.py, titled with seed 002's captions.
 """
-import argparse
 import glob
 import os
 import sys
@@ -31,8 +30,8 @@ import sys
 import h5py
 import numpy as np
 import yaml
-from paper_style import (ACTUAL, DOUBLE, ERROR, PREDICTED, SINGLE, Output, add_arguments,
-                         apply, plt, rasterize_large)
+from paper_style import (ACTUAL, DOUBLE, ERROR, PREDICTED, SINGLE, Output, apply,
+                         parse_arguments, plt, rasterize_large)
 
 STUDY = "contour_error_training_methods"
 MAKE = "cnclab reproduce experiments/contour_error/training_methods.yaml"
@@ -282,11 +281,7 @@ def load(results):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("results", nargs="?", default="results", help="results folder")
-    add_arguments(parser)
-    args = parser.parse_args()
+    args = parse_arguments(__doc__)
     series, meta = load(args.results)
     apply()
     out = Output(args, args.results, "contour_error")

@@ -15,14 +15,14 @@ plan's predicted and simulated contour error against eps_max. Writes
 feedrate_<label> to RESULTS_DIR/figures/feedrate/ (or --out DIR/feedrate/).
 Exits 3 when there is no such file.
 """
-import argparse
 import glob
 import os
 import sys
 
 import h5py
 import numpy as np
-from paper_style import ACTUAL, DOUBLE, ERROR, PREDICTED, Output, add_arguments, apply, plt
+from paper_style import (ACTUAL, DOUBLE, ERROR, PREDICTED, Output, apply, parse_arguments,
+                         plt)
 
 JOB = "contour_error_feedrate"
 MAKE = ("cnclab reproduce experiments/contour_error/narx.yaml "
@@ -61,11 +61,7 @@ def figure(out, label, group):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("results", nargs="?", default="results", help="results folder")
-    add_arguments(parser)
-    args = parser.parse_args()
+    args = parse_arguments(__doc__)
     files = glob.glob(os.path.join(args.results, JOB, "*-ticks.h5"))
     if not files:
         print(f"feedrate.py: no {JOB} ticks file under {args.results}; run `{MAKE}`",

@@ -18,7 +18,6 @@ RMS of the network, and draws the closed-loop stage's series per epoch
 RESULTS_DIR/figures/narx_training/closed_loop_stage.png (or --out
 DIR/narx_training/, --format; style of paper_style.py).
 """
-import argparse
 import os
 import sys
 
@@ -28,7 +27,7 @@ import yaml
 from contour_error import Missing, newest_sweep, resolved_yaml, text
 from matplotlib.lines import Line2D
 from matplotlib.ticker import MaxNLocator
-from paper_style import DOUBLE, ERROR, Output, add_arguments, apply, plt
+from paper_style import DOUBLE, ERROR, Output, apply, parse_arguments, plt
 
 STUDIES = ["contour_error_training_methods", "contour_error_architecture"]
 SERIES = ["sse", "mu", "curvature", "alpha", "beta", "gamma", "gradient"]
@@ -103,11 +102,7 @@ def fmt(x):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("results", nargs="?", default="results", help="results folder")
-    add_arguments(parser)
-    args = parser.parse_args()
+    args = parse_arguments(__doc__)
     rows = []
     for study in STUDIES:
         try:

@@ -2,13 +2,15 @@
 
 Sizes are for a two-column paper: SINGLE = 3.5 in (one column), DOUBLE =
 7.0 in (both columns), drawn at that size, so 8 pt text is 8 pt in print.
-Every script takes the same output options (add_arguments) and saves through
+Every script reads the same command line, `SCRIPT.py [OPTIONS] [RESULTS_DIR]`
+(parse_arguments; the output options alone: add_arguments), and saves through
 save(): --format png|pdf|svg, --dpi (PNG resolution and that of rasterised
 parts in PDF/SVG), --out (figures root), --no-title (drop the figure title,
 for a LaTeX caption). Artists with more than LARGE points (long time series,
 scatters) are rasterised in vector output by rasterize_large(); scatters of
 that size are drawn as density (hexbin) by density().
 """
+import argparse
 import os
 
 import matplotlib
@@ -56,6 +58,19 @@ RC = {
 ACTUAL = "tab:blue"
 PREDICTED = "tab:green"
 ERROR = "tab:red"
+
+
+def parse_arguments(description):
+    """The command line of every figure script (scripts/figures/run's contract):
+    `SCRIPT.py [--format F] [--dpi N] [--out DIR] [--no-title] [RESULTS_DIR]`,
+    RESULTS_DIR defaulting to results/ of the working directory. `description`
+    is the script's __doc__ (its --help)."""
+    parser = argparse.ArgumentParser(description=description,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("results", nargs="?", default="results",
+                        help="results folder (default: results)")
+    add_arguments(parser)
+    return parser.parse_args()
 
 
 def add_arguments(parser):

@@ -1,7 +1,7 @@
 """Seed 000's figures from the step-error study's HDF5 results.
 
 Usage: /usr/bin/python3 scripts/figures/step_error.py [--format png|pdf|svg]
-       [--dpi N] [--out DIR] [--no-title] RESULTS_DIR
+       [--dpi N] [--out DIR] [--no-title] [RESULTS_DIR]
 (scripts/figures/run calls it).
 
 Reads configs/studies/step_error_tables.yaml (which experiment made what, per
@@ -22,7 +22,6 @@ A variant without dropout (tuned) draws Fig. 6a from its Table 2 p = 0.5 run.
 
 Exits 3 with a note when results are missing (scripts/figures/run skips).
 """
-import argparse
 import glob
 import os
 import sys
@@ -31,7 +30,7 @@ import h5py
 import numpy as np
 import yaml
 from matplotlib.ticker import LogLocator, NullFormatter
-from paper_style import (DOUBLE, SINGLE, Output, add_arguments, apply, density, plt,
+from paper_style import (DOUBLE, SINGLE, Output, apply, density, parse_arguments, plt,
                          share_clim)
 
 # The repository's manifest, wherever the script is run from.
@@ -194,11 +193,7 @@ def loss_curve(out, run, stem):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("results", help="results folder")
-    add_arguments(parser)
-    args = parser.parse_args()
+    args = parse_arguments(__doc__)
     results = args.results
     if not os.path.exists(MANIFEST):
         print(f"step_error figures: {MANIFEST} not found", file=sys.stderr)

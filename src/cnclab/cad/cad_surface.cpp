@@ -1,5 +1,7 @@
 #include "cnclab/cad/cad_surface.hpp"
 
+#include <vector>
+
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 
@@ -11,12 +13,15 @@ std::string CadSurface::label() const {
 
 void check_tool_path_on_face(const CadSurface& cad, const ToolPathOptions& o) {
   if (!cad.boundary) throw Error(cad.label() + ": no face boundary to check the tool path against");
+  // The u of the CC points, the same on every line (geometry/tool_path.hpp).
+  std::vector<double> us(o.points_per_line);
+  for (std::size_t k = 0; k < us.size(); ++k) us[k] = tool_path_u(cad.surface, o, k);
   for (std::size_t line = 0; line < o.lines; ++line) {
     const double v = tool_path_v(cad.surface, o, line);
-    for (std::size_t k = 0; k < o.points_per_line; ++k) {
-      const double u = tool_path_u(cad.surface, o, k);
-      const Eigen::Vector3d p = surface_point(cad.surface, u, v);
-      if (!cad.boundary->contains(u, v, p)) {
+    for (std::size_t k = 0; k < us.size(); ++k) {
+      const double u = us[k];
+      if (!cad.boundary->contains(cad.surface, u, v)) {
+        const Eigen::Vector3d p = surface_point(cad.surface, u, v);
         throw ConfigError(cad.label() + " (" + cad.surface_type +
                           ") is trimmed and the tool path "
                           "leaves it: line " +

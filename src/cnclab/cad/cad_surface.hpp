@@ -22,9 +22,11 @@ namespace cnclab {
 class CadFaceBoundary {
  public:
   virtual ~CadFaceBoundary() = default;
-  // Whether the point `point` = S(u, v) of CadSurface::surface lies on the
-  // face (inside or on its boundary, to the face's tolerance).
-  virtual bool contains(double u, double v, const Eigen::Vector3d& point) const = 0;
+  // Whether the point S(u, v) of `surface` (CadSurface::surface) lies on the
+  // face (inside or on its boundary, to the face's tolerance). Evaluates
+  // S(u, v) only where the face's own parameters differ from the NURBS
+  // form's (a B-spline face keeps them: a 2-D test on (u, v) alone).
+  virtual bool contains(const NurbsSurface& surface, double u, double v) const = 0;
 };
 
 struct CadSurface {

@@ -27,16 +27,17 @@ double nearest_period(double t, double lo, double hi, double period) {
 
 class OcctFaceBoundary : public CadFaceBoundary {
  public:
-  explicit OcctFaceBoundary(const TopoDS_Face& face)
+  OcctFaceBoundary(const TopoDS_Face& face, const occt::UvBounds& bounds)
       : face_(face),
         surface_(BRep_Tool::Surface(face)),
         same_parameters_(occt::keeps_parameters(surface_)),
         tolerance_(BRep_Tool::Tolerance(face)),
-        bounds_(occt::face_bounds(face)),
+        bounds_(bounds),
         classifier_(face, 1e-9) {}
 
-  bool contains(double u, double v, const Eigen::Vector3d& point) const override {
+  bool contains(const NurbsSurface& surface, double u, double v) const override {
     if (!same_parameters_) {
+      const Eigen::Vector3d point = surface_point(surface, u, v);
       // 10x the face tolerance: the NURBS form is exact, rounding aside.
       if (!GeomLib_Tool::Parameters(surface_, gp_Pnt(point.x(), point.y(), point.z()),
                                     10.0 * tolerance_ + 1e-7, u, v)) {
@@ -87,8 +88,9 @@ CadSurface read_cad_surface(const std::filesystem::path& file, int face) {
   const TopoDS_Face& f = shape.faces[static_cast<std::size_t>(face - 1)];
   try {
     out.surface_type = occt::surface_type_name(BRep_Tool::Surface(f));
-    out.surface = occt::from_occt(*occt::face_nurbs(f, occt::face_bounds(f)));
-    out.boundary = std::make_shared<OcctFaceBoundary>(f);
+    const occt::UvBounds bounds = occt::face_bounds(f);
+    out.surface = occt::from_occt(*occt::face_nurbs(f, bounds));
+    out.boundary = std::make_shared<OcctFaceBoundary>(f, bounds);
   } catch (...) {
     throw ConfigError(out.label() + ": its " + out.surface_type +
                       " surface has no NURBS form in OCCT (" + occt::occt_failure_text() + ")");

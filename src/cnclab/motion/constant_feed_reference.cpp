@@ -7,6 +7,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/motion/path_grid.hpp"
+#include "cnclab/motion/reference_trajectory.hpp"
 #include "cnclab/motion/scurve.hpp"
 
 namespace cnclab {
@@ -59,17 +60,9 @@ ReferenceTrajectory constant_feed_reference(const PlanarPath& path,
   const double F = profile.feedrate, A = profile.tangential_acceleration;
   const double J = profile.tangential_jerk;
   const double T = scurve_time(L, F, A, J);
-  const Eigen::Index n = static_cast<Eigen::Index>(std::ceil(T / period - 1e-9)) + 1;
-  ReferenceTrajectory r;
-  r.period = period;
-  r.time.resize(n);
-  r.u.resize(n);
-  r.position.resize(n, 2);
-  r.velocity.resize(n, 2);
-  r.acceleration.resize(n, 2);
-  r.jerk.resize(n, 2);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const double t = static_cast<double>(k) * period;
+  ReferenceTrajectory r = sized_reference_trajectory(T, period);
+  for (Eigen::Index k = 0; k < r.samples(); ++k) {
+    const double t = r.time[static_cast<std::size_t>(k)];
     const ScurveState st = t >= T ? ScurveState{L, 0, 0, 0} : scurve_state(L, F, A, J, t);
     const double u = inverse.parameter(st.s);
     const PathPoint p = path.evaluate(u);
@@ -82,12 +75,7 @@ ReferenceTrajectory constant_feed_reference(const PlanarPath& path,
     const double uddd =
         (st.j - (dtangent.dot(p.d2) + tangent.dot(p.d3)) * ud * ud * ud - 3 * tc2 * ud * udd) /
         sigma;
-    r.time[k] = t;
-    r.u[k] = u;
-    r.position.row(k) = p.position.transpose();
-    r.velocity.row(k) = (p.d1 * ud).transpose();
-    r.acceleration.row(k) = (p.d2 * ud * ud + p.d1 * udd).transpose();
-    r.jerk.row(k) = (p.d3 * ud * ud * ud + 3 * p.d2 * ud * udd + p.d1 * uddd).transpose();
+    set_reference_sample(r, k, u, p, ud, udd, uddd);
   }
   return r;
 }

@@ -16,5 +16,6 @@
 #include "cnclab/motion/path_grid.hpp"
 #include "cnclab/motion/path_speed_cap.hpp"
 #include "cnclab/motion/planar_path.hpp"
+#include "cnclab/motion/reference_trajectory.hpp"
 #include "cnclab/motion/scurve.hpp"
 #include "cnclab/motion/smoothing_spline.hpp"

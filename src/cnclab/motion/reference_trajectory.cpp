@@ -1,0 +1,32 @@
+#include "cnclab/motion/reference_trajectory.hpp"
+
+#include <cmath>
+
+namespace cnclab {
+
+ReferenceTrajectory sized_reference_trajectory(double duration, double period) {
+  const Eigen::Index n = static_cast<Eigen::Index>(std::ceil(duration / period - 1e-9)) + 1;
+  ReferenceTrajectory r;
+  r.period = period;
+  r.time.resize(static_cast<std::size_t>(n));
+  for (Eigen::Index k = 0; k < n; ++k) {
+    r.time[static_cast<std::size_t>(k)] = static_cast<double>(k) * period;
+  }
+  r.u.resize(static_cast<std::size_t>(n));
+  r.position.resize(n, 2);
+  r.velocity.resize(n, 2);
+  r.acceleration.resize(n, 2);
+  r.jerk.resize(n, 2);
+  return r;
+}
+
+void set_reference_sample(ReferenceTrajectory& r, Eigen::Index k, double u, const PathPoint& p,
+                          double ud, double udd, double uddd) {
+  r.u[static_cast<std::size_t>(k)] = u;
+  r.position.row(k) = p.position.transpose();
+  r.velocity.row(k) = (p.d1 * ud).transpose();
+  r.acceleration.row(k) = (p.d2 * ud * ud + p.d1 * udd).transpose();
+  r.jerk.row(k) = (p.d3 * ud * ud * ud + 3 * p.d2 * ud * udd + p.d1 * uddd).transpose();
+}
+
+}  // namespace cnclab
