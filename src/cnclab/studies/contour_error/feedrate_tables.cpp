@@ -98,7 +98,13 @@ void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
                     "; " + (status == r.facts.end() ? "" : status->second));
     if (r.metrics.count(label + "_ratio_uniform_oracle")) {
       notes.push_back(label + ": uniform slowdown / oracle time = " +
-                      fixed_decimals(feedrate_metric(r, label + "_ratio_uniform_oracle"), 2));
+                      fixed_decimals(feedrate_metric(r, label + "_ratio_uniform_oracle"), 2) +
+                      " (a perfect predictor); ceiling uniform / unconstrained = " +
+                      fixed_decimals(feedrate_metric(r, label + "_uniform_time") /
+                                         feedrate_metric(r, label + "_unconstrained_time"),
+                                     2) +
+                      " (no plan is faster than the unconstrained one; docs/motion.md, "
+                      "\"What limits it\")");
     }
   }
   print_table_title(out, format,
