@@ -27,8 +27,13 @@ fs::path write_job(const testing::TempDir& dir, const std::string& extra,
 TEST(FeedrateJob, LoadsAndRoundTrips) {
   testing::TempDir dir;
   const FeedrateJob job = load_feedrate_job(
-      write_job(dir, "tolerances: [20, 12]\nprediction_margin: 3\nsection: {start: 5}\n"));
+      write_job(dir,
+                "tolerances: [20, 12]\nprediction_margin: 3\nsection: {start: 5}\noracle: true\n"
+                "optimisation: {raise_caps: true}\n"));
   EXPECT_EQ(job.tolerances, (std::vector<double>{20, 12}));
+  EXPECT_TRUE(job.oracle);
+  EXPECT_TRUE(job.optimisation.raise_caps);
+  EXPECT_FALSE(load_feedrate_job(write_job(dir, "")).oracle);  // off unless asked
   EXPECT_DOUBLE_EQ(job.section.start, 5.0);
   EXPECT_EQ(job.predictor_file, dir.path() / "narx.yaml");
   const fs::path again = dir.path() / "again.yaml";

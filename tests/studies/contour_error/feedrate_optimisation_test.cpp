@@ -10,6 +10,7 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cstdio>
+#include <vector>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/motion/analytic_paths.hpp"
@@ -20,6 +21,7 @@ namespace {
 
 constexpr std::size_t kDelays = 4;  // input and feedback delays of the ARX
 constexpr double kLinear = 1e-3;    // tanh argument scale: tanh(h) = h (1 - h^2/3)
+constexpr double kTimeTol = 1e-3;   // traversal times compared to one 1 ms tick [s]
 
 // e(t) = sum_j b_j v(t-j) + sum_k a_k e(t-k) + c, j = 0..3, k = 1..4, fitted
 // by least squares to one axis of a simulated run, then written as a NARX
@@ -95,6 +97,46 @@ TEST(FeedrateOptimisation, ConstraintHoldsOnTheSimulatedMachine) {
       free.total_time());
   EXPECT_GE(check.share_within, 0.999);
   EXPECT_LT(check.max, free_check.max);
+}
+
+// The loop with the simulated machine itself as the error model (the job's
+// oracle), lower-only and two-sided (raise_caps): both plans keep every tick
+// within the tolerance on the machine (a separate machine run checks), and
+// raising caps the lower-only loop never raises is not slower.
+TEST(FeedrateOptimisation, SimulatedMachineAsModelMeetsTheTolerance) {
+  VerificationOptions v;
+  const FeedrateProfile free = plan_feedrate(test_path());
+  const ContourCheck free_check = check_on_machine(test_path(), interpolate(test_path(), free), v);
+  FeedrateOptimisationOptions o;
+  o.tolerance = v.tolerance = 0.5 * free_check.max;
+  std::size_t calls = 0;
+  const ContourErrorModel machine = [&](const ReferenceTrajectory& r) {
+    ++calls;
+    return check_on_machine(test_path(), r, v).simulated;
+  };
+  const FeedrateOptimisationResult lower = optimise_feedrate(test_path(), machine, o);
+  ASSERT_EQ(lower.status, OptimisationStatus::converged) << lower.reason;
+  EXPECT_EQ(calls, lower.history.size());
+  o.raise_caps = true;
+  o.max_iterations = 8;
+  const FeedrateOptimisationResult both = optimise_feedrate(test_path(), machine, o);
+  ASSERT_EQ(both.status, OptimisationStatus::converged) << both.reason;
+  for (const auto* res : {&lower, &both}) {
+    const ContourCheck check = check_on_machine(test_path(), res->reference, v);
+    std::printf("%s: %.4f s (unconstrained %.4f), simulated max %.2f um of %.2f, %zu plans\n",
+                res == &lower ? "lower-only" : "raise_caps", check.time, free.total_time(),
+                check.max * 1e3, o.tolerance * 1e3, res->history.size());
+    EXPECT_LE(check.max, o.tolerance);
+    EXPECT_GT(check.time, free.total_time());
+  }
+  EXPECT_LE(both.profile.total_time(), lower.profile.total_time() + kTimeTol);
+}
+
+TEST(FeedrateOptimisation, ModelOfTheWrongLengthIsAnError) {
+  const ContourErrorModel short_model = [](const ReferenceTrajectory&) {
+    return std::vector<double>(3, 0.0);
+  };
+  EXPECT_THROW(optimise_feedrate(test_path(), short_model, FeedrateOptimisationOptions{}), Error);
 }
 
 TEST(FeedrateOptimisation, UnreachableToleranceStopsWithAReason) {

@@ -30,6 +30,9 @@ const FieldList<FeedrateOptimisationOptions>& feedrate_job_optimisation_fields()
                  "p in |eps| ~ v^p: caps scale by (s eps_max / |eps|)^(1/p)", Rule::positive())
           .field("margin", &O::margin, "arc length each side of an exceeding tick [mm]",
                  Rule::non_negative())
+          .field("raise_caps", &O::raise_caps,
+                 "two-sided cap update: caps also rise where the prediction is below the "
+                 "target; the fastest plan within tolerance - margin of all plans is kept")
           .field("max_iterations", &O::max_iterations, "plans, the first included",
                  Rule::at_least(1))
           .field("min_speed", &O::min_speed, "a cap below this [mm/s]: infeasible",
@@ -69,6 +72,9 @@ const FieldList<FeedrateJob>& feedrate_job_fields() {
                  "what the predictor may under-predict the machine's contour error by [µm]; "
                  "the loop plans for a predicted error within tolerance - margin",
                  Rule::non_negative())
+          .field("oracle", &J::oracle,
+                 "also run the loop with the simulated machine as its error model (a perfect "
+                 "predictor, margin 0): method oracle, the loop's own limit (a diagnostic)")
           .section("optimisation", &J::optimisation, feedrate_job_optimisation_fields(),
                    "the predictive optimisation (feedrate_optimisation.hpp)")
           .section("verification", &J::verification, feedrate_job_verification_fields(),

@@ -14,6 +14,7 @@
 //   section: {start: 0, length: 150}     # arc length of the dataset's path [mm]
 //   tolerances: [10, 5, 3]          # eps_max [µm]
 //   prediction_margin: 0            # [µm], the loop plans for eps_max - margin
+//   oracle: false                   # also plan with the simulated machine as the model
 //   optimisation: {safety_factor, error_exponent, margin, max_iterations, min_speed, grid_spacing}
 //   verification: {seed, required_share, bisection_steps, min_factor}
 #include <filesystem>
@@ -42,6 +43,11 @@ struct FeedrateJob {
   // What the predictor may under-predict the machine by [µm]
   // (FeedrateOptimisationOptions::prediction_margin); < every tolerance.
   double prediction_margin = 0.0;
+  // Also run the loop with the simulated machine as its error model (a
+  // perfect predictor, margin 0): method "oracle", what the loop itself
+  // reaches apart from the predictor's error (a diagnostic; the simulated
+  // machine is not available to a real controller).
+  bool oracle = false;
   FeedrateOptimisationOptions optimisation;  // tolerance and limits set per run
   VerificationOptions verification;          // tolerance and machine set per run
   std::filesystem::path source_file;

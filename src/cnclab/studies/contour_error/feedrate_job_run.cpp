@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
@@ -87,6 +89,24 @@ void feedrate_job_add_metrics(RunRecord& rec, const std::string& label,
   rec.metric_units[p + "met"] = "1";
 }
 
+// The loop with the simulated machine (the verification's, same seed) as
+// its error model: a perfect predictor, so no margin.
+FeedrateJobMethod feedrate_job_oracle(const PlanarPath& path, FeedrateOptimisationOptions opt,
+                                      const VerificationOptions& ver) {
+  opt.prediction_margin = 0.0;
+  const ContourErrorModel machine = [&](const ReferenceTrajectory& r) {
+    return check_on_machine(path, r, ver).simulated;
+  };
+  const FeedrateOptimisationResult res = optimise_feedrate(path, machine, opt);
+  FeedrateJobMethod m{"oracle",
+                      res.reference,
+                      check_on_machine(path, res.reference, ver),
+                      res.predicted,
+                      res.status == OptimisationStatus::converged,
+                      std::string(to_string(res.status)) + ": " + res.reason};
+  return m;
+}
+
 }  // namespace
 
 JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
@@ -163,8 +183,21 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
         "constant", cst.reference,
         cst.check,  {},
         cst.met,    cst.reason + "; feed " + shortest_double(cst.parameter) + " mm/s"};
-    for (const FeedrateJobMethod* m : std::initializer_list<const FeedrateJobMethod*>{
-             &unconstrained, &constrained, &uniform, &constant}) {
+    std::vector<const FeedrateJobMethod*> methods = {&unconstrained, &constrained, &uniform,
+                                                     &constant};
+    FeedrateJobMethod oracle;
+    if (job.oracle) {
+      oracle = feedrate_job_oracle(path, opt, ver);
+      methods.push_back(&oracle);
+      rec.metrics[label + "_ratio_uniform_oracle"] = uni.check.time / oracle.check.time;
+      rec.metric_units[label + "_ratio_uniform_oracle"] = "1";
+      report << "  " << label << ": oracle " << fixed_decimals(oracle.check.time, 3) << " s (max "
+             << fixed_decimals(oracle.check.max * 1e3, 2) << " um, within "
+             << fixed_decimals(100 * oracle.check.share_within, 2) << " %); uniform/oracle "
+             << fixed_decimals(uni.check.time / oracle.check.time, 2) << "; " << oracle.note
+             << "\n";
+    }
+    for (const FeedrateJobMethod* m : methods) {
       feedrate_job_write_method(ticks, label + "/" + m->method, *m);
       feedrate_job_add_metrics(rec, label, *m);
     }

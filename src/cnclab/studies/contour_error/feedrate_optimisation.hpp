@@ -21,10 +21,14 @@
 //     v_k the tick's path speed in this plan (so a cap only ever falls);
 //  4. replan under the axis limits and the cap; repeat from 2 until the worst
 //     predicted |eps| <= eps_max - m (converged) or max_iterations plans.
+// With raise_caps, step 3 sets each knot to the smallest such speed over its
+// window, also above the current cap, and the fastest plan within
+// eps_max - m of all plans is the result.
 // The knots of the cap are the unconstrained plan's grid nodes (about
 // planner.grid_spacing apart), starting at the largest path speed the axis
 // velocity limits allow (no effect).
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -53,6 +57,14 @@ struct FeedrateOptimisationOptions {
   // few servo time constants (1/Kp = 25 ms at 40 1/s; 5 mm is 50 ms at
   // 100 mm/s). >= 0.
   double margin = 5.0;
+  // Two-sided cap update (a fixed point rather than a descent): each plan
+  // sets every cap knot anew to the smallest v_k (s (eps_max - m) / |eps_k|)^(1/p)
+  // over the ticks within `margin` of it, so caps also rise where the
+  // prediction is below the target (an early over-slowing is undone). The
+  // loop then runs all max_iterations plans (or stops when no knot moves by
+  // more than 1 %) and returns the fastest plan within eps_max - m. false:
+  // caps only fall and the first plan within eps_max - m is returned.
+  bool raise_caps = false;
   int max_iterations = 15;  // plans including the first, >= 1
   // A cap below this path speed [mm/s] means the tolerance cannot be met by
   // slowing down (the predictor's error at standstill, or its bias, exceeds
@@ -93,9 +105,21 @@ struct FeedrateOptimisationResult {
 std::vector<double> predict_contour_error(ContourPredictor& predictor, const PlanarPath& path,
                                           const ReferenceTrajectory& reference);
 
+// The loop's only view of the machine: |eps_c| per tick of a 1 ms reference
+// [mm]. The NARX predictor (predict_contour_error) in the application; the
+// simulated machine itself (check_on_machine's `simulated`) as a perfect
+// predictor, which measures what the loop can reach apart from the
+// predictor's error.
+using ContourErrorModel = std::function<std::vector<double>(const ReferenceTrajectory&)>;
+
 // The loop above. `progress` (optional) hears of each plan. Throws
 // OptionError for bad options and what plan_feedrate throws; a tolerance
 // that is not met is a result (status, reason), not an error.
+FeedrateOptimisationResult optimise_feedrate(const PlanarPath& path,
+                                             const ContourErrorModel& error_model,
+                                             const FeedrateOptimisationOptions& options,
+                                             const ProgressCallback& progress = {});
+// The same with the NARX predictor (predict_contour_error) as the model.
 FeedrateOptimisationResult optimise_feedrate(const PlanarPath& path, ContourPredictor& predictor,
                                              const FeedrateOptimisationOptions& options,
                                              const ProgressCallback& progress = {});

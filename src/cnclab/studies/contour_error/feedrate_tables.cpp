@@ -12,7 +12,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kFeedrateFile = "contour_error/feedrate.yaml";
-constexpr const char* kFeedrateMethods[] = {"unconstrained", "constrained", "uniform", "constant"};
+constexpr const char* kFeedrateMethods[] = {"unconstrained", "constrained", "uniform", "constant",
+                                            "oracle"};
 
 struct FeedrateTableInput {
   FeedrateJob job;
@@ -45,6 +46,7 @@ Measurements measure_feedrate_tables(const TablesOptions& options) {
     const std::string label = feedrate_table_label(tol);
     for (const char* method : kFeedrateMethods) {
       const std::string p = label + "_" + method + "_";
+      if (!in.result.record.metrics.count(p + "time")) continue;  // oracle: only when asked
       m[label + "." + method + ".time_s"] = feedrate_metric(in.result.record, p + "time");
       m[label + "." + method + ".max_um"] = feedrate_metric(in.result.record, p + "max");
       m[label + "." + method + ".share_within"] =
@@ -77,6 +79,7 @@ void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
     }
     for (const char* method : kFeedrateMethods) {
       const std::string p = label + "_" + method + "_";
+      if (!r.metrics.count(p + "time")) continue;  // oracle: only when asked
       const double time = feedrate_metric(r, p + "time"), max = feedrate_metric(r, p + "max");
       const double share = feedrate_metric(r, p + "share_within") * 100;
       const bool meets = share >= in.job.verification.required_share * 100 - 1e-9;
@@ -93,6 +96,16 @@ void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
                                        feedrate_metric(r, label + "_unconstrained_time"),
                                    2) +
                     "; " + (status == r.facts.end() ? "" : status->second));
+    if (r.metrics.count(label + "_ratio_uniform_oracle")) {
+      notes.push_back(label + ": uniform slowdown / oracle time = " +
+                      fixed_decimals(feedrate_metric(r, label + "_ratio_uniform_oracle"), 2) +
+                      " (a perfect predictor); ceiling uniform / unconstrained = " +
+                      fixed_decimals(feedrate_metric(r, label + "_uniform_time") /
+                                         feedrate_metric(r, label + "_unconstrained_time"),
+                                     2) +
+                      " (no plan is faster than the unconstrained one; docs/motion.md, "
+                      "\"What limits it\")");
+    }
   }
   print_table_title(out, format,
                     "Contour-error constrained feedrate (seed 002's application), " +
@@ -104,7 +117,8 @@ void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
       "methods: unconstrained = minimum time under the axis limits; constrained = "
       "the NARX-predicted local feed limits (feedrate_optimisation.hpp); uniform = "
       "the unconstrained plan slowed by one factor (bisection on the simulated "
-      "machine); constant = the best constant-feed S-curve (bisection on the feed)");
+      "machine); constant = the best constant-feed S-curve (bisection on the feed); oracle "
+      "(when run) = the same loop with the simulated machine as a perfect predictor");
   notes.push_back("prediction_margin " + shortest_double(in.job.prediction_margin) +
                   " µm; required share " +
                   shortest_double(in.job.verification.required_share * 100) + " %; job wall " +
