@@ -259,8 +259,9 @@ class GraphRun {
 
   // Long runs say they are still running: every kHeartbeat without another
   // line, "[running] NAME 2m05s, ..." (the trials themselves are silent).
+  // 10 s: a log that is not a terminal shows a line at least every 10 s.
   void heartbeat() {
-    constexpr std::chrono::seconds kHeartbeat{30};
+    constexpr std::chrono::seconds kHeartbeat{10};
     const auto now = std::chrono::steady_clock::now();
     if (!log_ || now - last_log_ < kHeartbeat) return;
     std::string line;
