@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cnclab/core/error.hpp"
@@ -89,6 +90,18 @@ void feedrate_job_add_metrics(RunRecord& rec, const std::string& label,
   rec.metric_units[p + "met"] = "1";
 }
 
+// An optimised plan as a table row: its reference checked on the machine.
+FeedrateJobMethod optimised_method(std::string method, const FeedrateOptimisationResult& res,
+                                   const PlanarPath& path, const VerificationOptions& ver,
+                                   std::string reason) {
+  return {std::move(method),
+          res.reference,
+          check_on_machine(path, res.reference, ver),
+          res.predicted,
+          res.status == OptimisationStatus::converged,
+          std::move(reason)};
+}
+
 // The loop with the simulated machine (the verification's, same seed) as
 // its error model: a perfect predictor, so no margin.
 FeedrateJobMethod feedrate_job_oracle(const PlanarPath& path, FeedrateOptimisationOptions opt,
@@ -98,13 +111,8 @@ FeedrateJobMethod feedrate_job_oracle(const PlanarPath& path, FeedrateOptimisati
     return check_on_machine(path, r, ver).simulated;
   };
   const FeedrateOptimisationResult res = optimise_feedrate(path, machine, opt);
-  FeedrateJobMethod m{"oracle",
-                      res.reference,
-                      check_on_machine(path, res.reference, ver),
-                      res.predicted,
-                      res.status == OptimisationStatus::converged,
-                      std::string(to_string(res.status)) + ": " + res.reason};
-  return m;
+  return optimised_method("oracle", res, path, ver,
+                          std::string(to_string(res.status)) + ": " + res.reason);
 }
 
 }  // namespace
@@ -166,12 +174,8 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
     }
     if (c.log) *c.log << job.name << ": " << label << " ..." << std::endl;
     const FeedrateOptimisationResult res = optimise_feedrate(path, predictor, opt);
-    FeedrateJobMethod constrained{"constrained",
-                                  res.reference,
-                                  check_on_machine(path, res.reference, ver),
-                                  res.predicted,
-                                  res.status == OptimisationStatus::converged,
-                                  res.reason};
+    const FeedrateJobMethod constrained =
+        optimised_method("constrained", res, path, ver, res.reason);
     unconstrained.check = check_on_machine(path, unconstrained.reference, ver);
     unconstrained.met = unconstrained.check.met;
     const BaselineResult uni = uniform_slowdown(path, free, ver);
