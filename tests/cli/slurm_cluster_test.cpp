@@ -12,11 +12,14 @@
 // slurm-wlm / munge not installed.
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -43,9 +46,28 @@ using testing::TempDir;
 const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
 const std::string kSlurmLocal = CNCLAB_SOURCE_DIR "/scripts/slurm_local";
 const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
-// A port pair of its own, so a developer's `scripts/slurm_local` on the
-// default 6817 does not collide with the test's cluster.
-constexpr int kTestPort = 16817;
+// True when a TCP socket can bind `port` on every address now.
+bool port_free(int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) return false;
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_ANY);
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  const bool ok = ::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0;
+  ::close(fd);
+  return ok;
+}
+
+// A port pair of its own (slurmctld PORT, slurmd PORT+1), free when the test
+// starts: neither a developer's `scripts/slurm_local` on the default 6817
+// nor daemons a killed earlier run left behind collide with the cluster.
+int free_port_pair() {
+  for (int port = 16817; port < 16817 + 200; port += 2) {
+    if (port_free(port) && port_free(port + 1)) return port;
+  }
+  return 16817;  // none free: the start fails and says why
+}
 constexpr auto kWaitLimit = std::chrono::seconds(120);
 
 // 6 trials (3 keep probabilities x 2 learning rates) of about 3 s each on an idle
@@ -63,7 +85,7 @@ std::string sweep_words() {
 // process ends without destructors (start_watchdog).
 class LocalCluster {
  public:
-  explicit LocalCluster(fs::path state) : state_(std::move(state)) {}
+  explicit LocalCluster(fs::path state) : state_(std::move(state)), port_(free_port_pair()) {}
   ~LocalCluster() {
     if (started_) run_shell(state_.parent_path(), env() + kSlurmLocal + " stop");
     std::error_code ignored;
@@ -80,9 +102,8 @@ class LocalCluster {
   }
   // Prefix of a shell command that talks to this cluster.
   std::string env() const {
-    return "CNCLAB_SLURM_DIR='" + state_.string() +
-           "' CNCLAB_SLURM_PORT=" + std::to_string(kTestPort) + " SLURM_CONF='" +
-           (state_ / "etc/slurm.conf").string() + "' ";
+    return "CNCLAB_SLURM_DIR='" + state_.string() + "' CNCLAB_SLURM_PORT=" + std::to_string(port_) +
+           " SLURM_CONF='" + (state_ / "etc/slurm.conf").string() + "' ";
   }
 
  private:
@@ -125,6 +146,7 @@ class LocalCluster {
   }
 
   fs::path state_;
+  int port_;  // slurmctld; slurmd listens on port_ + 1
   bool started_ = false;
   int watchdog_fd_ = -1;  // the pipe's write end: closed, the watchdog stops the cluster
 };
