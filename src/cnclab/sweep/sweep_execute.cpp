@@ -1,6 +1,7 @@
 #include "cnclab/sweep/sweep_execute.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <iostream>
 #include <map>
@@ -8,6 +9,7 @@
 #include <set>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/progress.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/result_store.hpp"
@@ -212,6 +214,23 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
   pool.run.datasets_dir = o.common.datasets_dir;
   pool.trial_timeout_seconds = o.trial_timeout;
   ex.ran = todo.size();
+  // Trials run silently (their output would interleave), so a log shows the
+  // sweep is alive: after 8 s without a line, "[sweep] 3/11 done, 1m05s"
+  // (a line at least every 10 s with the pool's ~1 s tick to spare).
+  using Clock = std::chrono::steady_clock;
+  constexpr std::chrono::seconds kHeartbeat{8};
+  const auto started = Clock::now();
+  auto last_line = started;
+  if (note) {
+    pool.on_tick = [&] {
+      const auto now = Clock::now();
+      if (now - last_line < kHeartbeat) return;
+      *note << "[sweep] " << ex.finished << "/" << todo.size() << " done, "
+            << Progress::format_duration(std::chrono::duration<double>(now - started).count())
+            << std::endl;
+      last_line = now;
+    };
+  }
   ex.stopped = run_trial_pool(pool_jobs, pool, [&](std::size_t job, const TrialExit& exit) {
     const std::size_t i = todo[job];
     if (exit.kind == TrialExit::Kind::interrupted) return;
@@ -225,6 +244,7 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
     }
     ++ex.finished;
     if (!note) return;
+    last_line = Clock::now();
     const TrialOutcome& r = ex.outcomes[i];
     *note << "[" << ex.finished << "/" << todo.size() << "] " << plan.trials[i].id << " "
           << trial_text(plan, plan.trials[i]) << ": ";

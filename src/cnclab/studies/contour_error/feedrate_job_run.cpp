@@ -172,13 +172,22 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
       report << "  " << label << ": not planned (" << why << ")\n";
       continue;
     }
-    if (c.log) *c.log << job.name << ": " << label << " ..." << std::endl;
-    const FeedrateOptimisationResult res = optimise_feedrate(path, predictor, opt);
+    // A line per plan and per method (each takes seconds): a log that is not
+    // a terminal shows the job is alive.
+    const auto say = [&](const std::string& what) {
+      if (c.log) *c.log << job.name << ": " << label << ": " << what << std::endl;
+    };
+    const FeedrateOptimisationResult res = optimise_feedrate(
+        path, predictor, opt, [&](const std::string&, std::size_t plans, std::size_t) {
+          say("constrained, plan " + std::to_string(plans) + " done");
+        });
     const FeedrateJobMethod constrained =
         optimised_method("constrained", res, path, ver, res.reason);
+    say("unconstrained and uniform slowdown on the simulated machine ...");
     unconstrained.check = check_on_machine(path, unconstrained.reference, ver);
     unconstrained.met = unconstrained.check.met;
     const BaselineResult uni = uniform_slowdown(path, free, ver);
+    say("best constant feed ...");
     const BaselineResult cst = constant_feed(path, opt.planner.limits, ver);
     const FeedrateJobMethod uniform{
         "uniform", uni.reference, uni.check,
@@ -191,6 +200,7 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
                                                      &constant};
     FeedrateJobMethod oracle;
     if (job.oracle) {
+      say("oracle ...");
       oracle = feedrate_job_oracle(path, opt, ver);
       methods.push_back(&oracle);
       rec.metrics[label + "_ratio_uniform_oracle"] = uni.check.time / oracle.check.time;
