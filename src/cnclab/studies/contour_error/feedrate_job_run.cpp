@@ -105,12 +105,13 @@ FeedrateJobMethod optimised_method(std::string method, const FeedrateOptimisatio
 // The loop with the simulated machine (the verification's, same seed) as
 // its error model: a perfect predictor, so no margin.
 FeedrateJobMethod feedrate_job_oracle(const PlanarPath& path, FeedrateOptimisationOptions opt,
-                                      const VerificationOptions& ver) {
+                                      const VerificationOptions& ver,
+                                      const ProgressCallback& progress) {
   opt.prediction_margin = 0.0;
   const ContourErrorModel machine = [&](const ReferenceTrajectory& r) {
     return check_on_machine(path, r, ver).simulated;
   };
-  const FeedrateOptimisationResult res = optimise_feedrate(path, machine, opt);
+  const FeedrateOptimisationResult res = optimise_feedrate(path, machine, opt, progress);
   return optimised_method("oracle", res, path, ver,
                           std::string(to_string(res.status)) + ": " + res.reason);
 }
@@ -177,10 +178,13 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
     const auto say = [&](const std::string& what) {
       if (c.log) *c.log << job.name << ": " << label << ": " << what << std::endl;
     };
-    const FeedrateOptimisationResult res = optimise_feedrate(
-        path, predictor, opt, [&](const std::string&, std::size_t plans, std::size_t) {
-          say("constrained, plan " + std::to_string(plans) + " done");
-        });
+    const auto plans_of = [&](const std::string& method) -> ProgressCallback {
+      return [&say, method](const std::string&, std::size_t plans, std::size_t) {
+        say(method + ", plan " + std::to_string(plans) + " done");
+      };
+    };
+    const FeedrateOptimisationResult res =
+        optimise_feedrate(path, predictor, opt, plans_of("constrained"));
     const FeedrateJobMethod constrained =
         optimised_method("constrained", res, path, ver, res.reason);
     say("unconstrained and uniform slowdown on the simulated machine ...");
@@ -200,8 +204,7 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
                                                      &constant};
     FeedrateJobMethod oracle;
     if (job.oracle) {
-      say("oracle ...");
-      oracle = feedrate_job_oracle(path, opt, ver);
+      oracle = feedrate_job_oracle(path, opt, ver, plans_of("oracle"));
       methods.push_back(&oracle);
       rec.metrics[label + "_ratio_uniform_oracle"] = uni.check.time / oracle.check.time;
       rec.metric_units[label + "_ratio_uniform_oracle"] = "1";
