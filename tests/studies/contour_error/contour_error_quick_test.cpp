@@ -89,6 +89,19 @@ TEST(ContourErrorQuick, ReproduceAndTables) {
       std::count_if(methods.runs.begin(), methods.runs.end(),
                     [](const NarxStudyRun& r) { return r.method == "two_stage_retry"; });
   EXPECT_EQ(m.at("training_methods.two_stage_retry.runs"), static_cast<double>(retry));
+  // The predictor table counts stable runs as the methods table does (it
+  // once labelled the count of bounded runs "stable").
+  const std::size_t at = text.find("Contour error predictor");
+  ASSERT_NE(at, std::string::npos);
+  const std::string predictor = text.substr(at, text.find("Notes", at) - at);
+  const std::string retry_stable =
+      std::to_string(static_cast<int>(m.at("training_methods.two_stage_retry.stable_runs"))) + "/" +
+      std::to_string(retry);
+  const std::string row_name = "two_stage_retry";
+  const std::size_t row = predictor.find(row_name);
+  ASSERT_NE(row, std::string::npos) << predictor;
+  const std::size_t cell = predictor.find_first_not_of(' ', row + row_name.size());
+  EXPECT_EQ(predictor.substr(cell, retry_stable.size()), retry_stable) << predictor;
   t.configs_dir = CNCLAB_SOURCE_DIR "/configs";
   const auto targets = read_targets(t.configs_dir / "studies" / "contour_error_tables.yaml");
   std::size_t checked = 0;
