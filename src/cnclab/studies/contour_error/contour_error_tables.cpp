@@ -60,7 +60,7 @@ std::string second_try_note(const NarxStudyRuns& r) {
 }
 
 struct Stats {
-  double mean = kMissingCell, std = kMissingCell, max = kMissingCell;
+  double mean = kMissingCell, std = kMissingCell, min = kMissingCell, max = kMissingCell;
   std::size_t n = 0;
 };
 Stats stats(const std::vector<double>& v) {
@@ -77,6 +77,7 @@ Stats stats(const std::vector<double>& v) {
   double sq = 0;
   for (double x : ok) sq += (x - s.mean) * (x - s.mean);
   s.std = ok.size() > 1 ? std::sqrt(sq / static_cast<double>(ok.size() - 1)) : 0.0;
+  s.min = *std::min_element(ok.begin(), ok.end());
   s.max = *std::max_element(ok.begin(), ok.end());
   return s;
 }
@@ -88,6 +89,15 @@ TableCell mean_std(const Stats& s) {
 // A single number in µm, 3 significant digits as the paper's text.
 TableCell um3(double v) {
   return number_cell(v, table_number(v, 3));
+}
+
+// The runs of training method `method`.
+std::vector<const NarxStudyRun*> runs_of(const NarxStudyRuns& r, const std::string& method) {
+  std::vector<const NarxStudyRun*> runs;
+  for (const auto& run : r.runs) {
+    if (run.method == method) runs.push_back(&run);
+  }
+  return runs;
 }
 
 // The metric `name` of each run.
@@ -157,10 +167,7 @@ void print_training_methods(const NarxStudyRuns& r, const ConfigReader& ref, Tab
   t.columns.push_back(pair_column("epochs open+closed", "open_epochs", "closed_epochs"));
   for (const char* m : {"two_stage", "two_stage_retry", "two_stage_windowed", "open_loop_only",
                         "closed_loop_only", "closed_loop_only_windowed"}) {
-    std::vector<const NarxStudyRun*> runs;
-    for (const auto& run : r.runs) {
-      if (run.method == m) runs.push_back(&run);
-    }
+    const std::vector<const NarxStudyRun*> runs = runs_of(r, m);
     if (runs.empty()) continue;
     std::vector<TableCell> row = {m, stable_count(r, runs)};
     for (const auto& a : r.axes) {
@@ -284,22 +291,12 @@ void print_predictor(const NarxStudyRuns& r, const ConfigReader& ref, TableForma
   // The two-stage methods (the paper's, and with the second try that the
   // studies use); stable as in the training-methods table.
   for (const std::string method : {"two_stage", "two_stage_retry"}) {
-    std::vector<const NarxStudyRun*> runs;
-    for (const auto& run : r.runs) {
-      if (run.method == method) runs.push_back(&run);
-    }
+    const std::vector<const NarxStudyRun*> runs = runs_of(r, method);
     if (runs.empty()) continue;
-    const std::vector<double> rms = metric_of(runs, "contour_rms");
-    const Stats s = stats(rms);
-    const double best =
-        s.n ? *std::min_element(rms.begin(), rms.end(),
-                                [](double a, double b) {
-                                  return std::isfinite(a) && (!std::isfinite(b) || a < b);
-                                })
-            : kMissingCell;
+    const Stats s = stats(metric_of(runs, "contour_rms"));
     // Predicting zero following error predicts zero contour error: its RMS
     // is the exact contour error's RMS.
-    t.rows.push_back({method, stable_count(r, runs), mean_std(s), um3(best),
+    t.rows.push_back({method, stable_count(r, runs), mean_std(s), um3(s.min),
                       mean_std(stats(metric_of(runs, "contour_max"))), missing_cell("see note")});
   }
   t.print(out, f);
