@@ -1,5 +1,6 @@
 #include "cnclab/studies/contour_error/feedrate_tables.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "cnclab/core/format.hpp"
@@ -42,6 +43,23 @@ double feedrate_metric(const RunRecord& r, const std::string& name) {
 Measurements measure_feedrate_tables(const TablesOptions& options) {
   const FeedrateTableInput in = feedrate_table_input(options);
   Measurements m;
+  // Over the tolerances (any profile's): the "Done when" as two
+  // numbers. A tolerance that was not planned (below_resolution) has no
+  // constrained time: NaN, which fails any target.
+  double min_share = INFINITY, min_ratio = INFINITY, tightest = INFINITY;
+  for (const double tol : in.job.tolerances) {
+    const std::string label = feedrate_table_label(tol);
+    const double share = feedrate_metric(in.result.record, label + "_constrained_share_within");
+    const double ratio = feedrate_metric(in.result.record, label + "_ratio_uniform_constrained");
+    min_share = std::isnan(share) || std::isnan(min_share) ? NAN : std::min(min_share, share);
+    min_ratio = std::isnan(ratio) || std::isnan(min_ratio) ? NAN : std::min(min_ratio, ratio);
+    if (tol < tightest) {
+      tightest = tol;
+      m["tightest.ratio_uniform_constrained"] = ratio;
+    }
+  }
+  m["constrained.min_share_within"] = min_share;
+  m["min_ratio_uniform_constrained"] = min_ratio;
   for (const double tol : in.job.tolerances) {
     const std::string label = feedrate_table_label(tol);
     for (const char* method : kFeedrateMethods) {
@@ -109,8 +127,9 @@ void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
   }
   print_table_title(out, format,
                     "Contour-error constrained feedrate (seed 002's application), " +
-                        shortest_double(in.job.section.length) +
-                        " mm of the seed-002 path, "
+                        shortest_double(in.job.section.length) + " mm of the seed-002 path from " +
+                        shortest_double(in.job.section.start) +
+                        " mm, "
                         "simulated machine: exact contour error of the tool per 1 ms tick");
   t.print(out, format);
   notes.push_back(

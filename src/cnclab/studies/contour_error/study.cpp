@@ -21,7 +21,7 @@ void register_contour_error_study() {
                   "seed 002's application: contour-error constrained feedrate vs the "
                   "unconstrained plan, the uniform slowdown and the best constant feed "
                   "(simulated machine)",
-                  print_feedrate_tables, measure_feedrate_tables, ""});
+                  print_feedrate_tables, measure_feedrate_tables, "studies/feedrate_tables.yaml"});
 }
 
 }  // namespace cnclab
