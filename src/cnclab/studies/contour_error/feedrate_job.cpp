@@ -4,6 +4,7 @@
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/field_schema.hpp"
+#include "cnclab/core/format.hpp"
 #include "cnclab/experiment/spec.hpp"
 
 namespace cnclab {
@@ -112,6 +113,10 @@ FeedrateJob load_feedrate_job(const fs::path& file, const std::vector<std::strin
   root.section("verification").validate([&] { job.verification.validate(); });
   doc.check_all_consumed();
   return job;
+}
+
+std::string feedrate_tolerance_label(double tolerance_um) {
+  return "eps" + shortest_double(tolerance_um) + "um";
 }
 
 std::string to_yaml(const FeedrateJob& job) {

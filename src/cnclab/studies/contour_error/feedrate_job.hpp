@@ -63,6 +63,10 @@ FeedrateJob load_feedrate_job(const std::filesystem::path& file,
                               const std::string& profile = {});
 std::string to_yaml(const FeedrateJob& job);
 
+// "eps<um>um": a tolerance's group in the per-tick file and the prefix of its
+// metrics and facts in the result (what `cnclab tables feedrate` reads).
+std::string feedrate_tolerance_label(double tolerance_um);
+
 // Runs the job and writes <results>/<name>/<name>-ticks.h5 (per tolerance and
 // method: time, u, feed, predicted and simulated contour error per tick; the
 // history) and the standard result naming it (metrics per tolerance and

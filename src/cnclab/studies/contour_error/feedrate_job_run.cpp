@@ -47,10 +47,6 @@ double feedrate_job_parameter_at(const PlanarPath& path, double s) {
   return 0.5 * (lo + hi);
 }
 
-std::string feedrate_job_label(double um) {
-  return "eps" + shortest_double(um) + "um";
-}
-
 // One method's per-tick series and metrics of one tolerance.
 struct FeedrateJobMethod {
   std::string method;
@@ -160,7 +156,7 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
          << fixed_decimals(model.contour_rms * 1e3, 2) << " um)\n";
   std::string detail;
   for (const double tol_um : job.tolerances) {
-    const std::string label = feedrate_job_label(tol_um);
+    const std::string label = feedrate_tolerance_label(tol_um);
     opt.tolerance = ver.tolerance = tol_um * 1e-3;
     opt.prediction_margin = job.prediction_margin * 1e-3;
     ticks.create_group(label);

@@ -29,10 +29,6 @@ FeedrateTableInput feedrate_table_input(const TablesOptions& options) {
   return in;
 }
 
-std::string feedrate_table_label(double um) {
-  return "eps" + shortest_double(um) + "um";
-}
-
 double feedrate_metric(const RunRecord& r, const std::string& name) {
   const auto it = r.metrics.find(name);
   return it == r.metrics.end() ? NAN : it->second;
@@ -46,22 +42,18 @@ Measurements measure_feedrate_tables(const TablesOptions& options) {
   // Over the tolerances (any profile's): the "Done when" as two
   // numbers. A tolerance that was not planned (below_resolution) has no
   // constrained time: NaN, which fails any target.
-  double min_share = INFINITY, min_ratio = INFINITY, tightest = INFINITY;
+  double min_share = INFINITY, min_ratio = INFINITY;
   for (const double tol : in.job.tolerances) {
-    const std::string label = feedrate_table_label(tol);
+    const std::string label = feedrate_tolerance_label(tol);
     const double share = feedrate_metric(in.result.record, label + "_constrained_share_within");
     const double ratio = feedrate_metric(in.result.record, label + "_ratio_uniform_constrained");
     min_share = std::isnan(share) || std::isnan(min_share) ? NAN : std::min(min_share, share);
     min_ratio = std::isnan(ratio) || std::isnan(min_ratio) ? NAN : std::min(min_ratio, ratio);
-    if (tol < tightest) {
-      tightest = tol;
-      m["tightest.ratio_uniform_constrained"] = ratio;
-    }
   }
   m["constrained.min_share_within"] = min_share;
   m["min_ratio_uniform_constrained"] = min_ratio;
   for (const double tol : in.job.tolerances) {
-    const std::string label = feedrate_table_label(tol);
+    const std::string label = feedrate_tolerance_label(tol);
     for (const char* method : kFeedrateMethods) {
       const std::string p = label + "_" + method + "_";
       if (!in.result.record.metrics.count(p + "time")) continue;  // oracle: only when asked
@@ -89,7 +81,7 @@ void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
                label_column("meets (>= required share)", "meets")};
   std::vector<std::string> notes;
   for (const double tol : in.job.tolerances) {
-    const std::string label = feedrate_table_label(tol);
+    const std::string label = feedrate_tolerance_label(tol);
     const auto status = r.facts.find(label + "_status");
     if (std::isnan(feedrate_metric(r, label + "_constrained_time"))) {
       notes.push_back(label + ": " + (status == r.facts.end() ? "not run" : status->second));

@@ -15,7 +15,6 @@ void print_feedrate_tables(const TablesOptions& options, std::ostream& out);
 //   <eps label>.<method>.{time_s, max_um, share_within}, <eps label>.ratio_uniform_constrained
 //   constrained.min_share_within        the smallest share within eps_max over the tolerances
 //   min_ratio_uniform_constrained       the smallest uniform / constrained time ratio
-//   tightest.ratio_uniform_constrained  the ratio at the smallest tolerance
 // (a tolerance that was not planned makes the first two NaN).
 Measurements measure_feedrate_tables(const TablesOptions& options);
 
