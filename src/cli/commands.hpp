@@ -39,7 +39,10 @@ struct ReproduceInputs {
   std::vector<std::filesystem::path> files;
   std::vector<std::pair<std::filesystem::path, JobKind>> jobs;
 };
-ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths);
+// The experiment files under `paths` split into training experiments and
+// `kind:` jobs; the training experiments a job reads (JobKind::upstream,
+// loaded with `profile`) are added to the training files once.
+ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths, const std::string& profile);
 
 int version_command(std::ostream& out);
 // `cnclab gcode trochoid CONFIG.yaml -o FILE.nc`: the tool path of a `kind:

@@ -352,7 +352,8 @@ std::vector<JobPrework> jobs_prework(const std::vector<std::pair<fs::path, JobKi
 
 }  // namespace
 
-ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths) {
+ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths,
+                                 const std::string& profile) {
   const auto found = find_experiments(paths);
   if (found.empty()) throw ConfigError("reproduce: no experiment files found");
   ReproduceInputs inputs;
@@ -368,12 +369,27 @@ ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths) {
       inputs.files.push_back(file);
     }
   }
+  // What the jobs read, unless given: one file, one node of the graph.
+  std::set<fs::path> known;
+  for (const auto& file : inputs.files) known.insert(fs::weakly_canonical(file));
+  for (const auto& [file, kind] : inputs.jobs) {
+    if (!kind.upstream) continue;
+    try {
+      for (const auto& up : kind.upstream(file, profile)) {
+        // Only training experiments; the job's own run names any other file.
+        if (experiment_kind(up) != "train") continue;
+        if (known.insert(fs::weakly_canonical(up)).second) inputs.files.push_back(up);
+      }
+    } catch (const std::exception&) {
+      // the job's own run reports it
+    }
+  }
   return inputs;
 }
 
 int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
                       std::ostream& out, std::ostream& log) {
-  const ReproduceInputs inputs = reproduce_inputs(paths);
+  const ReproduceInputs inputs = reproduce_inputs(paths, options.profile);
   const std::vector<fs::path>& files = inputs.files;
   const std::vector<std::pair<fs::path, JobKind>>& jobs = inputs.jobs;
   const std::vector<GraphNode> graph = load_graph(files, options.profile);

@@ -325,7 +325,7 @@ int reproduce_slurm_command(const std::vector<std::string>& paths, const Command
                         "another --out or working folder");
     }
   }
-  const ReproduceInputs inputs = reproduce_inputs(paths);
+  const ReproduceInputs inputs = reproduce_inputs(paths, options.profile);
   const std::vector<GraphNode> graph = load_graph(inputs.files, options.profile);
   if (slurm.dry_run) out << "# dry run: nothing written or submitted\n";
   GraphSubmitter submitter(options, slurm, out, log);

@@ -132,8 +132,9 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
   reproduce->footer(
       "Example:\n  cnclab reproduce                  # everything\n  cnclab reproduce "
       "experiments/friedman\n"
-      "Experiments run upstream first (needs:, init_from:); a result whose resolved config and "
-      "upstream results are unchanged is reused. Each line says ran/reused and why.\n"
+      "Experiments run upstream first (needs:, init_from:, a job's predictor:); a result whose "
+      "resolved config and upstream results are unchanged is reused. Each line says ran/reused "
+      "and why.\n"
       "  cnclab reproduce --quick experiments/step_error   # the quick profile\n"
       "  cnclab reproduce --check   # and check the studies' targets (exit 1 on a FAIL)\n"
       "  cnclab reproduce experiments/ik experiments/ik_search --slurm --partition short "
@@ -148,7 +149,8 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
     apply_profile_dir(*reproduce, "--out", a->common.profile, a->common.results_dir);
     action = [a] {
       if (a->slurm.enabled) {
-        return reproduce_slurm_command(a->paths, a->common, a->slurm.options(), std::cout, std::cerr);
+        return reproduce_slurm_command(a->paths, a->common, a->slurm.options(), std::cout,
+                                       std::cerr);
       }
       return reproduce_command(a->paths, a->common, std::cout, std::cerr);
     };

@@ -113,5 +113,44 @@ TEST(NarxCli, CompareShowsDifferingKeysAndMetricDeltasAndShowPrintsOne) {
   }
 }
 
+// The feedrate job (experiments/contour_error/feedrate.yaml, quick profile)
+// through `reproduce` alone: its predictor, an upstream narx experiment, is
+// trained first; a tolerance that slowing down cannot meet ends as
+// infeasible with its reason, one below the predictor's own contour RMS is
+// not planned and says why, and a predictor that is not a narx experiment
+// on the following-error dataset is a configuration error naming it. The
+// table's targets are declared for the full study only.
+TEST(NarxCli, FeedrateJobAloneTrainsItsPredictorAndNamesWhatItCannotPlan) {
+  TempDir dir;
+  const std::string feedrate = CNCLAB_SOURCE_DIR "/experiments/contour_error/feedrate.yaml";
+  const std::string common = " --quick --out results --data-dir data -j1";
+  const Result r = sh(dir.path(), kCnclab + " reproduce --check " + feedrate + common);
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  const std::string narx_row = r.out.substr(r.out.find("contour_error_narx "));
+  EXPECT_EQ(narx_row.find("contour_error_narx           ran"), 0u) << r.out;
+  EXPECT_NE(r.out.find("contour_error_feedrate       ran"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("eps16um: uniform slowdown / constrained time"), std::string::npos);
+  EXPECT_NE(r.out.find("infeasible: the cap would fall to"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2 not declared for this profile"), std::string::npos) << r.out;
+
+  const Result low = sh(dir.path(), kCnclab + " run " + feedrate +
+                                        " 'tolerances=[10, 20]' --profile quick --out results "
+                                        "--data-dir data");
+  ASSERT_EQ(low.code, 0) << low.err << low.out;
+  EXPECT_NE(low.out.find("eps10um: not planned (tolerance 10 um is below the predictor's own "
+                         "contour RMS error"),
+            std::string::npos)
+      << low.out;
+
+  std::ofstream(dir.path() / "other.yaml")
+      << "kind: feedrate_optimisation\nname: other\npredictor: " CNCLAB_SOURCE_DIR
+         "/experiments/friedman/friedman1_mlp.yaml\n";
+  const Result other = sh(dir.path(), kCnclab + " reproduce other.yaml" + common);
+  EXPECT_EQ(other.code, 2) << other.out << other.err;
+  EXPECT_NE(other.out.find("friedman1_mlp.yaml: needs a narx experiment on the following_error"),
+            std::string::npos)
+      << other.out;
+}
+
 }  // namespace
 }  // namespace cnclab

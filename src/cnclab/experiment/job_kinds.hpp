@@ -73,6 +73,14 @@ struct JobKind {
   std::function<std::vector<JobPrework>(const std::filesystem::path& file,
                                         const JobContext& context)>
       prework = {};
+  // The training experiment files whose results the job reads (the feedrate
+  // job's `predictor:`), loaded with `profile`: `reproduce` adds them to its
+  // training graph, as `needs:` does for an experiment, so that reproducing
+  // the job alone makes them first. Empty function: none. Throws like run
+  // (reproduce then leaves the error to the job's own run).
+  std::function<std::vector<std::filesystem::path>(const std::filesystem::path& file,
+                                                   const std::string& profile)>
+      upstream = {};
 };
 
 // A kind whose files load into a `Job` by `load(file, overrides, profile)`

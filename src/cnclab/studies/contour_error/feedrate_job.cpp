@@ -134,6 +134,9 @@ JobKind feedrate_job_kind() {
                           "predictive feedrate optimisation with a contour-error constraint, "
                           "verified on the simulated machine (seed 002)",
                           load_feedrate_job, run_feedrate_job);
+  kind.upstream = [](const fs::path& file, const std::string& profile) {
+    return std::vector<fs::path>{load_feedrate_job(file, {}, profile).predictor_file};
+  };
   kind.schema = [] {
     return object_schema(feedrate_file_fields(),
                          "kind feedrate_optimisation: the fastest feedrate within a contour "
