@@ -115,11 +115,14 @@ TEST(NarxCli, CompareShowsDifferingKeysAndMetricDeltasAndShowPrintsOne) {
 
 // The feedrate job (experiments/contour_error/feedrate.yaml, quick profile)
 // through `reproduce` alone: its predictor, an upstream narx experiment, is
-// trained first; a tolerance that slowing down cannot meet ends as
-// infeasible with its reason, one below the predictor's own contour RMS is
-// not planned and says why, and a predictor that is not a narx experiment
-// on the following-error dataset is a configuration error naming it. The
-// table's targets are declared for the full study only.
+// trained first and every tolerance gets a status line; a tolerance below
+// the predictor's own contour RMS is not planned and says why, and a
+// predictor that is not a narx experiment on the following-error dataset is
+// a configuration error naming it. The table's targets are declared for the
+// full study only. (The quick predictor's RMS depends on the compiler: 15.5
+// um under GCC, 20.8 um under clang's sanitizer build, so the tolerances of
+// the second run are set from it. Infeasible tolerances:
+// feedrate_optimisation_test.cpp.)
 TEST(NarxCli, FeedrateJobAloneTrainsItsPredictorAndNamesWhatItCannotPlan) {
   TempDir dir;
   const std::string feedrate = CNCLAB_SOURCE_DIR "/experiments/contour_error/feedrate.yaml";
@@ -129,17 +132,28 @@ TEST(NarxCli, FeedrateJobAloneTrainsItsPredictorAndNamesWhatItCannotPlan) {
   const std::string narx_row = r.out.substr(r.out.find("contour_error_narx "));
   EXPECT_EQ(narx_row.find("contour_error_narx           ran"), 0u) << r.out;
   EXPECT_NE(r.out.find("contour_error_feedrate       ran"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("eps16um: uniform slowdown / constrained time"), std::string::npos);
-  EXPECT_NE(r.out.find("infeasible: the cap would fall to"), std::string::npos) << r.out;
+  for (const char* label : {"eps20um: ", "eps16um: "}) {  // the quick profile's tolerances
+    const bool planned = r.out.find(std::string(label) + "constrained ") != std::string::npos;
+    const bool not_planned = r.out.find(std::string(label) + "not planned (") != std::string::npos;
+    EXPECT_TRUE(planned || not_planned) << label << "\n" << r.out;
+  }
   EXPECT_NE(r.out.find("2 not declared for this profile"), std::string::npos) << r.out;
 
-  const Result low = sh(dir.path(), kCnclab + " run " + feedrate +
-                                        " 'tolerances=[10, 20]' --profile quick --out results "
-                                        "--data-dir data");
+  const std::size_t at = r.out.find("(contour RMS ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double rms = std::stod(r.out.substr(at + 13));
+  ASSERT_GT(rms, 5.0);  // a tolerance below it stays above the 3 um margin
+  const int below = static_cast<int>(rms) - 1, above = static_cast<int>(rms) + 20;
+  const Result low = sh(dir.path(), kCnclab + " run " + feedrate + " 'tolerances=[" +
+                                        std::to_string(below) + ", " + std::to_string(above) +
+                                        "]' --profile quick --out results --data-dir data");
   ASSERT_EQ(low.code, 0) << low.err << low.out;
-  EXPECT_NE(low.out.find("eps10um: not planned (tolerance 10 um is below the predictor's own "
-                         "contour RMS error"),
+  const std::string b = std::to_string(below);
+  EXPECT_NE(low.out.find("eps" + b + "um: not planned (tolerance " + b +
+                         " um is below the predictor's own contour RMS error"),
             std::string::npos)
+      << low.out;
+  EXPECT_NE(low.out.find("eps" + std::to_string(above) + "um: constrained "), std::string::npos)
       << low.out;
 
   std::ofstream(dir.path() / "other.yaml")
