@@ -38,33 +38,31 @@ double feedrate_metric(const RunRecord& r, const std::string& name) {
 
 Measurements measure_feedrate_tables(const TablesOptions& options) {
   const FeedrateTableInput in = feedrate_table_input(options);
+  const RunRecord& r = in.result.record;
   Measurements m;
-  // Over the tolerances (any profile's): the "Done when" as two
-  // numbers. A tolerance that was not planned (below_resolution) has no
-  // constrained time: NaN, which fails any target.
+  // Over the tolerances: the "Done when" as two numbers. A tolerance
+  // that was not planned (below_resolution) has no constrained metrics: NaN,
+  // which fails any target.
   double min_share = INFINITY, min_ratio = INFINITY;
-  for (const double tol : in.job.tolerances) {
-    const std::string label = feedrate_tolerance_label(tol);
-    const double share = feedrate_metric(in.result.record, label + "_constrained_share_within");
-    const double ratio = feedrate_metric(in.result.record, label + "_ratio_uniform_constrained");
-    min_share = std::isnan(share) || std::isnan(min_share) ? NAN : std::min(min_share, share);
-    min_ratio = std::isnan(ratio) || std::isnan(min_ratio) ? NAN : std::min(min_ratio, ratio);
-  }
-  m["constrained.min_share_within"] = min_share;
-  m["min_ratio_uniform_constrained"] = min_ratio;
+  const auto lower = [](double& least, double x) {
+    least = std::isnan(x) || std::isnan(least) ? NAN : std::min(least, x);
+  };
   for (const double tol : in.job.tolerances) {
     const std::string label = feedrate_tolerance_label(tol);
     for (const char* method : kFeedrateMethods) {
       const std::string p = label + "_" + method + "_";
-      if (!in.result.record.metrics.count(p + "time")) continue;  // oracle: only when asked
-      m[label + "." + method + ".time_s"] = feedrate_metric(in.result.record, p + "time");
-      m[label + "." + method + ".max_um"] = feedrate_metric(in.result.record, p + "max");
-      m[label + "." + method + ".share_within"] =
-          feedrate_metric(in.result.record, p + "share_within");
+      if (!r.metrics.count(p + "time")) continue;  // oracle: only when asked
+      m[label + "." + method + ".time_s"] = feedrate_metric(r, p + "time");
+      m[label + "." + method + ".max_um"] = feedrate_metric(r, p + "max");
+      m[label + "." + method + ".share_within"] = feedrate_metric(r, p + "share_within");
     }
-    m[label + ".ratio_uniform_constrained"] =
-        feedrate_metric(in.result.record, label + "_ratio_uniform_constrained");
+    const double ratio = feedrate_metric(r, label + "_ratio_uniform_constrained");
+    m[label + ".ratio_uniform_constrained"] = ratio;
+    lower(min_share, feedrate_metric(r, label + "_constrained_share_within"));
+    lower(min_ratio, ratio);
   }
+  m["constrained.min_share_within"] = min_share;
+  m["min_ratio_uniform_constrained"] = min_ratio;
   return m;
 }
 
@@ -121,8 +119,7 @@ void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
                     "Contour-error constrained feedrate (seed 002's application), " +
                         shortest_double(in.job.section.length) + " mm of the seed-002 path from " +
                         shortest_double(in.job.section.start) +
-                        " mm, "
-                        "simulated machine: exact contour error of the tool per 1 ms tick");
+                        " mm, simulated machine: exact contour error of the tool per 1 ms tick");
   t.print(out, format);
   notes.push_back(
       "methods: unconstrained = minimum time under the axis limits; constrained = "
