@@ -205,6 +205,13 @@ fs::path trial_error_path(const fs::path& dir, const std::string& id) {
   return dir / "trials" / (id + ".error");
 }
 
+fs::path trial_lock_path(const fs::path& dir, const std::string& id) {
+  std::string name = ".";  // appended: GCC 12 warns falsely on "." + id (-Wrestrict, PR105329)
+  name += id;
+  name += ".lock";
+  return dir / "trials" / name;
+}
+
 void store_plan(const fs::path& dir, const SweepPlan& plan) {
   const fs::path path = dir / "sweep.yaml";
   const std::string text = plan.to_yaml();

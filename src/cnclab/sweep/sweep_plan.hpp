@@ -8,6 +8,8 @@
 //   sweep.yaml          the plan (this file's SweepPlan), written atomically
 //   trials/<id>.h5      one result file per trial (result_file.hpp)
 //   trials/<id>.error   why a trial stopped without a result (exception, crash)
+//   trials/.<id>.lock   while a process runs the trial: its host and pid
+//                       (io/lock_file.hpp; sweep_execute.hpp, "One writer per trial")
 //   summary.h5          parameters -> metrics -> status table (sweep_summary.hpp)
 // A complete trial is also the result store's result of its config (hard
 // link; sweep_execute.cpp, "Trials share results with the result store").
@@ -78,5 +80,6 @@ SweepPlan parse_plan(const std::string& yaml_text, const std::string& origin);
 
 std::filesystem::path trial_result_path(const std::filesystem::path& dir, const std::string& id);
 std::filesystem::path trial_error_path(const std::filesystem::path& dir, const std::string& id);
+std::filesystem::path trial_lock_path(const std::filesystem::path& dir, const std::string& id);
 
 }  // namespace cnclab
