@@ -499,11 +499,12 @@ sweep:
   EXPECT_NE(r.out.find("8 trials (4 points x 2 repeats, random)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("rmse (min)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(" ± "), std::string::npos) << r.out;  // mean ± std over repeats
-  // `compare --group-by repeats`: the 4 points, 2 seeds each (issue 20 item 2).
+  // `compare --group-by repeats`: the 4 points, 2 seeds each.
   const Result g = sh(dir.path(), kCnclab + " compare s --group-by repeats --format csv");
   ASSERT_EQ(g.code, 0) << g.err << g.out;
   EXPECT_EQ(g.out.substr(0, g.out.find('\n')),
-            "metric,group,n,mean,std,ci_low,ci_high,diff,welch_t,df,p_value,boot_low,boot_high,"
+            "metric,stratum,group,n,mean,std,ci_low,ci_high,ci_clipped,diff,welch_t,welch_df,"
+            "welch_p,boot_low,boot_high,pairs,paired_t,paired_p,wilcoxon_w,wilcoxon_p,test,"
             "significant");
   const Result j = sh(dir.path(), kCnclab + " compare s --group-by repeats --format json");
   ASSERT_EQ(j.code, 0) << j.err;
@@ -512,7 +513,7 @@ sweep:
     for (auto at = j.out.find(word); at != std::string::npos; at = j.out.find(word, at + 1)) ++n;
     return n;
   };
-  EXPECT_EQ(count("\"label\":"), 4u) << j.out;                   // the 4 points
+  EXPECT_EQ(count("\"label\":"), 9u) << j.out;  // the 4 points; 1 stratum and its 4 groups
   EXPECT_EQ(count("\"n\": 2,"), count("\"metric\":")) << j.out;  // 2 repeats each
   const Result h = sh(dir.path(), kCnclab + " compare s --group-by model.hidden --format json");
   ASSERT_EQ(h.code, 0) << h.err;

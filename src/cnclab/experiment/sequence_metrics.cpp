@@ -37,6 +37,13 @@ std::string sequence_metric_unit(const std::string& name) {
   return "";
 }
 
+MetricRange sequence_metric_range(const std::string& name) {
+  for (const auto& g : sequence_metric_groups()) {
+    if (const auto it = g.ranges.find(name); it != g.ranges.end()) return it->second;
+  }
+  return {};
+}
+
 std::map<std::string, double> sequence_metrics(const SequencePrediction& prediction,
                                                const std::vector<std::string>& wanted) {
   std::map<std::string, double> out;

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -27,7 +28,7 @@ struct Comparison {
   std::vector<std::pair<std::string, std::vector<std::optional<double>>>> metrics;
 };
 
-Comparison build(const std::vector<ComparedRun>& runs) {
+Comparison build(const std::vector<ComparedRun>& runs, bool full) {
   Comparison c;
   std::vector<std::map<std::string, std::string>> flat;
   std::vector<std::string> keys;
@@ -39,7 +40,7 @@ Comparison build(const std::vector<ComparedRun>& runs) {
     label += "]";
     c.labels.push_back(std::move(label));
     flat.emplace_back();
-    for (auto& [k, v] : flatten_config(runs[i].record.resolved_yaml)) {
+    for (auto& [k, v] : flatten_config(runs[i].record.resolved_yaml, full)) {
       if (seen.insert(k).second) keys.push_back(k);
       flat.back()[k] = v;
     }
@@ -241,10 +242,11 @@ CompareFormat parse_compare_format(const std::string& text) {
   throw ConfigError("--format " + text + ": must be one of: table, md, csv, json");
 }
 
-std::vector<std::pair<std::string, std::string>> flatten_config(const std::string& yaml_text) {
+std::vector<std::pair<std::string, std::string>> flatten_config(const std::string& yaml_text,
+                                                                bool full) {
   std::vector<std::pair<std::string, std::string>> out;
   try {
-    flatten(YAML::Load(yaml_text), "", out);
+    flatten(YAML::Load(full ? yaml_text : abbreviate_config(yaml_text).text), "", out);
   } catch (const YAML::Exception& e) {
     throw IoError("stored config is not valid YAML: " + e.msg);
   }
@@ -286,9 +288,9 @@ std::vector<ComparedRun> collect_runs(const std::vector<std::string>& inputs) {
   return runs;
 }
 
-void print_comparison(const std::vector<ComparedRun>& runs, CompareFormat format,
-                      std::ostream& out) {
-  const Comparison c = build(runs);
+void print_comparison(const std::vector<ComparedRun>& runs, CompareFormat format, std::ostream& out,
+                      bool full) {
+  const Comparison c = build(runs, full);
   switch (format) {
     case CompareFormat::json:
       print_json(runs, c, out);
@@ -313,13 +315,18 @@ void print_comparison(const std::vector<ComparedRun>& runs, CompareFormat format
   } else {
     t.print_aligned(out);
   }
-  out << "\nonly config keys that differ are shown; metric deltas are to " << c.labels[0] << "\n";
+  out << "\nonly config keys that differ are shown; metric deltas are to " << c.labels[0];
+  if (!full) {
+    out << "; arrays of more than " << kAbbreviateScalars
+        << " numbers as shape and hash (--full prints them)";
+  }
+  out << "\n";
 }
 
-int compare_command(const std::vector<std::string>& inputs, const std::string& format,
+int compare_command(const std::vector<std::string>& inputs, const std::string& format, bool full,
                     std::ostream& out) {
   const CompareFormat f = parse_compare_format(format);
-  print_comparison(collect_runs(inputs), f, out);
+  print_comparison(collect_runs(inputs), f, out, full);
   return 0;
 }
 

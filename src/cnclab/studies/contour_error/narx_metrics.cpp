@@ -146,8 +146,12 @@ std::map<std::string, double> compute(const SequencePrediction& p) {
 void register_contour_error_metrics() {
   // Every metric is a distance in µm but `stable`, a 0/1 flag.
   std::map<std::string, std::string> units;
-  for (const auto& name : metric_names()) units[name] = name == "stable" ? "1" : "µm";
-  register_sequence_metrics({"contour_error (seed 002)", metric_names(), compute, units});
+  std::map<std::string, MetricRange> ranges;
+  for (const auto& name : metric_names()) {
+    units[name] = name == "stable" ? "1" : "µm";
+    ranges[name] = {0.0, name == "stable" ? 1.0 : std::numeric_limits<double>::infinity()};
+  }
+  register_sequence_metrics({"contour_error (seed 002)", metric_names(), compute, units, ranges});
 }
 
 }  // namespace cnclab
