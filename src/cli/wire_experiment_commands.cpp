@@ -85,7 +85,9 @@ void add_show(CLI::App& app, CommandAction& action) {
   auto* show = app.add_subcommand(
       "show",
       "Print a result file (config, provenance, metrics, training) or a sweep's summary.h5");
-  show->add_option("result", *paths, "Result HDF5 file(s) or a sweep's summary.h5")->required();
+  show->add_option("result", *paths, "Result HDF5 file(s) or a sweep's summary.h5")
+      ->required()
+      ->check(CLI::ExistingFile);
   show->add_flag("--full", options->full, kFullHelp);
   show->footer(
       "Examples:\n  cnclab show results/friedman1_mlp/friedman1_mlp-seed42-*.h5\n"
