@@ -208,8 +208,8 @@ class TrialClaims {
     return true;
   }
 
-  // Trials whose lock is free and that still need to run, in `todo`'s order
-  // (taking store results on the way); the others are left for the pool.
+  // Takes the store's result of each trial of `todo` that has one and whose
+  // lock is free (unless --rerun); returns the others, in order, for the pool.
   std::vector<std::size_t> take_stored(const std::vector<std::size_t>& todo) {
     std::vector<std::size_t> remaining;
     for (std::size_t i : todo) {
