@@ -44,7 +44,8 @@ void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
                  "Run the failed trials (failed results, timeouts) again");
   sweep.add_flag("--rerun", o.rerun,
                  "Train every trial again, also those with a result in the sweep folder or the "
-                 "result store (a trial another process runs meanwhile is left to it)");
+                 "result store, whose file stays (a trial another process trains meanwhile is "
+                 "left to it)");
   sweep.add_option("--shard", o.shard,
                    "K/N: run only shard K of N (trials K, K+N, ...), e.g. one per Slurm task");
   sweep.add_option("--dir", o.dir, "Sweep folder (default: <out>/<name>/sweep-<plan hash>)");

@@ -121,5 +121,20 @@ TEST(SweepLock, ShardsAndAWholeSweepShareTheFolderTrialByTrial) {
   expect_each_trial_once_and_linked(dir.path(), {"one", "two", "all"});
 }
 
+// --rerun trains every trial again (the README promises it), each once.
+TEST(SweepLock, RerunTrainsEveryTrialAgain) {
+  testing::TempDir dir;
+  const std::string small = kCnclab + " sweep " + kExperiment +
+                            " trainer.epochs=2 dataset.options.samples=200 model.hidden=[8] "
+                            "trainer.learning_rate=1e-3,1e-2 --jobs 2 --data-dir data --dir s ";
+  ASSERT_EQ(testing::run_shell(dir.path(), small + "--quiet").code, 0);
+  const testing::ShellResult again = testing::run_shell(dir.path(), small);
+  EXPECT_NE(again.err.find("2 already done, running 0"), std::string::npos) << again.err;
+  const testing::ShellResult rerun = testing::run_shell(dir.path(), small + "--rerun");
+  ASSERT_EQ(rerun.code, 0) << rerun.err;
+  EXPECT_NE(rerun.err.find("0 already done, running 2"), std::string::npos) << rerun.err;
+  EXPECT_EQ(trained(rerun.err).size(), 2u) << rerun.err;
+}
+
 }  // namespace
 }  // namespace cnclab
