@@ -4,7 +4,6 @@
 #include <stdlib.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -16,60 +15,7 @@
 #include "cnclab/deploy/c_export.hpp"
 #include "cnclab/deploy/sequence_extension.hpp"
 #include "cnclab/studies/contour_error/contour_predictor.hpp"
-
-// Counting malloc (as tests/studies/contour_error/predictor_allocation_test.cpp):
-// this executable interposes glibc's malloc family, which operator new and
-// Eigen call too. Not under a sanitizer, which owns malloc.
-#if defined(__SANITIZE_ADDRESS__)
-#define CNCLAB_BENCH_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define CNCLAB_BENCH_SANITIZED 1
-#endif
-#endif
-
-#ifndef CNCLAB_BENCH_SANITIZED
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* __libc_memalign(std::size_t, std::size_t);
-void __libc_free(void*);
-}
-namespace {
-std::atomic<long> g_allocations{0};  // bench-only instrumentation
-}  // namespace
-extern "C" {
-void* malloc(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_malloc(size);
-}
-void* calloc(std::size_t count, std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_calloc(count, size);
-}
-void* realloc(void* p, std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_realloc(p, size);
-}
-void* memalign(std::size_t alignment, std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_memalign(alignment, size);
-}
-void* aligned_alloc(std::size_t alignment, std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_memalign(alignment, size);
-}
-int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  *out = __libc_memalign(alignment, size);
-  return *out == nullptr ? 12 /* ENOMEM */ : 0;
-}
-void free(void* p) {
-  __libc_free(p);
-}
-}
-#endif
+#include "common/counting_malloc.hpp"  // interposes malloc to count (not under a sanitizer)
 
 namespace cnclab::bench {
 namespace fs = std::filesystem;
@@ -124,11 +70,7 @@ DeployedModel model_of(const NarxAxisModel (&models)[2]) {
 }  // namespace
 
 long allocation_count() {
-#ifdef CNCLAB_BENCH_SANITIZED
-  return -1;
-#else
-  return g_allocations.load(std::memory_order_relaxed);
-#endif
+  return testing::heap_allocations();
 }
 
 ExportedTiming time_exported_predictor(const NarxAxisModel (&models)[2],

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cnclab/deploy/c_export_detail.hpp"
+#include "cnclab/deploy/export_weights.hpp"
 #include "cnclab/nn/minmax.hpp"
 
 namespace cnclab {
@@ -180,19 +181,12 @@ CExport mlp_export(const DeployedModel& m, const CCodeContext& c,
   const ArrayWriter array(c);
   std::ostringstream s;
   s << source_top(c) << "/* Layer l: w<l>[i][j] weights input j of unit i, b<l>[i] its bias. */\n";
-  Eigen::Index offset = 0;
-  for (std::size_t l = 1; l < sizes.size(); ++l) {
-    const Eigen::Index in = sizes[l - 1], out = sizes[l];
-    std::vector<double> w;
-    for (Eigen::Index i = 0; i < out; ++i) {
-      for (Eigen::Index j = 0; j < in; ++j) w.push_back(m.parameters[offset + j * out + i]);
-    }
-    const std::string layer = std::to_string(l);
-    s << array(std::string("w").append(layer),
-               {static_cast<std::size_t>(out), static_cast<std::size_t>(in)}, w);
-    s << array(std::string("b").append(layer), {static_cast<std::size_t>(out)},
-               values_of(m.parameters.segment(offset + in * out, out)));
-    offset += (in + 1) * out;
+  const std::vector<DenseLayer> layers = mlp_layers(m);
+  for (std::size_t l = 1; l <= layers.size(); ++l) {
+    const DenseLayer& layer = layers[l - 1];
+    const std::string number = std::to_string(l);
+    s << array(std::string("w").append(number), {layer.outputs, layer.inputs}, layer.weights);
+    s << array(std::string("b").append(number), {layer.outputs}, layer.biases);
   }
   const ScalingCode in_scaling = scaling_code(m.input_scaling, "in", m.num_inputs(), array, c);
   const ScalingCode out_scaling = scaling_code(m.target_scaling, "out", m.num_outputs(), array, c);

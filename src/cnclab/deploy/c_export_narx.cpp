@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cnclab/deploy/c_export_detail.hpp"
+#include "cnclab/deploy/export_weights.hpp"
 
 namespace cnclab::c_export_detail {
 namespace {
@@ -16,19 +17,13 @@ std::string scaling_functions(const DeployedModel& m, const CCodeContext& c,
   std::string out;
   std::string in = "x", inverse = "y";
   if (m.has_physical_columns()) {
-    std::vector<double> in_min, in_span, out_min, out_span;
-    for (std::size_t a = 0; a < m.networks.size(); ++a) {
-      in_min.push_back(m.physical_inputs[a].min);
-      in_span.push_back(m.physical_inputs[a].max - m.physical_inputs[a].min);
-      out_min.push_back(m.physical_targets[a].min);
-      out_span.push_back(m.physical_targets[a].max - m.physical_targets[a].min);
-    }
+    const NarxWeights w = narx_weights(m);
     const std::size_t n = m.networks.size();
     out +=
         "/* The dataset's scaling of each physical column (mapminmax to [-1, 1] over\n"
         "   [min, min + span] of the training data). */\n" +
-        array("in_min", {n}, in_min) + array("in_span", {n}, in_span) +
-        array("out_min", {n}, out_min) + array("out_span", {n}, out_span);
+        array("in_min", {n}, w.in_min) + array("in_span", {n}, w.in_span) +
+        array("out_min", {n}, w.out_min) + array("out_span", {n}, w.out_span);
     in = "(x - " + p + "in_min[a]) / " + p + "in_span[a] * " + c.literal(2) + " - " + c.literal(1);
     inverse = p + "out_min[a] + (y + " + c.literal(1) + ") * " + c.literal(0.5) + " * " + p +
               "out_span[a]";
@@ -82,25 +77,15 @@ CExport narx_export(const DeployedModel& m, const CCodeContext& c,
       "_NETWORKS]);\n" + extra.c_declarations + "\n#endif\n";
 
   const ArrayWriter array(c);
-  std::vector<double> w1, b1, w2, b2;
-  for (const auto& net : m.networks) {
-    const Eigen::VectorXd& q = net.parameters;  // W1 (h x n, column-major), b1, W2, b2
-    const auto hh = static_cast<Eigen::Index>(h), nn = static_cast<Eigen::Index>(n);
-    for (Eigen::Index i = 0; i < hh; ++i) {
-      for (Eigen::Index j = 0; j < nn; ++j) w1.push_back(q[j * hh + i]);
-    }
-    for (Eigen::Index i = 0; i < hh; ++i) b1.push_back(q[hh * nn + i]);
-    for (Eigen::Index i = 0; i < hh; ++i) w2.push_back(q[hh * nn + hh + i]);
-    b2.push_back(q[hh * nn + 2 * hh]);
-  }
+  const NarxWeights w = narx_weights(m);
   std::ostringstream s;
   s << source_top(c)
     << "/* Network a (seed 002 Eq. 1): h_i = sum_j w1[a][i][j] x_j + b1[a][i],\n"
        "   e = sum_i w2[a][i] f(h_i) + b2[a]; x = [v(t - d0 - j), j < D_V; e(t - k), k = 1..D_E]\n"
        "   with d0 = "
     << d0 << ", D_V = " << dv << ", D_E = " << de << ". */\n"
-    << array("w1", {nets, h, n}, w1) << array("b1", {nets, h}, b1) << array("w2", {nets, h}, w2)
-    << array("b2", {nets}, b2) << scaling_functions(m, c, array);
+    << array("w1", {nets, h, n}, w.w1) << array("b1", {nets, h}, w.b1)
+    << array("w2", {nets, h}, w.w2) << array("b2", {nets}, w.b2) << scaling_functions(m, c, array);
   s << "void " << p << "init(" << p << "state *s)\n{\n  int a, k;\n  for (a = 0; a < " << M
     << "_NETWORKS; ++a) {\n    for (k = 0; k < " << M << "_INPUT_HISTORY; ++k) s->v[a][k] = " << p
     << "scale_in(a, " << c.literal(0) << ");\n    for (k = 0; k < " << M

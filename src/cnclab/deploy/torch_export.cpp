@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "cnclab/deploy/code_text.hpp"
+#include "cnclab/deploy/export_weights.hpp"
 #include "cnclab/deploy/sequence_extension.hpp"
 
 namespace cnclab {
@@ -122,26 +123,18 @@ TorchScaling scaling(const ScalingRecord& s, const std::string& side, std::ostri
 }
 
 std::string mlp_module(const DeployedModel& m, const std::string& name) {
-  const Mlp mlp(m.mlp);
-  const auto& sizes = mlp.layer_sizes();
   std::ostringstream init;
   init << "    def __init__(self, dtype=torch.float64):\n        super().__init__()\n"
        << "        self.layers = torch.nn.ModuleList()\n";
-  Eigen::Index offset = 0;
-  for (std::size_t l = 1; l < sizes.size(); ++l) {
-    const Eigen::Index in = sizes[l - 1], out = sizes[l];
-    std::vector<double> w;  // row-major (out x in), as torch.nn.Linear holds it
-    for (Eigen::Index i = 0; i < out; ++i) {
-      for (Eigen::Index j = 0; j < in; ++j) w.push_back(m.parameters[offset + j * out + i]);
-    }
-    init << "        layer = torch.nn.Linear(" << in << ", " << out << ", dtype=dtype)\n"
+  for (const DenseLayer& layer : mlp_layers(m)) {  // row-major, as torch.nn.Linear holds it
+    init << "        layer = torch.nn.Linear(" << layer.inputs << ", " << layer.outputs
+         << ", dtype=dtype)\n"
          << "        with torch.no_grad():\n            layer.weight.copy_(torch.tensor("
-         << py_values(w) << ", dtype=dtype).reshape(" << out << ", " << in << "))\n"
-         << "            layer.bias.copy_(torch.tensor("
-         << py_values(values_of(m.parameters.segment(offset + in * out, out)))
+         << py_values(layer.weights) << ", dtype=dtype).reshape(" << layer.outputs << ", "
+         << layer.inputs << "))\n"
+         << "            layer.bias.copy_(torch.tensor(" << py_values(layer.biases)
          << ", dtype=dtype))\n"
          << "        self.layers.append(layer)\n";
-    offset += (in + 1) * out;
   }
   const TorchScaling in_scaling = scaling(m.input_scaling, "in", init);
   const TorchScaling out_scaling = scaling(m.target_scaling, "out", init);
@@ -160,17 +153,7 @@ std::string narx_module(const DeployedModel& m, const std::string& name, const E
   const NarxOptions& o = m.narx;
   const std::size_t nets = m.networks.size(), h = o.hidden, dv = o.input_delays,
                     de = o.feedback_delays, d0 = o.first_input_delay, n = dv + de;
-  std::vector<double> w1, b1, w2, b2;
-  for (const auto& net : m.networks) {
-    const Eigen::VectorXd& q = net.parameters;
-    const auto hh = static_cast<Eigen::Index>(h), nn = static_cast<Eigen::Index>(n);
-    for (Eigen::Index i = 0; i < hh; ++i) {
-      for (Eigen::Index j = 0; j < nn; ++j) w1.push_back(q[j * hh + i]);
-    }
-    for (Eigen::Index i = 0; i < hh; ++i) b1.push_back(q[hh * nn + i]);
-    for (Eigen::Index i = 0; i < hh; ++i) w2.push_back(q[hh * nn + hh + i]);
-    b2.push_back(q[hh * nn + 2 * hh]);
-  }
+  const NarxWeights w = narx_weights(m);
   std::ostringstream s;
   s << class_head(m, name) << "    NETWORKS = " << nets << "\n    INPUT_HISTORY = " << d0 + dv
     << "\n    FIRST_INPUT_DELAY = " << d0 << "\n    INPUT_DELAYS = " << dv
@@ -178,23 +161,16 @@ std::string narx_module(const DeployedModel& m, const std::string& name, const E
     << "    def __init__(self, dtype=torch.float64):\n        super().__init__()\n"
     << "        def p(values, *shape):\n            return torch.nn.Parameter(torch.tensor("
        "values, dtype=dtype).reshape(*shape))\n"
-    << "        self.w1 = p(" << py_values(w1) << ", " << nets << ", " << h << ", " << n << ")\n"
-    << "        self.b1 = p(" << py_values(b1) << ", " << nets << ", " << h << ")\n"
-    << "        self.w2 = p(" << py_values(w2) << ", " << nets << ", " << h << ")\n"
-    << "        self.b2 = p(" << py_values(b2) << ", " << nets << ")\n";
+    << "        self.w1 = p(" << py_values(w.w1) << ", " << nets << ", " << h << ", " << n << ")\n"
+    << "        self.b1 = p(" << py_values(w.b1) << ", " << nets << ", " << h << ")\n"
+    << "        self.w2 = p(" << py_values(w.w2) << ", " << nets << ", " << h << ")\n"
+    << "        self.b2 = p(" << py_values(w.b2) << ", " << nets << ")\n";
   std::string scale_in = "x", scale_out = "y", unscale_out = "x";
   if (m.has_physical_columns()) {
-    std::vector<double> in_min, in_span, out_min, out_span;
-    for (std::size_t a = 0; a < nets; ++a) {
-      in_min.push_back(m.physical_inputs[a].min);
-      in_span.push_back(m.physical_inputs[a].max - m.physical_inputs[a].min);
-      out_min.push_back(m.physical_targets[a].min);
-      out_span.push_back(m.physical_targets[a].max - m.physical_targets[a].min);
-    }
     for (const auto& [buffer, v] :
-         {std::pair{"in_min", in_min}, std::pair{"in_span", in_span}, std::pair{"out_min", out_min},
-          std::pair{"out_span", out_span}}) {
-      s << "        self.register_buffer(\"" << buffer << "\", torch.tensor(" << py_values(v)
+         {std::pair{"in_min", &w.in_min}, std::pair{"in_span", &w.in_span},
+          std::pair{"out_min", &w.out_min}, std::pair{"out_span", &w.out_span}}) {
+      s << "        self.register_buffer(\"" << buffer << "\", torch.tensor(" << py_values(*v)
         << ", dtype=dtype))\n";
     }
     scale_in = "(x - self.in_min) / self.in_span * 2.0 - 1.0";
