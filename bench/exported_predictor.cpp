@@ -110,18 +110,22 @@ ExportedTiming time_exported_predictor(const NarxAxisModel (&models)[2],
   const std::size_t n = velocity.size();
   std::vector<double> per_tick;
   double checksum = 0;
-  double in[2], out[2], position[2], d1[2], d2[2], eps = 0;
+  double out[2], eps = 0;
+  // One tick of the export: both networks, then the contour estimate.
+  const auto tick = [&](std::size_t k) {
+    const PathPoint& p = reference[k];
+    const double in[2] = {velocity[k].x(), velocity[k].y()};
+    const double position[2] = {p.position.x(), p.position.y()};
+    const double d1[2] = {p.d1.x(), p.d1.y()}, d2[2] = {p.d2.x(), p.d2.y()};
+    step(state.data(), in, out);
+    contour(position, d1, d2, out, &eps);
+  };
   for (int r = 0; r < std::max(repeats, 3); ++r) {
     init(state.data());
     const long before = allocation_count();
     const double t0 = cpu_seconds();
     for (std::size_t k = 0; k < n; ++k) {
-      const PathPoint& p = reference[k];
-      in[0] = velocity[k].x(), in[1] = velocity[k].y();
-      position[0] = p.position.x(), position[1] = p.position.y();
-      d1[0] = p.d1.x(), d1[1] = p.d1.y(), d2[0] = p.d2.x(), d2[1] = p.d2.y();
-      step(state.data(), in, out);
-      contour(position, d1, d2, out, &eps);
+      tick(k);
       checksum += eps;
     }
     const double seconds = cpu_seconds() - t0;
@@ -136,13 +140,8 @@ ExportedTiming time_exported_predictor(const NarxAxisModel (&models)[2],
   init(state.data());
   ContourPrediction p;
   for (std::size_t k = 0; k < n; ++k) {
-    const PathPoint& ref = reference[k];
-    in[0] = velocity[k].x(), in[1] = velocity[k].y();
-    position[0] = ref.position.x(), position[1] = ref.position.y();
-    d1[0] = ref.d1.x(), d1[1] = ref.d1.y(), d2[0] = ref.d2.x(), d2[1] = ref.d2.y();
-    step(state.data(), in, out);
-    contour(position, d1, d2, out, &eps);
-    if (internal.step(velocity[k], ref, p) != PredictorStatus::ok) continue;
+    tick(k);
+    if (internal.step(velocity[k], reference[k], p) != PredictorStatus::ok) continue;
     for (int a = 0; a < 2; ++a) {
       t.max_error_diff = std::max(t.max_error_diff, std::abs(out[a] - p.following_error[a] * 1e3));
     }
