@@ -26,6 +26,12 @@ std::string generator_of(const RunRecord& r, const std::string& file) {
   return root.section("dataset").require<std::string>("generator");
 }
 
+std::vector<std::string> physical_field(const std::vector<ColumnScaling>& columns, bool units) {
+  std::vector<std::string> out;
+  for (const auto& c : columns) out.push_back(units ? c.unit : c.name);
+  return out;
+}
+
 }  // namespace
 
 std::string to_string(ModelKind kind) {
@@ -38,14 +44,6 @@ std::size_t DeployedModel::num_parameters() const {
   for (const auto& net : networks) n += static_cast<std::size_t>(net.parameters.size());
   return n;
 }
-
-namespace {
-std::vector<std::string> physical_field(const std::vector<ColumnScaling>& columns, bool units) {
-  std::vector<std::string> out;
-  for (const auto& c : columns) out.push_back(units ? c.unit : c.name);
-  return out;
-}
-}  // namespace
 
 std::vector<std::string> DeployedModel::export_input_names() const {
   return has_physical_columns() ? physical_field(physical_inputs, false) : input_names;

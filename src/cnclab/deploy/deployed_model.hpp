@@ -15,8 +15,8 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
+#include <iosfwd>
 #include <map>
-#include <ostream>
 #include <string>
 #include <vector>
 
@@ -94,7 +94,8 @@ struct DeployedModel {
   std::vector<std::string> export_input_units() const;
   std::vector<std::string> export_output_names() const;
   std::vector<std::string> export_output_units() const;
-  // "mlp 73-28-20-1 (relu/linear)", "narx x2: 12 tanh units, input delays 0..3, ..."
+  // "mlp 73-28-20-1 (relu hidden, linear output)", "narx, 2 network(s) of 12
+  // tanh units, input delays 0..3, feedback delays 1..4"
   std::string architecture() const;
 };
 
@@ -102,7 +103,7 @@ struct DeployedModel {
 // ConfigError (exit 2: nothing to predict with) naming the file for a job
 // result, a result whose training failed (with its reason), or parameters
 // that do not fit the network or are not finite. Physical columns are not
-// filled: deployed_model_with_data does.
+// filled (they need the training dataset): load_deployed_model does.
 DeployedModel deployed_model(const RunRecord& record, const std::string& result_file);
 
 // Where the training dataset comes from when a model needs it (a narx

@@ -49,11 +49,12 @@ std::vector<std::string> float_bound_statement(const DeployedModel& m,
   const Eigen::MatrixXd bound = float_error_bound(m, export_inputs(m, d, *samples));
   const auto names = m.export_output_names(), units = m.export_output_units();
   std::vector<std::string> lines = {
-      "float bound |out_float - out_double| <= B, the running error bound of",
-      "            src/cnclab/deploy/float_bound.hpp (u = 2^-24 + 2^-53, tanhf/expf",
-      "            within 4 ulp), its",
-      "            maximum over the " + std::to_string(samples->size()) + " samples of the " +
-          part + (m.kind == ModelKind::narx ? " (closed loop from standstill):" : ":")};
+      "float bound |out_float - out_double| <= B: the running error bound of",
+      "            src/cnclab/deploy/float_bound.hpp (u = 2^-24 + 2^-53, tanhf and expf",
+      "            within 4 ulp), its largest value over the " + std::to_string(samples->size()) +
+          " samples",
+      "            of the " + part +
+          (m.kind == ModelKind::narx ? " (closed loop from standstill):" : ":")};
   for (Eigen::Index k = 0; k < bound.rows(); ++k) {
     const auto i = static_cast<std::size_t>(k);
     lines.push_back("              " + names[i] +
@@ -68,9 +69,9 @@ ExportReport export_model(const fs::path& result_file, const ExportOptions& o) {
   }
   const CPrecision precision = parse_precision(o.precision);
   if (o.format == "torch" && precision != CPrecision::float64) {
-    throw ConfigError("--precision float: the torch module takes its dtype when made (" +
-                      std::string("NAME(dtype=torch.float32)") +
-                      "); --precision is for --format c");
+    throw ConfigError(
+        "--precision float: the torch module takes its dtype when made, "
+        "NAME(dtype=torch.float32); --precision is for --format c");
   }
   const DeployedModel m = load_deployed_model(result_file, o.data);
   const std::string name = o.name.empty() ? export_identifier(m.experiment) : o.name;
