@@ -45,6 +45,8 @@ PLACEHOLDERS = {
     "FILE.nc": "groove.nc",
     "FILE": "out.h5",
     "DATASET.h5": "{dataset}",
+    "INPUT": "{dataset}",
+    "OUT.h5": "predictions.h5",
     "DIR": "results",
     "N": "2",
     "K/N": "1/2",
@@ -60,7 +62,7 @@ PLACEHOLDERS_BY_COMMAND = {
 # Commands cheap enough to run for real (first words after cnclab); run and
 # sweep only of the Friedman experiments, shrunk by shrink().
 CHEAP = {"run", "validate", "show", "sweep", "compare", "status", "schema", "version", "init",
-         "gcode", "dataset"}
+         "gcode", "dataset", "predict", "export"}
 
 
 def cnclab(args, cwd, env=None):
@@ -268,6 +270,10 @@ def command_table(made):
         (["init"], ["fresh_project"], None),
         (["dataset", "generate"], [exp], ["missing.yaml"]),
         (["dataset", "show"], [made["dataset"]], ["missing.h5"]),
+        (["predict"], [made["result"], made["dataset"], "-o", "p.h5"],
+         ["missing.h5", made["dataset"], "-o", "p.h5"]),
+        (["export"], [made["result"], "--format", "c", "-o", "exported"],
+         ["missing.h5", "--format", "c", "-o", "exported"]),
         (["surface", "show"], ["experiments/step_error/cad_example_part.step"], ["missing.step"]),
         (["surface", "export"], ["configs/surfaces/surface1.yaml", "--out", "x.step"],
          ["missing.yaml", "--out", "x.step"]),

@@ -22,13 +22,13 @@ namespace {
 namespace fs = std::filesystem;
 using testing::slurp;
 
-const std::string kCnclab = CNCLAB_BINARY_DIR "/cnclab";
-const std::string kExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
+const std::string kLockCnclab = CNCLAB_BINARY_DIR "/cnclab";
+const std::string kLockExperiment = CNCLAB_SOURCE_DIR "/experiments/friedman/friedman1_mlp.yaml";
 
 // 12 trials (4 keep probabilities x 3 learning rates), each a fraction of a
 // second, so that processes started together overlap for the whole sweep.
 std::string sweep_command(const std::string& extra) {
-  return kCnclab + " sweep " + kExperiment +
+  return kLockCnclab + " sweep " + kLockExperiment +
          " trainer.epochs=40 dataset.options.samples=400 model.hidden=[16,8] "
          "model.dropout.keep_probability=0.7,0.8,0.9,1.0 trainer.learning_rate=1e-3,1e-2,1e-1 "
          "--jobs 2 --data-dir data --dir s --out r " +
@@ -124,7 +124,7 @@ TEST(SweepLock, ShardsAndAWholeSweepShareTheFolderTrialByTrial) {
 // --rerun trains every trial again (the README promises it), each once.
 TEST(SweepLock, RerunTrainsEveryTrialAgain) {
   testing::TempDir dir;
-  const std::string small = kCnclab + " sweep " + kExperiment +
+  const std::string small = kLockCnclab + " sweep " + kLockExperiment +
                             " trainer.epochs=2 dataset.options.samples=200 model.hidden=[8] "
                             "trainer.learning_rate=1e-3,1e-2 --jobs 2 --data-dir data --dir s ";
   ASSERT_EQ(testing::run_shell(dir.path(), small + "--quiet").code, 0);
