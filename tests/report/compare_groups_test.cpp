@@ -333,7 +333,9 @@ TEST(CompareGroups, IntervalsStayWithinTheMetricsRange) {
     // The unclipped Student-t interval, for comparison.
     const SampleSummary raw = summarize(r.metric.ends_with("r2") ? r2 : mae);
     if (r.metric.ends_with("r2")) {
-      if (r.group == "trainer.type=sgdm") ASSERT_GT(raw.ci_high, 1.0);  // the case to clip
+      if (r.group == "trainer.type=sgdm") {
+        ASSERT_GT(raw.ci_high, 1.0);  // the case to clip
+      }
       EXPECT_LE(r.summary.ci_high, 1.0) << r.metric;
       EXPECT_EQ(r.ci_clipped, "high") << r.metric << " " << r.group;
       EXPECT_EQ(r.summary.ci_low, summarize(values_for(runs, r)).ci_low);  // below: unchanged
