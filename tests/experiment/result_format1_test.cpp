@@ -14,6 +14,7 @@
 #include <string>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/experiment/runner.hpp"
@@ -120,10 +121,33 @@ TEST_F(Format1, StoreDoesNotReuseIt) {
   try {
     store.existing(result_key(e));
     FAIL() << "a format-1 result was reused";
-  } catch (const IoError& err) {
+  } catch (const OutdatedResult& err) {
     EXPECT_NE(std::string(err.what()).find("result format 1"), std::string::npos) << err.what();
   }
   EXPECT_THROW(store.get(e), MissingResults);
+}
+
+// A job result of format 1 keeps its own metric names; only the training
+// metrics it carries (a sweep job's selected trial's) get today's names.
+TEST(Format1Names, JobResultsRenameOnlyTheTrainingMetricsTheyCarry) {
+  TempDir dir;
+  RunRecord job = make_job_record("sweep", {"search", std::nullopt, "name: search\n", {}, false});
+  job.metrics = {{"rmse", 1.0}};  // replaced below by the format-1 layout
+  const fs::path file = dir / "job.h5";
+  write_job_result(file, job);
+  make_format1(file, {{"rmse", 1.5},
+                      {"normalised_validation_mse", 0.25},
+                      {"sweep.trials", 3},
+                      {"points", 7},
+                      {"wall_seconds", 2}});
+  const RunRecord r = read_result(file);
+  EXPECT_EQ(r.kind, "sweep");
+  EXPECT_EQ(r.format_version, 1);
+  EXPECT_EQ(r.metrics, (std::map<std::string, double>{{"test.rmse", 1.5},
+                                                      {"validation.normalised_mse", 0.25},
+                                                      {"sweep.trials", 3},
+                                                      {"points", 7},
+                                                      {"wall_seconds", 2}}));
 }
 
 TEST(Format1Names, EachOlderNameHasOneNewName) {

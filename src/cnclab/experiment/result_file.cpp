@@ -266,17 +266,30 @@ std::string format1_metric_name(const std::string& name) {
 }
 
 namespace {
-// A training result's metrics (or units) of format `version` under today's names.
-template <class V>
-std::map<std::string, V> current_names(std::map<std::string, V> stored, int version) {
-  if (version >= 2) return stored;
-  std::map<std::string, V> out;
-  for (auto& [name, value] : stored) out[format1_metric_name(name)] = std::move(value);
-  return out;
-}
-
 bool is_training_result(const H5File& f) {
   return !f.has_attribute("/", "kind") || f.attribute_string("/", "kind") == "train";
+}
+
+// Metrics (or their units) of file `f` of format `version` under today's
+// names: every name of a training result; of a job result only the training
+// metrics it carries (a sweep job's selected trial: base metrics, the older
+// validation name, registered sequence metrics), not the job's own names.
+template <class V>
+std::map<std::string, V> current_names(std::map<std::string, V> stored, const H5File& f,
+                                       int version) {
+  if (version >= 2) return stored;
+  const bool training = is_training_result(f);
+  const auto& mlp = base_metrics();
+  const auto sequence = sequence_metric_names();
+  const auto renamed = [&](const std::string& name) {
+    const bool of_training = training || name == kOlderValidationMse ||
+                             std::find(mlp.begin(), mlp.end(), name) != mlp.end() ||
+                             std::find(sequence.begin(), sequence.end(), name) != sequence.end();
+    return of_training ? format1_metric_name(name) : name;
+  };
+  std::map<std::string, V> out;
+  for (auto& [name, value] : stored) out[renamed(name)] = std::move(value);
+  return out;
 }
 }  // namespace
 
@@ -311,10 +324,8 @@ ResultStatus read_status_in_process(const std::filesystem::path& path) {
   ResultStatus s;
   s.status = f.attribute_string("/", "status");
   s.failure_reason = f.attribute_string("/provenance", "failure_reason");
-  s.metrics = read_metrics(f);
-  if (is_training_result(f)) s.metrics = current_names(std::move(s.metrics), version);
-  s.metric_units = read_metric_units(f);
-  if (is_training_result(f)) s.metric_units = current_names(std::move(s.metric_units), version);
+  s.metrics = current_names(read_metrics(f), f, version);
+  s.metric_units = current_names(read_metric_units(f), f, version);
   s.warnings = read_warnings(f);
   s.upstream = read_upstream(f);
   return s;
@@ -391,6 +402,8 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   if (!is_training_result(f)) {
     RunRecord job = read_job_result(f);
     job.format_version = version;
+    job.metrics = current_names(std::move(job.metrics), f, version);
+    job.metric_units = current_names(std::move(job.metric_units), f, version);
     return job;
   }
   RunRecord r;
@@ -414,8 +427,8 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   } else {
     read_mlp_sections(f, r);
   }
-  r.metrics = current_names(read_metrics(f), version);
-  r.metric_units = current_names(read_metric_units(f), version);
+  r.metrics = current_names(read_metrics(f), f, version);
+  r.metric_units = current_names(read_metric_units(f), f, version);
   if (r.metric_units.empty()) r.metric_units = training_metric_units(r);  // older files
   r.warnings = read_warnings(f);
   r.upstream = read_upstream(f);

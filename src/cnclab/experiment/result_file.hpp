@@ -17,8 +17,8 @@ inline constexpr const char* kResultFormat = "cnclab-result";
 // 2: training metrics per split ("test.rmse", nn/metrics.hpp). 1: the mlp's
 // metrics of the test split as "rmse" ..., normalised_mse (test) and
 // normalised_validation_mse, a narx run's of its validation half under their
-// registered names; read with format1_metric_name. Job results are the same
-// in both.
+// registered names; read with format1_metric_name (job results: the
+// training metrics among theirs, a sweep job's selected trial's).
 inline constexpr int kResultFormatVersion = 2;
 inline constexpr int kResultOldestFormatVersion = 1;
 

@@ -36,6 +36,13 @@ class MissingResults : public IoError {
   using IoError::IoError;
 };
 
+// A readable result of the config asked for, but of an older result format
+// that is not reused (the rule "Current only" above).
+class OutdatedResult : public IoError {
+ public:
+  using IoError::IoError;
+};
+
 // What identifies a result.
 struct ResultKey {
   std::string name;                   // experiment or job name: R/<name>/

@@ -103,8 +103,8 @@ inline constexpr const char* kBestTrialRule = "median repeat of the rank-1 point
 // What a sweep without test metrics reports of its chosen point (narx runs:
 // split.mode sequential_halves has no test part).
 inline constexpr const char* kNoTestSplitNote =
-    "no test split: the experiment's metrics are of the part the point was chosen on, so the "
-    "chosen point's numbers are not an estimate on held-out data";
+    "no test split: no part is held out of both the training and the choice, so the chosen "
+    "point's numbers are no estimate on new data";
 
 SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& outcomes);
 
