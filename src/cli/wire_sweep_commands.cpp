@@ -55,7 +55,9 @@ void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
       ->check(count_validator());
   sweep.add_option("--method", o.method, "grid or random");
   sweep.add_option("--objective", o.objective,
-                   "METRIC[:min|max] to rank trials by (default: first metric)");
+                   "METRIC[:min|max] to rank trials by, e.g. validation.rmse (a name without "
+                   "split: its validation value; default: the validation value of the first "
+                   "metric; test.* warns: it selects on test data)");
   sweep
       .add_option("--sweep-seed", a.sweep_seed_text,
                   "Seed of the random search (default: the experiment seed)")
@@ -74,7 +76,8 @@ void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
       "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
       "model.dropout.keep_probability=0.8,0.9,1.0 trainer.epochs=50 --repeats 3\n"
       "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
-      "'trainer.learning_rate=log_uniform(1e-4,1e-1)' --trials 20 --objective rmse:min\n"
+      "'trainer.learning_rate=log_uniform(1e-4,1e-1)' --trials 20 --objective "
+      "validation.rmse:min\n"
       "  cnclab sweep experiments/contour_error/architecture.yaml --shard 1/2   # a kind: sweep "
       "file\n"
       "Re-running the same command resumes: trials with a result are skipped.\n"

@@ -78,13 +78,17 @@ void add_model_rules(json& s) {
         {"normalisation",
          {{"properties", {{"inputs", none}, {"targets", none}}},
           {"required", {"inputs", "targets"}}}},
-        {"metrics", metrics_schema(sequence_metric_names())}}},
+        {"metrics",
+         metrics_schema(metric_selection_names(sequence_metric_names(), {"validation"}))}}},
       {"required", {"split", "normalisation"}}};
   s["else"] = {
       {"properties",
-       {{"trainer", {{"required", {"type"}}}}, {"metrics", metrics_schema(known_metrics())}}}};
-  std::vector<std::string> all = known_metrics();
-  for (const auto& m : sequence_metric_names()) all.push_back(m);
+       {{"trainer", {{"required", {"type"}}}},
+        {"metrics", metrics_schema(metric_selection_names(base_metrics(), metric_splits()))}}}};
+  std::vector<std::string> all = metric_selection_names(base_metrics(), metric_splits());
+  for (const auto& m : metric_selection_names(sequence_metric_names(), {"validation"})) {
+    all.push_back(m);
+  }
   s["properties"]["metrics"]["items"]["enum"] = all;
 }
 

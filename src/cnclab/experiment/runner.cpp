@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
@@ -189,19 +190,24 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   rec.parameters = params;
   const bool ok = rec.training.termination != Termination::diverged;
 
-  // Evaluation in physical units and in the network's normalised units.
+  // Evaluation of every split in physical units and in the network's
+  // normalised units (nn/metrics.hpp).
   if (ok) {
-    EvaluationData eval;
-    eval.test_outputs = mlp.predict(params, xn_test);
-    eval.test_scaled_targets = yn_test;
-    eval.validation_outputs =
-        xn_val.cols() > 0 ? mlp.predict(params, xn_val) : Eigen::MatrixXd(yn_val.rows(), 0);
-    eval.validation_scaled_targets = yn_val;
-    rec.test_predictions = rec.target_scaling.inverse_transform(eval.test_outputs);
+    std::map<std::string, SplitData> splits;
+    const auto evaluate = [&](const std::string& split, const Eigen::MatrixXd& xn,
+                              const Eigen::MatrixXd& yn, const Eigen::MatrixXd& y) {
+      SplitData& d = splits[split];
+      d.outputs = xn.cols() > 0 ? mlp.predict(params, xn) : Eigen::MatrixXd(yn.rows(), 0);
+      d.scaled_targets = yn;
+      d.predictions = rec.target_scaling.inverse_transform(d.outputs);
+      d.targets = y;
+    };
+    evaluate("train", xn_train, yn_train, y_train);
+    evaluate("validation", xn_val, yn_val, y_val);
+    evaluate("test", xn_test, yn_test, y_test);
+    rec.test_predictions = splits["test"].predictions;
     rec.test_targets = y_test;
-    eval.test_predictions = rec.test_predictions;
-    eval.test_targets = rec.test_targets;
-    rec.metrics = evaluation_metrics(eval, spec.metrics);
+    rec.metrics = evaluation_metrics(splits, stored_metrics(spec));
   }
 
   rec.provenance.end_utc = utc_now_iso8601();
@@ -219,6 +225,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   outcome.message = rec.training.message;
   outcome.metrics = rec.metrics;
   outcome.warnings = rec.warnings;
+  outcome.notes = validation_notes(rec);
   return outcome;
 }
 

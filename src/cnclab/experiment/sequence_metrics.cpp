@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "cnclab/nn/metrics.hpp"
+
 namespace cnclab {
 namespace {
 
@@ -39,7 +41,7 @@ std::string sequence_metric_unit(const std::string& name) {
 
 MetricRange sequence_metric_range(const std::string& name) {
   for (const auto& g : sequence_metric_groups()) {
-    if (const auto it = g.ranges.find(name); it != g.ranges.end()) return it->second;
+    if (const auto it = g.ranges.find(metric_base(name)); it != g.ranges.end()) return it->second;
   }
   return {};
 }

@@ -45,7 +45,8 @@ void register_sequence_metrics(SequenceMetricGroup group);
 std::vector<std::string> sequence_metric_names();
 // The unit a group registered for `name`; "" when none did.
 std::string sequence_metric_unit(const std::string& name);
-// The range a group registered for `name`; unbounded when none did.
+// The range a group registered for `name` (or its base, "contour_rms" of
+// "validation.contour_rms"); unbounded when none did.
 MetricRange sequence_metric_range(const std::string& name);
 // The metrics `wanted` (registered names) of one prediction.
 std::map<std::string, double> sequence_metrics(const SequencePrediction& prediction,

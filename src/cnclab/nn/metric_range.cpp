@@ -21,9 +21,10 @@ std::string MetricRange::text() const {
 }
 
 MetricRange metric_range(const std::string& name) {
-  const std::string base = name.substr(name.rfind('.') + 1);  // npos + 1 = 0
+  const std::string base = metric_base(name);
   if (base == "r2") return {-std::numeric_limits<double>::infinity(), 1.0};
-  for (const auto& m : known_metrics()) {
+  if (name == kOlderValidationMse) return {0.0, std::numeric_limits<double>::infinity()};
+  for (const auto& m : base_metrics()) {
     if (m == base) return {0.0, std::numeric_limits<double>::infinity()};
   }
   return {};

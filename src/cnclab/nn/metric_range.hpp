@@ -14,7 +14,7 @@ struct MetricRange {
   std::string text() const;  // ">= 0", "<= 1", "in [0, 1]", "" when unbounded
 };
 
-// The range of a metric of metrics.hpp (known_metrics()), also with a split
+// The range of a metric of metrics.hpp (base_metrics()), also with a split
 // prefix ("validation.rmse" as "rmse"):
 //   mse, rmse, mae, max_abs_error, normalised_mse, normalised_validation_mse   >= 0
 //   r2 = 1 − SSE/SST                                                           <= 1

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <set>
 
 #include "cnclab/core/config.hpp"
@@ -26,6 +27,7 @@ struct Comparison {
   std::vector<std::string> labels;  // [1], [2], ...
   std::vector<std::pair<std::string, std::vector<std::optional<std::string>>>> config;
   std::vector<std::pair<std::string, std::vector<std::optional<double>>>> metrics;
+  std::map<std::string, std::string> units;  // per metric: the first run's that names one
 };
 
 Comparison build(const std::vector<ComparedRun>& runs, bool full) {
@@ -58,6 +60,9 @@ Comparison build(const std::vector<ComparedRun>& runs, bool full) {
   std::set<std::string> names;
   for (const auto& r : runs) {
     for (const auto& [name, value] : r.record.metrics) names.insert(name);
+    for (const auto& [name, unit] : r.record.metric_units) {
+      if (!unit.empty()) c.units.emplace(name, unit);
+    }
   }
   for (const auto& name : names) {
     std::vector<std::optional<double>> values;
@@ -147,7 +152,10 @@ void print_json(const std::vector<ComparedRun>& runs, const Comparison& c, std::
   out << (c.config.empty() ? "" : "\n  ") << "},\n  \"metrics\": {";
   for (std::size_t m = 0; m < c.metrics.size(); ++m) {
     const auto& v = c.metrics[m].second;
-    out << (m ? "," : "") << "\n    " << json_string(c.metrics[m].first) << ": {\"values\": [";
+    const auto unit = c.units.find(c.metrics[m].first);
+    out << (m ? "," : "") << "\n    " << json_string(c.metrics[m].first)
+        << ": {\"unit\": " << json_string(unit == c.units.end() ? "" : unit->second)
+        << ", \"values\": [";
     for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << json_number(v[i]);
     out << "], \"delta_to_first\": [";
     for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << json_number(delta(v, i));
@@ -195,7 +203,9 @@ TextTable display_table(const std::vector<ComparedRun>& runs, const Comparison& 
     t.rows.push_back(std::move(row));
   }
   for (const auto& [name, v] : c.metrics) {
-    std::vector<std::string> row = {name};
+    const auto unit = c.units.find(name);
+    std::vector<std::string> row = {unit == c.units.end() ? name
+                                                          : name + " [" + unit->second + "]"};
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (!v[i]) {
         row.push_back(kMissingCell);

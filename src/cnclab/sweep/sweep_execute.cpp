@@ -333,6 +333,8 @@ SweepExecution execute_sweep(const SweepPlan& plan, const fs::path& dir,
     if (taken) *note << "; " << taken << " taken from the results store";
     *note << "; " << ex.mine.size() - todo.size() << " already done, running " << todo.size()
           << " with " << std::min(jobs, std::max<std::size_t>(todo.size(), 1)) << " job(s)\n";
+    if (const std::string w = objective_warning(plan); !w.empty())
+      *note << "warning: " << w << "\n";
   }
   if (o.common.regenerate) regenerate_datasets(plan, todo, o.common, note);
   claims.queue(todo);

@@ -40,7 +40,7 @@ struct SweepPlan {
   std::size_t repeats = 1;
   Objective objective;
   std::vector<std::string> keys;      // swept config keys
-  std::vector<std::string> metrics;   // the experiment's metrics
+  std::vector<std::string> metrics;   // the experiment's stored metrics (stored_metrics)
   std::vector<PlannedTrial> trials;   // points in order, repeats within a point
   std::size_t merged_duplicates = 0;  // samples whose config equalled an earlier trial's
 
@@ -53,6 +53,17 @@ struct SweepPlan {
 // "key=value key=value": a point's swept values (keys and values in plan order).
 std::string point_text(const std::vector<std::string>& keys,
                        const std::vector<std::string>& values);
+
+// The objective a sweep ranks by. Given: its metric as named, a name without
+// a split meaning its validation value ("rmse" -> validation.rmse;
+// normalised_validation_mse -> validation.normalised_mse); a test.* name is
+// allowed (objective_warning). Not given: the validation value of the first
+// entry of the experiment's `metrics:` (`selection`), maximised for r2.
+Objective resolve_objective(const std::optional<Objective>& given,
+                            const std::vector<std::string>& selection);
+// For people, where a sweep runs or is summarised: "" unless the objective
+// is a test metric (selecting on test data), then why that misleads.
+std::string objective_warning(const SweepPlan& plan);
 
 // Expands and resolves every trial (loading each config validates it, so a
 // bad key or value stops the sweep before anything runs: ConfigError).

@@ -26,16 +26,18 @@ void add_seeds(Measurements& m, const std::string& prefix, const RepeatedPoint& 
 
 void add_repeats(Measurements& m, const StepErrorRepeats& r) {
   const std::string prefix = r.variant + ".seeds.";
-  for (const auto& point : r.surface1.points) {
-    const double p = point.number();
-    if (p == 1.0) {
-      add_seeds(m, prefix + "surface1", point);
-    } else {
-      RepeatedPoint mse = point;
-      for (auto& figures : mse.runs) figures = {{"test_mse", figures.at("test_mse")}};
-      add_seeds(m, prefix + "table2.p" + table_number(p), mse);
+  for (const auto& point : r.table2.points) {
+    RepeatedPoint mse = point;
+    for (auto& figures : mse.runs) {
+      figures = {{"test_mse", figures.at("test_mse")},
+                 {"validation_mse", figures.at("validation_mse")}};
     }
+    add_seeds(m, prefix + "table2.p" + table_number(point.number()), mse);
   }
+  const auto p_of = [](const RepeatedPoint* point) { return point ? point->number() : NAN; };
+  m[prefix + "table2.best_p"] = p_of(table2_choice_over_seeds(r.table2, "validation_mse"));
+  m[prefix + "table2.best_p_on_test"] = p_of(table2_choice_over_seeds(r.table2, "test_mse"));
+  for (const auto& point : r.surface1.points) add_seeds(m, prefix + "surface1", point);
   for (const auto* sweep : {&r.surface2_ft15, &r.surface3_ft15}) {
     const std::string surface = sweep == &r.surface2_ft15 ? "surface2" : "surface3";
     for (const auto& point : sweep->points) {
@@ -44,27 +46,42 @@ void add_repeats(Measurements& m, const StepErrorRepeats& r) {
   }
 }
 
-// Table 2 of one variant: test MSE per keep probability, and the best p
-// (lowest test MSE of the trainings that did not diverge, as the table's note).
+// Table 2 of one variant: validation and test MSE per keep probability, and
+// the chosen p (table2_choice, as the table's note).
 void add_table2(Measurements& m, const std::string& variant, const StepErrorStudy& s,
                 const StudyVariant& v) {
-  double best = NAN, best_p = NAN;
   for (const auto& [p, file] : v.table2) {
     const StepErrorRun& run = s.at(file);
     const std::string key = variant + ".table2.p" + table_number(p);
     const bool diverged = !run.failure.empty();
-    const double mse = diverged ? NAN : normalised_test_mse(run.record);
     m[key + ".diverged"] = diverged ? 1.0 : 0.0;
-    m[key + ".test_mse"] = mse;
-    if (!std::isnan(mse) && !(mse >= best)) {
-      best = mse;
-      best_p = p;
-    }
+    m[key + ".test_mse"] = diverged ? NAN : normalised_test_mse(run.record);
+    m[key + ".validation_mse"] = diverged ? NAN : validation_mse(run.record);
   }
-  m[variant + ".table2.best_p"] = best_p;
+  const Table2Choice choice = table2_choice(s, v);
+  m[variant + ".table2.best_p"] = choice.on_validation;
+  m[variant + ".table2.best_p_on_test"] = choice.on_test;
 }
 
 }  // namespace
+
+double validation_mse(const RunRecord& r) {
+  const auto it = r.metrics.find("validation.normalised_mse");
+  return it == r.metrics.end() ? NAN : it->second;
+}
+
+Table2Choice table2_choice(const StepErrorStudy& s, const StudyVariant& v) {
+  Table2Choice c;
+  double best_validation = NAN, best_test = NAN;
+  for (const auto& [p, file] : v.table2) {
+    const StepErrorRun& run = s.at(file);
+    if (!run.failure.empty()) continue;
+    const double val = validation_mse(run.record), test = normalised_test_mse(run.record);
+    if (!std::isnan(val) && !(val >= best_validation)) best_validation = val, c.on_validation = p;
+    if (!std::isnan(test) && !(test >= best_test)) best_test = test, c.on_test = p;
+  }
+  return c;
+}
 
 // As Tables 3-7 and the normaliser table print them (step_error_tables.cpp:
 // the rows' lambdas).
@@ -80,7 +97,8 @@ std::map<std::string, double> run_figures(const StepErrorRun& r) {
           {"share_rel_below_10pct", f.share_rel_below(10)},
           {"share_rel_above_10pct", 100.0 - f.share_rel_below(10)},
           {"final_train_loss", h.empty() ? NAN : h.back().train_loss},
-          {"test_mse", normalised_test_mse(r.record)}};
+          {"test_mse", normalised_test_mse(r.record)},
+          {"validation_mse", validation_mse(r.record)}};
 }
 
 Measurements step_error_measures(const StepErrorStudy& s) {
