@@ -105,7 +105,9 @@ Report evaluate(const NurbsSurface& s, bool with_curvature = false) {
   for (int a = 0; with_curvature && a <= 200; ++a) {
     for (int b = 0; b <= 1000; ++b) {
       const SurfaceDerivatives sd = surface_derivatives(s, b / 1000.0, a / 200.0);
-      if (sd.duu.dot(oriented_unit_normal(sd, kToolAxis)) <= 0) continue;
+      // The designed surfaces face +z throughout: the tool side is +z.
+      const Eigen::Vector3d n = sd.du.cross(sd.dv);
+      if (sd.duu.dot(n.z() >= 0 ? n : -n) <= 0) continue;
       r.min_concave_radius =
           std::min(r.min_concave_radius, std::pow(sd.du.norm(), 3) / sd.du.cross(sd.duu).norm());
     }
