@@ -17,8 +17,9 @@
 //     within max_normal_angle of the tool axis; for a solid's face, CC + d n
 //     outside every solid and CC - d n inside one (BRepClass3d_SolidClassifier);
 //   - the target e_i against |R - L| at the extreme of L over a dense scan
-//     (2,000 intervals) of the CC curve between the two CC points, the
-//     curve evaluated by OCCT; and e_i < R.
+//     (2,000 intervals, then 2,000 more over the two around its extreme) of
+//     the CC curve between the two CC points, the curve evaluated by OCCT;
+//     and e_i < R.
 #include <filesystem>
 #include <string>
 #include <vector>

@@ -106,8 +106,8 @@ class Planner {
               " lie outside the face, " + std::to_string(path.cuts.unreachable) +
               " are unreachable from the tool axis " + vector_text(axis_) + ", " +
               std::to_string(path.cuts.degenerate) +
-              " degenerate; none of the rest has an on-path neighbour); try more lines or "
-              "points_per_line, another feed, tool_axis or face",
+              " degenerate; no two neighbours of the rest lie on the face with their "
+              "middle); try more lines or points_per_line, another feed, tool_axis or face",
           Refusal::nothing_left, side_);
     }
     return path;
