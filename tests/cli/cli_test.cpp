@@ -442,7 +442,7 @@ TEST_F(Cli, DatasetGenerateWritesAFileThatShowDescribes) {
   // h5dump (independent reader) sees the metadata beside the inputs, with units.
   const Result dump = sh("h5dump -A out/s1.h5");
   EXPECT_NE(dump.out.find("DATASET \"metadata\""), std::string::npos) << dump.out;
-  EXPECT_NE(dump.out.find("( 12, 6 )"), std::string::npos) << dump.out;
+  EXPECT_NE(dump.out.find("( 12, 9 )"), std::string::npos) << dump.out;
   // Default output name and overrides.
   const Result d = cnclab("dataset generate s1.yaml dataset.options.lines=2");
   ASSERT_EQ(d.code, 0) << d.err;
