@@ -67,6 +67,9 @@ std::map<std::string, double> read_metrics(const H5File& file);
 std::vector<UpstreamRef> read_upstream(const H5File& file);
 std::vector<std::string> read_warnings(const H5File& file);  // none when absent (older files)
 
+// provenance_lines (io/provenance.hpp) as `show` lines: label padded to 13.
+void print_provenance(const Provenance& provenance, std::ostream& out);
+
 // Human-readable summary for `cnclab show` (job results: print_job_result).
 void print_result(const RunRecord& record, std::ostream& out, const ShowOptions& options = {});
 
