@@ -5,6 +5,7 @@
 #include "cli/cli_wiring.hpp"
 #include "cli/commands.hpp"
 #include "cnclab/report/garbage.hpp"
+#include "cnclab/report/html_report.hpp"
 #include "cnclab/report/runs_command.hpp"
 
 namespace cnclab {
@@ -80,11 +81,37 @@ void add_gc(CLI::App& app, CommandAction& action) {
   });
 }
 
+void add_report(CLI::App& app, CommandAction& action) {
+  auto o = std::make_shared<ReportOptions>();
+  auto* report = app.add_subcommand(
+      "report", "One self-contained HTML file (offline, printable) of studies, sweeps or results");
+  report
+      ->add_option("inputs", o->inputs,
+                   "Study names (as `cnclab tables`), sweep folders or "
+                   "result files")
+      ->required();
+  report->add_option("-o,--output", o->output, "The .html file to write")->required();
+  report->add_option("--results", o->tables.results_dir, kResultsRootHelp)->capture_default_str();
+  report->add_option("--profile", o->tables.profile, kProfileHelp);
+  report->footer(
+      "Examples:\n  cnclab report step-error -o step-error.html\n"
+      "  cnclab report results/narx/sweep-1a2b3c4d -o sweep.html\n"
+      "  cnclab report results/friedman1_mlp/friedman1_mlp-seed42-*.h5 -o runs.html\n"
+      "Tables beside the paper's numbers with the declared targets (PASS/FAIL), training "
+      "histories and provenance as inline SVG and text: no script, no network request. Exit 1 "
+      "when a declared target fails.");
+  report->callback([report, o, &action] {
+    apply_profile_dir(*report, "--results", o->tables.profile, o->tables.results_dir);
+    action = [o] { return report_command(*o, std::cout); };
+  });
+}
+
 }  // namespace
 
 void add_runs_commands(CLI::App& app, CommandAction& action) {
   add_runs(app, action);
   add_gc(app, action);
+  add_report(app, action);
 }
 
 }  // namespace cnclab
