@@ -26,6 +26,9 @@ void add_surface_commands(CLI::App& app, CommandAction& action);
 // predict, export (wire_deploy_commands.cpp).
 void add_deploy_commands(CLI::App& app, CommandAction& action);
 
+// runs, gc, report (wire_runs_commands.cpp).
+void add_runs_commands(CLI::App& app, CommandAction& action);
+
 // Shared by the wiring files (cli_wiring.cpp).
 extern const char* const kProfileHelp;
 // --out / --results: the results root (results_folder, result_store.hpp).

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   cnclab::add_tool_commands(app, action);
   cnclab::add_surface_commands(app, action);
   cnclab::add_deploy_commands(app, action);
+  cnclab::add_runs_commands(app, action);
   cnclab::add_init_command(app, action);
 
   try {

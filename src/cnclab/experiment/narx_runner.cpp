@@ -266,7 +266,7 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
     }
   }
   rec.narx = std::move(narx_rec);
-  rec.provenance.end_utc = utc_now_iso8601();
+  finish_provenance(rec.provenance);
   rec.provenance.wall_seconds = seconds_since(wall_start);
   rec.provenance.status = ok ? "complete" : "failed";
   if (ok) rec.warnings = prediction_warnings(rec);

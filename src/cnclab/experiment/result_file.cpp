@@ -493,6 +493,12 @@ std::vector<std::string> validation_notes(const RunRecord& r) {
   return {};
 }
 
+void print_provenance(const Provenance& p, std::ostream& out) {
+  for (const auto& [label, text] : provenance_lines(p)) {
+    out << label << std::string(label.size() < 13 ? 13 - label.size() : 1, ' ') << text << "\n";
+  }
+}
+
 void print_result(const RunRecord& r, std::ostream& out, const ShowOptions& options) {
   if (r.kind != "train") {
     print_job_result(r, out, options);
@@ -501,11 +507,9 @@ void print_result(const RunRecord& r, std::ostream& out, const ShowOptions& opti
   const Provenance& p = r.provenance;
   out << "experiment   " << r.experiment << "\n"
       << "status       " << status_text(p.status, r.warnings)
-      << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n"
-      << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
-      << "run          " << p.start_utc << " -> " << p.end_utc << " ("
-      << format_metric(p.wall_seconds) << " s) on " << p.host << "\n"
-      << "seed         " << p.master_seed << " (";
+      << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n";
+  print_provenance(p, out);
+  out << "seed         " << p.master_seed << " (";
   bool first = true;
   for (const auto& [name, seed] : p.derived_seeds) {
     out << (first ? "" : ", ") << name << " " << seed;

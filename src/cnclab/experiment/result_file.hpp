@@ -89,6 +89,9 @@ std::vector<std::string> read_warnings(const H5File& file);  // none when absent
 // (their validation stop, when configured, is in the training message).
 std::vector<std::string> validation_notes(const RunRecord& record);
 
+// provenance_lines (io/provenance.hpp) as `show` lines: label padded to 13.
+void print_provenance(const Provenance& provenance, std::ostream& out);
+
 // Human-readable summary for `cnclab show` (job results: print_job_result).
 void print_result(const RunRecord& record, std::ostream& out, const ShowOptions& options = {});
 

@@ -77,6 +77,9 @@ RunRecord start_run_record(const LoadedExperiment& experiment) {
   rec.resolved_yaml = experiment.resolved_yaml;
   rec.config_hash = hash_hex(experiment.resolved_yaml);
   rec.provenance = make_provenance(experiment.spec.seed);
+  rec.provenance.overrides = experiment.spec.overrides;
+  rec.provenance.profile = experiment.spec.profile;
+  set_project(rec.provenance, experiment.spec.source_file.parent_path());
   rec.provenance.derived_seeds["generator"] = generator_seed(experiment.spec);
   return rec;
 }
@@ -210,7 +213,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
     rec.metrics = evaluation_metrics(splits, stored_metrics(spec));
   }
 
-  rec.provenance.end_utc = utc_now_iso8601();
+  finish_provenance(rec.provenance);
   rec.provenance.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   rec.provenance.status = ok ? "complete" : "failed";

@@ -395,6 +395,8 @@ LoadedExperiment load_experiment(const std::filesystem::path& file,
   LoadedExperiment loaded = read_experiment(doc, overrides, seed_override, file.parent_path());
   loaded.spec.source_file = file;
   loaded.spec.profile = profile;
+  for (const auto& o : overrides) loaded.spec.overrides.push_back(o.text);
+  if (seed_override) loaded.spec.overrides.push_back("seed=" + std::to_string(*seed_override));
   return loaded;
 }
 

@@ -95,6 +95,9 @@ struct ExperimentSpec {
   // The `profiles:` entry applied when loading ("" = none; core/config.hpp).
   // Upstream experiments (needs, init_from) load with the same profile.
   std::string profile;
+  // The `key=value` overrides applied when loading, as given, then
+  // `seed=N` for a seed override (recorded in the result's provenance).
+  std::vector<std::string> overrides;
   // What the reader changed on its own (LoadedExperiment::notes); not configuration.
   std::vector<std::string> reader_notes;
 };
