@@ -37,8 +37,8 @@ namespace {
 namespace fs = std::filesystem;
 using testing::TempDir;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kClosedFormTolUm = 1e-6;  // step error [µm] against the closed form
+using testing::kClosedFormTolUm;
+using testing::kDeg;
 
 std::string read_error(const fs::path& file, int face) {
   return testing::error_message<ConfigError>([&] { read_cad_surface(file, face); });

@@ -32,8 +32,8 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kData = CNCLAB_SOURCE_DIR "/tests/cad/data";
-constexpr double kClosedFormTolUm = 1e-6;  // step error [µm] against a closed form
-constexpr double kDeg = std::numbers::pi / 180.0;
+using testing::kClosedFormTolUm;
+using testing::kDeg;
 
 // The dataset options of face `face` of `file` (K = 3), planned on construction.
 StepErrorDatasetOptions face_options(const fs::path& file, int face, std::size_t lines,

@@ -16,12 +16,9 @@
 namespace cnclab {
 namespace {
 
-constexpr double kClosedFormTol = 1e-9;  // mm
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-double angle_xz(const Eigen::Vector3d& p) {
-  return std::atan2(p.z(), p.x());
-}
+using testing::angle_xz;
+using testing::kClosedFormTol;
+using testing::kDeg;
 
 struct CylinderCase {
   double rho, tool_radius;

@@ -17,12 +17,9 @@
 namespace cnclab {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kClosedFormTol = 1e-9;  // mm
-
-double angle_xz(const Eigen::Vector3d& p) {
-  return std::atan2(p.z(), p.x());
-}
+using testing::angle_xz;
+using testing::kClosedFormTol;
+using testing::kDeg;
 
 PathRefused refusal(const NurbsSurface& s, const ToolPathOptions& o, const FaceContext& f = {}) {
   try {
