@@ -340,7 +340,9 @@ TEST_F(Cli, ValidateAndShowAbbreviateLargeArraysFullPrintsThem) {
   const Result shown = cnclab("show " + file);
   ASSERT_EQ(shown.code, 0) << shown.err;
   EXPECT_NE(shown.out.find("control_points: 16 × 16 × 3, hash "), std::string::npos) << shown.out;
-  EXPECT_LT(std::count(shown.out.begin(), shown.out.end(), '\n'), 80) << shown.out;
+  // Provenance, config and metrics per split take about 85 lines; the 16 × 16
+  // control points alone would add 256.
+  EXPECT_LT(std::count(shown.out.begin(), shown.out.end(), '\n'), 120) << shown.out;
   const Result shown_full = cnclab("show --full " + file);
   EXPECT_EQ(shown_full.out.find("control_points: 16"), std::string::npos) << shown_full.out;
   EXPECT_NE(shown_full.out.find("control_points:\n"), std::string::npos) << shown_full.out;

@@ -43,6 +43,7 @@ PLACEHOLDERS = {
     "NAME": "step-error",
     "CONFIG.yaml": "experiments/friedman/friedman1_mlp.yaml",
     "FILE.nc": "groove.nc",
+    "part.step": "experiments/step_error/cad_example_part.step",
     "FILE": "out.h5",
     "DATASET.h5": "{dataset}",
     "INPUT": "{dataset}",
