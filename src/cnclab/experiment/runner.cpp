@@ -9,6 +9,7 @@
 #include "cnclab/core/hash.hpp"
 #include "cnclab/core/resources.hpp"
 #include "cnclab/core/rng.hpp"
+#include "cnclab/data/constant_targets.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/narx_runner.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -24,7 +25,8 @@ namespace {
 
 // Named random streams of a run; the names are part of the reproducibility
 // contract (stored in the result's provenance).
-constexpr const char* kStreams[] = {"generator", "split", "init", "dropout", "shuffle"};
+constexpr const char* kStreams[] = {"generator", "split",   "init",
+                                    "dropout",   "shuffle", "mc_dropout"};
 
 Eigen::MatrixXd columns(const Eigen::MatrixXd& m, const std::vector<std::size_t>& idx) {
   Eigen::MatrixXd out(m.rows(), static_cast<Eigen::Index>(idx.size()));
@@ -107,6 +109,8 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   const CachedDataset cached =
       obtain_run_dataset(spec, rec.provenance.derived_seeds["generator"], options);
   const Dataset data = select_targets(cached.dataset, spec.dataset.targets);
+  const std::string target_warning = constant_targets_warning(
+      selected_constant_targets(cached.dataset, data, *spec.dataset.generator));
   rec.dataset_file = cached.path.string();
   rec.dataset_hash = cached.content_hash;
   rec.input_names = data.input_names;
@@ -189,19 +193,41 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   rec.parameters = params;
   const bool ok = rec.training.termination != Termination::diverged;
 
-  // Evaluation in physical units and in the network's normalised units.
+  // Evaluation in physical units and in the network's normalised units,
+  // under model.dropout.inference; a network with dropout also the other way
+  // (RunRecord::other_inference): one training, both answers.
   if (ok) {
-    EvaluationData eval;
-    eval.test_outputs = mlp.predict(params, xn_test);
-    eval.test_scaled_targets = yn_test;
-    eval.validation_outputs =
-        xn_val.cols() > 0 ? mlp.predict(params, xn_val) : Eigen::MatrixXd(yn_val.rows(), 0);
-    eval.validation_scaled_targets = yn_val;
-    rec.test_predictions = rec.target_scaling.inverse_transform(eval.test_outputs);
+    const auto evaluate = [&](DropoutInference inference) {
+      // Monte-Carlo masks: one stream per split under "mc_dropout", so an
+      // evaluation's masks depend on nothing else evaluated.
+      const auto predict = [&](const Eigen::MatrixXd& x, const char* split) {
+        Rng rng(rec.provenance.derived_seeds.at("mc_dropout"), split);
+        return mlp.infer(params, x, inference, rng);
+      };
+      EvaluationData eval;
+      eval.test_outputs = predict(xn_test, "test");
+      eval.test_scaled_targets = yn_test;
+      eval.validation_outputs =
+          xn_val.cols() > 0 ? predict(xn_val, "validation") : Eigen::MatrixXd(yn_val.rows(), 0);
+      eval.validation_scaled_targets = yn_val;
+      eval.test_predictions = rec.target_scaling.inverse_transform(eval.test_outputs);
+      eval.test_targets = y_test;
+      return eval;
+    };
+    const EvaluationData eval = evaluate(rec.model.dropout_inference);
+    rec.test_predictions = eval.test_predictions;
     rec.test_targets = y_test;
-    eval.test_predictions = rec.test_predictions;
-    eval.test_targets = rec.test_targets;
     rec.metrics = evaluation_metrics(eval, spec.metrics);
+    if (mlp.has_any_dropout()) {
+      OtherInference other;
+      other.inference = rec.model.dropout_inference == DropoutInference::mc
+                            ? DropoutInference::deterministic
+                            : DropoutInference::mc;
+      const EvaluationData e = evaluate(other.inference);
+      other.test_predictions = e.test_predictions;
+      other.metrics = evaluation_metrics(e, spec.metrics);
+      rec.other_inference = std::move(other);
+    }
   }
 
   rec.provenance.end_utc = utc_now_iso8601();
@@ -209,6 +235,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   rec.provenance.status = ok ? "complete" : "failed";
   if (ok) rec.warnings = prediction_warnings(rec);
+  if (ok && !target_warning.empty()) rec.warnings.push_back(target_warning);
   rec.provenance.failure_reason = ok ? "" : rec.training.message;
 
   RunOutcome outcome;
