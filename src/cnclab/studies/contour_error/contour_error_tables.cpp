@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/contour_error/narx_study_runs.hpp"
 
@@ -128,6 +129,12 @@ std::string stable_note() {
 // complete), then the files read.
 void print_training_notes(const NarxStudyRuns& r, std::vector<std::string> notes, TableFormat f,
                           std::ostream& out) {
+  notes.push_back("The runs " +
+                  ran_with(r.profile, r.configs,
+                           {"dataset.options.samples", "dataset.options.runs",
+                            "dataset.options.path.control_points", "model.hidden",
+                            "model.input_delays", "model.feedback_delays"}) +
+                  "; their trainer stages give the epochs column.");
   notes.push_back(stable_note());
   notes.push_back(kRetryNote);
   notes.push_back(second_try_note(r));

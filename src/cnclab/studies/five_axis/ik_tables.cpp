@@ -14,6 +14,7 @@
 #include "cnclab/data/ik_samples.hpp"
 #include "cnclab/kinematics/joint_error.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/five_axis/ik_runs.hpp"
 
@@ -168,7 +169,8 @@ std::vector<fs::path> result_files(const std::vector<IkVariant>& variants) {
 }
 
 void print_table5(const std::vector<IkVariant>& variants, const Reference& ref,
-                  const fs::path& reference_file, TableFormat format, std::ostream& out) {
+                  const fs::path& reference_file, const std::string& profile, TableFormat format,
+                  std::ostream& out) {
   std::vector<const IkVariant*> shown;
   for (const auto& v : variants) {
     if (v.any()) shown.push_back(&v);
@@ -246,6 +248,17 @@ void print_table5(const std::vector<IkVariant>& variants, const Reference& ref,
       "trainbr: the ours networks trained with Levenberg-Marquardt + Bayesian regularisation "
       "(experiments/ik_trainbr/; no learning rate or momentum)."};
   for (const auto& v : variants) {
+    std::vector<std::string> configs;
+    for (const auto& a : v.axes) {
+      if (a) configs.push_back(a->record.resolved_yaml);
+    }
+    if (!configs.empty()) {
+      notes.push_back(v.label + " " +
+                      ran_with(profile, configs,
+                               {"trainer.type", "trainer.learning_rate", "trainer.momentum",
+                                "trainer.epochs", "model.hidden"}) +
+                      ".");
+    }
     for (const auto& note : v.notes) notes.push_back(v.label + ": " + note);
   }
   print_table_notes(out, format, notes);
@@ -366,7 +379,7 @@ void print_ik_tables(const TablesOptions& options, std::ostream& out) {
   const std::vector<IkVariant> variants = load_ik_variants(options);
   const fs::path reference_file = options.reference_file("ik_table5.yaml");
   const Reference ref = read_reference(reference_file);
-  print_table5(variants, ref, reference_file, options.format, out);
+  print_table5(variants, ref, reference_file, options.profile, options.format, out);
   print_machine_error(variants, options.format, out);
 }
 

@@ -91,9 +91,11 @@ RepeatedSweep load_repeated_sweep(const fs::path& file, const TablesOptions& o) 
     const TrialOutcome& outcome = state.outcomes[i];
     if (outcome.status != TrialOutcome::Status::complete) continue;
     const fs::path path = state.dir / outcome.result_file;
-    point.runs.push_back(run_figures(step_error_run(read_result(path), path)));
+    const StepErrorRun run = step_error_run(read_result(path), path);
+    point.runs.push_back(run_figures(run));
     point.seeds.push_back(t.seed);
     out.sources.push_back(path);
+    out.configs.push_back(run.record.resolved_yaml);
   }
   return out;
 }

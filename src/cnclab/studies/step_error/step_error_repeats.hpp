@@ -39,6 +39,7 @@ struct RepeatedSweep {
   std::string key;                                            // the swept key
   std::vector<RepeatedPoint> points;                          // plan order
   std::vector<std::filesystem::path> sources;                 // the result files read
+  std::vector<std::string> configs;                           // their resolved configs
   const RepeatedPoint* find(const std::string& value) const;  // nullptr when absent
   const RepeatedPoint* find(double number) const;
 };
