@@ -109,6 +109,12 @@ TEST_F(ProfileCli, ReproduceNeedsTheNameInOneFileAndNamesTheOthers) {
             std::string::npos)
       << typo.err;
   EXPECT_FALSE(fs::exists(dir_ / "out"));
+  // A file that does not load may be the one that defines it: its own error.
+  write("broken/c.yaml", "name: [unclosed\n");
+  const auto broken = cnclab("reproduce broken --profile tiny --out out --data-dir data --quiet");
+  EXPECT_EQ(broken.code, 2) << broken.err;
+  EXPECT_NE(broken.err.find("c.yaml"), std::string::npos) << broken.err;
+  EXPECT_EQ(broken.err.find("unknown profile"), std::string::npos) << broken.err;
   const auto ran = cnclab("reproduce set --profile tiny --out out --data-dir data --quiet");
   EXPECT_EQ(ran.code, 0) << ran.out << ran.err;
   EXPECT_NE(ran.err.find("note: profile tiny: not defined by set/b.yaml, which run with their "

@@ -1,6 +1,7 @@
 #include "cnclab/experiment/profiles.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
@@ -57,17 +58,21 @@ std::vector<fs::path> check_profile_in_set(const std::vector<fs::path>& files,
   std::vector<fs::path> without;
   if (profile.empty()) return without;
   std::vector<std::string> names;
+  std::optional<ConfigError> broken;  // the first file that does not load
   for (const auto& file : files) {
     std::vector<std::string> own;
     try {
       own = declared_profiles(file);
-    } catch (const ConfigError&) {
-      continue;  // a broken file reports its own error when it is loaded
+    } catch (const ConfigError& e) {
+      if (!broken) broken = e;
+      continue;  // the file reports its own error when it is loaded
     }
     if (std::find(own.begin(), own.end(), profile) == own.end()) without.push_back(file);
     add_names(names, own);
   }
   if (std::find(names.begin(), names.end(), profile) == names.end()) {
+    // A file that does not load may be the one defining it: its error first.
+    if (broken) throw *broken;
     unknown_profile(profile, names, what);
   }
   return without;

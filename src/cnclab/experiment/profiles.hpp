@@ -27,8 +27,10 @@ void check_profile(const std::filesystem::path& file, const std::string& profile
 
 // The set rule: ConfigError unless `profile` is "" or at least one of
 // `files` defines it (`what` names the set in the message: "the 12 files
-// given", "the study's experiment files"). Returns the files that do not
-// define it (they run or are read with their own settings).
+// given", "the study's experiment files"); when none does and a file does
+// not load, that file's error. Returns the files that do not define it
+// (they run or are read with their own settings; a file that does not load
+// is left to report its error when it is loaded).
 std::vector<std::filesystem::path> check_profile_in_set(
     const std::vector<std::filesystem::path>& files, const std::string& profile,
     const std::string& what);
