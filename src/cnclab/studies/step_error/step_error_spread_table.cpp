@@ -3,10 +3,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/statistics.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/step_error/step_error_measures.hpp"
 #include "cnclab/studies/step_error/step_error_seed_notes.hpp"
+#include "cnclab/studies/step_error/step_error_table_parts.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -134,6 +136,11 @@ void print_step_error_spread(const StepErrorStudy& s, TableFormat format, std::o
       "mini-batch order; the 15 % rows: the fine-tuning share and the order, from the one "
       "upstream network. The paper reports one run.",
       "Differences are stated below only where Welch's test over the seeds gives p < 0.05."};
+  std::vector<std::string> configs;
+  for (const auto* sweep : {&r.surface1, &r.surface2_ft15, &r.surface3_ft15}) {
+    configs.insert(configs.end(), sweep->configs.begin(), sweep->configs.end());
+  }
+  notes.push_back("The trials " + ran_with(s.profile, configs, step_error_settings_keys()) + ".");
   for (auto& n : normaliser_seed_notes(r)) notes.push_back(n);
   print_table_notes(out, format, notes);
   for (const auto* sweep : {&r.surface1, &r.surface2_ft15, &r.surface3_ft15}) {

@@ -209,10 +209,7 @@ void print_table2_over_seeds(const StepErrorStudy& s, TableFormat format, std::o
           "Ghahramani 2016). Seed 000 does not say which it used. With no dropout (1.0) the two "
           "are the same network.",
       "Variant " + r.variant + " " +
-          ran_with(
-              s.profile, sweep.configs,
-              {"trainer.type", "trainer.batch_size", "trainer.learning_rate", "trainer.momentum",
-               "trainer.epochs", "model.init.weights.type", "model.dropout.keep_probability"}) +
+          ran_with(s.profile, sweep.configs, step_error_settings_keys()) +
           "; seeds: the sweep's repeats (sweep repeats)."};
   for (auto& n : table2_seed_notes(r, kDeterministic, "deterministic")) notes.push_back(n);
   for (auto& n : table2_seed_notes(r, kMc, "MC dropout")) notes.push_back(n);

@@ -39,16 +39,22 @@ std::vector<const StepErrorRun*> study_runs(const StepErrorStudy& s,
   return runs;
 }
 
+std::vector<std::string> step_error_settings_keys() {
+  std::vector<std::string> keys = kTrainingKeys;
+  keys.insert(keys.end(), kDropoutKeys.begin(), kDropoutKeys.end());
+  return keys;
+}
+
 std::vector<std::string> variant_settings_notes(
     const StepErrorStudy& s,
     const std::function<std::vector<const StepErrorRun*>(const StudyVariant&)>& runs_of) {
-  std::vector<std::string> keys = kTrainingKeys;
-  keys.insert(keys.end(), kDropoutKeys.begin(), kDropoutKeys.end());
+  const std::vector<std::string> keys = step_error_settings_keys();
   std::vector<std::string> notes;
   std::vector<std::pair<std::string, std::string>> trainings;  // variant, training text
   for (const auto& v : s.manifest.variants) {
     std::vector<std::string> configs;
     for (const StepErrorRun* r : runs_of(v)) configs.push_back(r->record.resolved_yaml);
+    if (configs.empty()) continue;  // no run of this variant in the table
     std::string note = "Variant " + v.name + (v.note.empty() ? "" : " (" + v.note + ")") + " " +
                        ran_with(s.profile, configs, keys);
     const std::string training = run_settings(configs, kTrainingKeys);

@@ -32,10 +32,15 @@ void print_sources(std::ostream& out, TableFormat format, const std::filesystem:
 std::vector<const StepErrorRun*> study_runs(const StepErrorStudy& s,
                                             const std::map<double, std::filesystem::path>& files);
 
+// The settings a step-error table's notes name (report/run_settings.hpp):
+// the trainer's, the initialisation's and the dropout's.
+std::vector<std::string> step_error_settings_keys();
+
 // One note per variant, its runs in this table given by `runs_of`: "Variant
 // paper (<manifest note>) ran with profile quick (per the result files'
 // configs): trainer: type sgdm, ...; model: ..."; a variant that ran the same
-// training as one before it says so.
+// training as one before it says so. A variant with no run in the table
+// gets no note.
 std::vector<std::string> variant_settings_notes(
     const StepErrorStudy& s,
     const std::function<std::vector<const StepErrorRun*>(const StudyVariant&)>& runs_of);

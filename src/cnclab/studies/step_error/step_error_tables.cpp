@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cnclab/core/format.hpp"
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/step_error/step_error_spread_table.hpp"
 #include "cnclab/studies/step_error/step_error_study.hpp"
@@ -352,11 +353,20 @@ void print_bins_at_15(const Study& s, TableFormat format, std::ostream& out, int
     }
   }
   const int table = surface == 2 ? 6 : 7;
+  std::vector<std::string> notes = checks_about(s.ref, "Table " + std::to_string(table));
+  for (auto& n : variant_settings_notes(s, [&](const StudyVariant& v) {
+         std::vector<const Run*> runs;
+         if (const Run* r = s.find(surface == 2 ? v.surface2 : v.surface3, kFineTuneReported)) {
+           runs.push_back(r);
+         }
+         return runs;
+       })) {
+    notes.push_back(n);
+  }
   print_bin_tables(out, format, "Seed 000 Table " + std::to_string(table),
                    "prediction error of the surface-" + std::to_string(surface) +
                        " test set at 15 % fine-tuning",
-                   surface == 2 ? s.ref.table6 : s.ref.table7, s.reference_file, sources,
-                   checks_about(s.ref, "Table " + std::to_string(table)));
+                   surface == 2 ? s.ref.table6 : s.ref.table7, s.reference_file, sources, notes);
 }
 
 void print_normaliser_table(const Study& s, TableFormat format, std::ostream& out) {
@@ -384,8 +394,11 @@ void print_normaliser_table(const Study& s, TableFormat format, std::ostream& ou
                     "Beyond the paper: z-score normaliser at fine-tuning, kept from the upstream "
                     "network or refitted on the new surface's training share");
   t.print(out, format);
-  std::vector<std::string> notes = {"The paper does not say which it does; Tables 4-7 use " +
-                                    s.manifest.normaliser_default + "."};
+  std::vector<std::string> configs;
+  for (const Run* r : read) configs.push_back(r->record.resolved_yaml);
+  std::vector<std::string> notes = {
+      "The paper does not say which it does; Tables 4-7 use " + s.manifest.normaliser_default + ".",
+      "The runs " + ran_with(s.profile, configs, step_error_settings_keys()) + "."};
   if (s.repeats) {
     for (auto& n : normaliser_seed_notes(*s.repeats)) notes.push_back(n);
   }
