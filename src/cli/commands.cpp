@@ -20,8 +20,19 @@
 namespace cnclab {
 namespace fs = std::filesystem;
 std::string metrics_line(const std::map<std::string, double>& metrics) {
+  // Grouped by split, in metric_splits() order, then names without one:
+  // "train: mse 0.1, rmse 0.3; validation: ...; test: ...".
+  std::vector<std::string> groups = metric_splits();
+  groups.emplace_back("");
   std::string s;
-  for (const auto& [k, v] : metrics) s += (s.empty() ? "" : "  ") + k + " " + format_metric(v);
+  for (const auto& split : groups) {
+    std::string part;
+    for (const auto& [k, v] : metrics) {
+      if (metric_split(k) != split) continue;
+      part += (part.empty() ? "" : ", ") + metric_base(k) + " " + format_metric(v);
+    }
+    if (!part.empty()) s += (s.empty() ? "" : "; ") + (split.empty() ? "" : split + ": ") + part;
+  }
   return s;
 }
 
@@ -98,6 +109,7 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
   if (!options.quiet) out << loaded.spec.name << ": " << metrics_line(outcome.metrics) << "\n";
   for (const auto& w : outcome.warnings)
     log << "warning: " << loaded.spec.name << ": " << w << "\n";
+  for (const auto& n : outcome.notes) log << "note: " << loaded.spec.name << ": " << n << "\n";
   out << outcome.result_file.string() << "\n";
   return 0;
 }

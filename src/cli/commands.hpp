@@ -59,7 +59,8 @@ int gcode_command(const std::string& toolpath, const std::filesystem::path& conf
 // unless quiet).
 struct RunOptions;
 RunOptions run_options(const CommandOptions& options, std::ostream& log);
-// "mse 1.2  rmse 1.1 ...": a result's metrics on one line.
+// A result's metrics on one line, grouped by split: "train: mse 1.2, rmse
+// 1.1; validation: ...; test: ..." (names without a split last, whole).
 std::string metrics_line(const std::map<std::string, double>& metrics);
 
 // Experiment YAML files under `paths` (files as given, folders recursively),

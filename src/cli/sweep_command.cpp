@@ -88,6 +88,7 @@ PreparedSweep prepare_sweep(const fs::path& experiment, const std::vector<std::s
   exec.jobs = o.jobs != 0 ? o.jobs : target.jobs;
   exec.trial_timeout = o.trial_timeout;
   exec.retry_failed = o.retry_failed;
+  exec.rerun = o.rerun;
   exec.trial_ids = o.trial_ids;
   if (!o.shard.empty()) std::tie(exec.shard, exec.shards) = parse_shard(o.shard);
   SweepPlan plan = plan_sweep(target.experiment, target.overrides, seed, spec, o.common.profile);

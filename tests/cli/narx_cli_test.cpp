@@ -107,8 +107,12 @@ TEST(NarxCli, CompareShowsDifferingKeysAndMetricDeltasAndShowPrintsOne) {
   EXPECT_EQ(metric_rows, ra.metrics.size());
   const Result show = sh(dir.path(), kCnclab + " show " + fa);
   ASSERT_EQ(show.code, 0) << show.err;
-  for (const char* needle : {"model        narx", "open_loop trainbr 2 epochs", "contour_rms",
-                             "closed_loop_rms_x", "mode: sequential_halves"}) {
+  for (const char* needle :
+       {"model        narx", "open_loop trainbr 2 epochs", "  validation.contour_rms ",
+        "  validation.closed_loop_rms_x ", "mode: sequential_halves",
+        "no test split (sequential halves)",
+        "validation   no training stage stops on the validation half (trainbr has no validation "
+        "stop, as MATLAB's trainbr)"}) {
     EXPECT_NE(show.out.find(needle), std::string::npos) << needle << "\n" << show.out;
   }
 }

@@ -85,6 +85,7 @@ TEST_F(ProfileCli, IncludedProfilesCountAndASweepReachesItsExperiments) {
 }
 
 TEST_F(ProfileCli, TablesCheckTheStudysFiles) {
+  fs::create_directories(dir_ / "out");  // --results names an existing folder
   expect_unknown(cnclab("tables step-error --profile quik --results out"),
                  "the experiment files of table step-error");
   expect_unknown(cnclab("tables ik --profile quik --results out"), "quick");

@@ -53,7 +53,12 @@ TEST(DropoutInferenceRun, OneTrainingEvaluatedBothWaysFromItsOwnStream) {
   EXPECT_EQ(r.model.dropout_mc_samples, 40u);
   ASSERT_TRUE(r.other_inference.has_value());
   EXPECT_EQ(r.other_inference->inference, DropoutInference::mc);
-  EXPECT_EQ(r.other_inference->metrics.size(), r.metrics.size());
+  // Every split evaluated both ways, under the same "<split>.<base>" names.
+  ASSERT_EQ(r.other_inference->metrics.size(), r.metrics.size());
+  for (const auto& [name, value] : r.metrics) {
+    EXPECT_EQ(r.other_inference->metrics.count(name), 1u) << name;
+  }
+  EXPECT_EQ(r.metrics.count("train.mse"), 1u);
 
   // The MC predictions again, from what the result names: the dataset file,
   // the test split, the scalings and the parameters; masks from the stream
@@ -70,6 +75,9 @@ TEST(DropoutInferenceRun, OneTrainingEvaluatedBothWaysFromItsOwnStream) {
   const Eigen::MatrixXd* stored = test_predictions_by(r, DropoutInference::mc);
   ASSERT_NE(stored, nullptr);
   EXPECT_LT((*stored - mc).cwiseAbs().maxCoeff(), 1e-12);
+  // The MC test metric is that of those predictions (physical units).
+  EXPECT_NEAR(r.other_inference->metrics.at("test.mse"),
+              (mc - r.test_targets).array().square().mean(), 1e-9);
   EXPECT_EQ(test_predictions_by(r, DropoutInference::deterministic), &r.test_predictions);
   EXPECT_GT((*stored - r.test_predictions).cwiseAbs().maxCoeff(), 1e-6);
   EXPECT_EQ(r.provenance.derived_seeds.at("mc_dropout"), derive_seed(5, "mc_dropout"));

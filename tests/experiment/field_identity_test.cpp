@@ -186,6 +186,7 @@ const std::vector<std::string>& identity_test_sequence_metrics() {
         {"field_identity_test",
          mine,
          [](const SequencePrediction&) { return std::map<std::string, double>{}; },
+         {},
          {}});
     return mine;
   }();

@@ -41,7 +41,7 @@ TEST(RunSettings, AgreeingValuesOnceDifferingOnesListedOrAsARange) {
             "ran with no profile (per the result files' configs): trainer: epochs 5");
 }
 
-void write(const std::filesystem::path& file, const std::string& text) {
+void write_config(const std::filesystem::path& file, const std::string& text) {
   std::ofstream(file) << text;
 }
 
@@ -58,8 +58,8 @@ void register_missing(const std::string& name, const std::filesystem::path& file
 
 TEST(TableFiles, ProfileCheckedAgainstTheStudysFilesAndReproduceNotesOnlyItsStudies) {
   testing::TempDir dir;
-  write(dir / "a.yaml", "name: a\nprofiles: {quick: {trainer.epochs: 1}}\n");
-  write(dir / "b.yaml", "name: b\n");
+  write_config(dir / "a.yaml", "name: a\nprofiles: {quick: {trainer.epochs: 1}}\n");
+  write_config(dir / "b.yaml", "name: b\n");
   register_missing("files-a", dir / "a.yaml");
   register_missing("files-b", dir / "b.yaml");
 

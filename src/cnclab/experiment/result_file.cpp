@@ -167,7 +167,15 @@ void print_metrics(const RunRecord& r, const std::string& note, std::ostream& ou
     value_width = std::max(value_width, format_metric(value).size() + 2);
   }
   out << "metrics" << (note.empty() ? "" : "      (" + note + ")") << "\n";
-  for (const auto& [name, value] : r.metrics) {
+  // Split by split (train, validation, test), then names without a split.
+  std::vector<std::pair<std::string, double>> ordered(r.metrics.begin(), r.metrics.end());
+  const auto rank = [](const std::string& name) {
+    const auto& splits = metric_splits();
+    return std::find(splits.begin(), splits.end(), metric_split(name)) - splits.begin();
+  };
+  std::stable_sort(ordered.begin(), ordered.end(),
+                   [&](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
+  for (const auto& [name, value] : ordered) {
     const auto it = r.metric_units.find(name);
     const std::string unit = it == r.metric_units.end() ? "" : it->second;
     std::string line = "  " + name + std::string(name_width - name.size(), ' ') +
@@ -237,7 +245,8 @@ std::map<std::string, std::string> read_metric_units(const H5File& f) {
 std::map<std::string, std::string> training_metric_units(const RunRecord& r) {
   std::map<std::string, std::string> units;
   for (const auto& [name, value] : r.metrics) {
-    units[name] = r.narx ? sequence_metric_unit(name) : metric_unit(name, r.target_units);
+    units[name] =
+        r.narx ? sequence_metric_unit(metric_base(name)) : metric_unit(name, r.target_units);
   }
   return units;
 }
@@ -249,6 +258,42 @@ std::map<std::string, double> read_metrics(const H5File& f) {
   }
   return metrics;
 }
+
+std::string format1_metric_name(const std::string& name) {
+  if (name == kOlderValidationMse) return metric_name("validation", "normalised_mse");
+  if (!metric_split(name).empty()) return name;
+  const auto& mlp = base_metrics();
+  const bool of_test = std::find(mlp.begin(), mlp.end(), name) != mlp.end();
+  return metric_name(of_test ? "test" : "validation", name);
+}
+
+namespace {
+bool is_training_result(const H5File& f) {
+  return !f.has_attribute("/", "kind") || f.attribute_string("/", "kind") == "train";
+}
+
+// Metrics (or their units) of file `f` of format `version` under today's
+// names: every name of a training result; of a job result only the training
+// metrics it carries (a sweep job's selected trial: base metrics, the older
+// validation name, registered sequence metrics), not the job's own names.
+template <class V>
+std::map<std::string, V> current_names(std::map<std::string, V> stored, const H5File& f,
+                                       int version) {
+  if (version >= 2) return stored;
+  const bool training = is_training_result(f);
+  const auto& mlp = base_metrics();
+  const auto sequence = sequence_metric_names();
+  const auto renamed = [&](const std::string& name) {
+    const bool of_training = training || name == kOlderValidationMse ||
+                             std::find(mlp.begin(), mlp.end(), name) != mlp.end() ||
+                             std::find(sequence.begin(), sequence.end(), name) != sequence.end();
+    return of_training ? format1_metric_name(name) : name;
+  };
+  std::map<std::string, V> out;
+  for (auto& [name, value] : stored) out[renamed(name)] = std::move(value);
+  return out;
+}
+}  // namespace
 
 std::vector<std::string> read_warnings(const H5File& f) {
   if (!f.has_attribute("/", "warnings")) return {};
@@ -276,11 +321,13 @@ RunRecord read_result_in_process(const std::filesystem::path& path);
 
 ResultStatus read_status_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
-  require_format(f, kResultFormat, kResultFormatVersion);
+  const int version =
+      require_format(f, kResultFormat, kResultOldestFormatVersion, kResultFormatVersion);
   ResultStatus s;
   s.status = f.attribute_string("/", "status");
   s.failure_reason = f.attribute_string("/provenance", "failure_reason");
-  s.metrics = read_metrics(f);
+  s.metrics = current_names(read_metrics(f), f, version);
+  s.metric_units = current_names(read_metric_units(f), f, version);
   s.warnings = read_warnings(f);
   s.upstream = read_upstream(f);
   return s;
@@ -362,11 +409,17 @@ void read_mlp_sections(const H5File& f, RunRecord& r) {
 
 RunRecord read_result_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
-  require_format(f, kResultFormat, kResultFormatVersion);
-  if (f.has_attribute("/", "kind") && f.attribute_string("/", "kind") != "train") {
-    return read_job_result(f);
+  const int version =
+      require_format(f, kResultFormat, kResultOldestFormatVersion, kResultFormatVersion);
+  if (!is_training_result(f)) {
+    RunRecord job = read_job_result(f);
+    job.format_version = version;
+    job.metrics = current_names(std::move(job.metrics), f, version);
+    job.metric_units = current_names(std::move(job.metric_units), f, version);
+    return job;
   }
   RunRecord r;
+  r.format_version = version;
   r.experiment = f.attribute_string("/", "experiment");
   r.config_hash = f.attribute_string("/", "config_hash");
   r.resolved_yaml = f.read_string("/config");
@@ -386,8 +439,11 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   } else {
     read_mlp_sections(f, r);
   }
-  r.metrics = read_metrics(f);
-  r.metric_units = read_metric_units(f);
+  r.metrics = current_names(read_metrics(f), f, version);
+  if (r.other_inference) {
+    r.other_inference->metrics = current_names(std::move(r.other_inference->metrics), f, version);
+  }
+  r.metric_units = current_names(read_metric_units(f), f, version);
   if (r.metric_units.empty()) r.metric_units = training_metric_units(r);  // older files
   r.warnings = read_warnings(f);
   r.upstream = read_upstream(f);
@@ -430,6 +486,28 @@ void print_mlp_model(const RunRecord& r, std::ostream& out) {
 
 }  // namespace
 
+std::vector<std::string> validation_notes(const RunRecord& r) {
+  const std::string held_out =
+      r.split.validation.empty()
+          ? ""
+          : ": the " + std::to_string(r.split.validation.size()) +
+                (r.narx ? " steps of the validation half" : " validation samples") +
+                " are held out of training and only scored (validation.*)";
+  if (r.narx) {
+    bool trainbr = false;
+    for (const auto& net : r.narx->networks) {
+      for (const auto& st : net.stages) trainbr = trainbr || st.trainer == "trainbr";
+    }
+    return {"no training stage stops on the validation half" +
+            std::string(trainbr ? " (trainbr has no validation stop, as MATLAB's trainbr)" : "") +
+            held_out};
+  }
+  if (r.trainer == "trainbr") {
+    return {"trainbr has no validation stop (as MATLAB's trainbr)" + held_out};
+  }
+  return {};
+}
+
 void print_result(const RunRecord& r, std::ostream& out, const ShowOptions& options) {
   if (r.kind != "train") {
     print_job_result(r, out, options);
@@ -460,13 +538,17 @@ void print_result(const RunRecord& r, std::ostream& out, const ShowOptions& opti
   } else {
     print_mlp_model(r, out);
   }
+  for (const auto& note : validation_notes(r)) out << "validation   " << note << "\n";
   bool normalised = false;
   for (const auto& [name, value] : r.metrics)
-    normalised = normalised || name.starts_with("normalised_");
-  print_metrics(r,
-                std::string(r.narx ? "validation part, closed loop" : "test split") +
-                    (normalised ? "; scaled: the network's scaled target units" : ""),
-                out);
+    normalised = normalised || metric_base(name).starts_with("normalised_");
+  std::string note =
+      r.narx ? "validation half, closed loop; no test split (sequential halves)" : "per split";
+  if (r.format_version < 2 && !r.narx) {
+    note += "; an older result (format 1): the test split and validation.normalised_mse only";
+  }
+  if (normalised) note += "; scaled²: the network's scaled target units";
+  print_metrics(r, note, out);
   print_inference(r, out);
   print_result_config(r.resolved_yaml, out, options);
 }

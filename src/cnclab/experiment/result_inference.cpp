@@ -23,6 +23,17 @@ std::string inference_text(DropoutInference inference, std::size_t passes) {
                                            : "deterministic";
 }
 
+// `own` when r was evaluated by `inference`, `other` when its other
+// evaluation was; a network without dropout is the same either way (`own`);
+// nullptr otherwise (written before the other evaluation was stored).
+template <class T>
+const T* by_inference(const RunRecord& r, DropoutInference inference, const T* own,
+                      const T* other) {
+  if (r.model.dropout_inference == inference) return own;
+  if (r.other_inference && r.other_inference->inference == inference) return other;
+  return Mlp(r.model).has_any_dropout() ? nullptr : own;
+}
+
 }  // namespace
 
 void write_inference(H5File& f, const RunRecord& r) {
@@ -69,12 +80,13 @@ void print_inference(const RunRecord& r, std::ostream& out) {
 }
 
 const Eigen::MatrixXd* test_predictions_by(const RunRecord& r, DropoutInference inference) {
-  if (r.model.dropout_inference == inference) return &r.test_predictions;
-  if (r.other_inference && r.other_inference->inference == inference) {
-    return &r.other_inference->test_predictions;
-  }
-  // No other evaluation: a network without dropout is the same either way.
-  return Mlp(r.model).has_any_dropout() ? nullptr : &r.test_predictions;
+  return by_inference(r, inference, &r.test_predictions,
+                      r.other_inference ? &r.other_inference->test_predictions : nullptr);
+}
+
+const std::map<std::string, double>* metrics_by(const RunRecord& r, DropoutInference inference) {
+  return by_inference(r, inference, &r.metrics,
+                      r.other_inference ? &r.other_inference->metrics : nullptr);
 }
 
 }  // namespace cnclab

@@ -6,6 +6,7 @@
 //   /other_inference attrs inference, mc_samples, one number per metric;
 //   /other_inference/test_predictions (target units)
 // Files written before these lack them: deterministic, no other evaluation.
+#include <map>
 #include <ostream>
 #include <string>
 
@@ -28,5 +29,8 @@ void print_inference(const RunRecord& r, std::ostream& out);
 // then the same), the other evaluation's when stored; nullptr otherwise (a
 // result written before the other evaluation was stored).
 const Eigen::MatrixXd* test_predictions_by(const RunRecord& r, DropoutInference inference);
+// The metrics ("<split>.<base>", nn/metrics.hpp) of `r` evaluated by
+// `inference`, by the same rule; nullptr when not stored.
+const std::map<std::string, double>* metrics_by(const RunRecord& r, DropoutInference inference);
 
 }  // namespace cnclab

@@ -70,6 +70,10 @@ struct RunRecord {
   // of a `kind: <job>` file (job_result.hpp), which has only the experiment
   // name, config, provenance, metrics, upstream, outputs and facts.
   std::string kind = "train";
+  // The result format the file was written in (kResultFormatVersion,
+  // result_file.hpp; a record made in memory: the current one). Files of an
+  // older format are read, their metrics under today's names.
+  int format_version = 2;
   std::string experiment;     // spec.name
   std::string resolved_yaml;  // the full resolved config
   std::string config_hash;    // identity of the run: hash of resolved_yaml

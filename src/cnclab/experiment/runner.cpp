@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
@@ -193,39 +194,43 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   rec.parameters = params;
   const bool ok = rec.training.termination != Termination::diverged;
 
-  // Evaluation in physical units and in the network's normalised units,
-  // under model.dropout.inference; a network with dropout also the other way
-  // (RunRecord::other_inference): one training, both answers.
+  // Evaluation of every split in physical units and in the network's
+  // normalised units (nn/metrics.hpp), under model.dropout.inference; a
+  // network with dropout also the other way (RunRecord::other_inference): one
+  // training, both answers, each with metrics named "<split>.<base>".
   if (ok) {
     const auto evaluate = [&](DropoutInference inference) {
-      // Monte-Carlo masks: one stream per split under "mc_dropout", so an
-      // evaluation's masks depend on nothing else evaluated.
-      const auto predict = [&](const Eigen::MatrixXd& x, const char* split) {
+      std::map<std::string, SplitData> splits;
+      const auto add = [&](const char* split, const Eigen::MatrixXd& xn, const Eigen::MatrixXd& yn,
+                           const Eigen::MatrixXd& y) {
+        // Monte-Carlo masks: one stream per split under "mc_dropout", so a
+        // split's masks depend on nothing else evaluated.
         Rng rng(rec.provenance.derived_seeds.at("mc_dropout"), split);
-        return mlp.infer(params, x, inference, rng);
+        SplitData& d = splits[split];
+        d.outputs =
+            xn.cols() > 0 ? mlp.infer(params, xn, inference, rng) : Eigen::MatrixXd(yn.rows(), 0);
+        d.scaled_targets = yn;
+        d.predictions = rec.target_scaling.inverse_transform(d.outputs);
+        d.targets = y;
       };
-      EvaluationData eval;
-      eval.test_outputs = predict(xn_test, "test");
-      eval.test_scaled_targets = yn_test;
-      eval.validation_outputs =
-          xn_val.cols() > 0 ? predict(xn_val, "validation") : Eigen::MatrixXd(yn_val.rows(), 0);
-      eval.validation_scaled_targets = yn_val;
-      eval.test_predictions = rec.target_scaling.inverse_transform(eval.test_outputs);
-      eval.test_targets = y_test;
-      return eval;
+      add("train", xn_train, yn_train, y_train);
+      add("validation", xn_val, yn_val, y_val);
+      add("test", xn_test, yn_test, y_test);
+      return splits;
     };
-    const EvaluationData eval = evaluate(rec.model.dropout_inference);
-    rec.test_predictions = eval.test_predictions;
+    const std::vector<std::string> wanted = stored_metrics(spec);
+    const auto splits = evaluate(rec.model.dropout_inference);
+    rec.test_predictions = splits.at("test").predictions;
     rec.test_targets = y_test;
-    rec.metrics = evaluation_metrics(eval, spec.metrics);
+    rec.metrics = evaluation_metrics(splits, wanted);
     if (mlp.has_any_dropout()) {
       OtherInference other;
       other.inference = rec.model.dropout_inference == DropoutInference::mc
                             ? DropoutInference::deterministic
                             : DropoutInference::mc;
-      const EvaluationData e = evaluate(other.inference);
-      other.test_predictions = e.test_predictions;
-      other.metrics = evaluation_metrics(e, spec.metrics);
+      const auto other_splits = evaluate(other.inference);
+      other.test_predictions = other_splits.at("test").predictions;
+      other.metrics = evaluation_metrics(other_splits, wanted);
       rec.other_inference = std::move(other);
     }
   }
@@ -246,6 +251,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   outcome.message = rec.training.message;
   outcome.metrics = rec.metrics;
   outcome.warnings = rec.warnings;
+  outcome.notes = validation_notes(rec);
   return outcome;
 }
 

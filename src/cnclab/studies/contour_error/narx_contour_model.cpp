@@ -51,7 +51,7 @@ TrainedContourModel load_trained_contour_model(const std::filesystem::path& narx
   m.ranges = following_error_ranges(cached.dataset);
   Rng rng(seed);  // the generator's first draw is the path (following_error.cpp)
   m.path = std::make_unique<NurbsPlanarPath>(random_planar_nurbs(m.dataset.path, rng));
-  const auto rms = m.upstream.record.metrics.find("contour_rms");
+  const auto rms = m.upstream.record.metrics.find("validation.contour_rms");  // narx_metrics.hpp
   m.contour_rms = rms == m.upstream.record.metrics.end() ? 0.0 : rms->second * 1e-3;
   return m;
 }

@@ -2,6 +2,7 @@
 
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/report/tables.hpp"
+#include "cnclab/studies/contour_error/contour_deployment.hpp"
 #include "cnclab/studies/contour_error/contour_error_tables.hpp"
 #include "cnclab/studies/contour_error/feedrate_job.hpp"
 #include "cnclab/studies/contour_error/feedrate_tables.hpp"
@@ -10,6 +11,7 @@
 namespace cnclab {
 void register_contour_error_study() {
   register_contour_error_metrics();
+  register_contour_deployment();  // predict and export of its narx networks
   register_job_kind(feedrate_job_kind());
   register_table(
       {"contour-error",

@@ -14,8 +14,6 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kNoDropout = 1.0;  // the surface-1 point of the keep-probability sweep
-
 std::string spread_fixed(double v, int decimals) {
   if (std::isnan(v)) return "-";
   char buf[48];

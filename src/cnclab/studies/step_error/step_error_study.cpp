@@ -44,6 +44,14 @@ double inference_test_mse(const StepErrorRun& run, DropoutInference inference) {
   return predictions ? normalised_test_mse(run.record, *predictions) : NAN;
 }
 
+double inference_validation_mse(const StepErrorRun& run, DropoutInference inference) {
+  if (!run.failure.empty()) return NAN;
+  const std::map<std::string, double>* metrics = metrics_by(run.record, inference);
+  if (!metrics) return NAN;
+  const auto it = metrics->find("validation.normalised_mse");
+  return it == metrics->end() ? NAN : it->second;
+}
+
 std::vector<fs::path> step_error_experiment_files(const TablesOptions& o) {
   const StudyManifest m = read_step_error_manifest(o.config_file("studies/step_error_tables.yaml"));
   std::vector<fs::path> files;
@@ -59,8 +67,8 @@ std::vector<fs::path> step_error_experiment_files(const TablesOptions& o) {
     files.push_back(n.surface3);
   }
   if (m.repeats) {
-    files.insert(files.end(),
-                 {m.repeats->surface1, m.repeats->surface2_ft15, m.repeats->surface3_ft15});
+    files.insert(files.end(), {m.repeats->table2, m.repeats->surface1, m.repeats->surface2_ft15,
+                               m.repeats->surface3_ft15});
   }
   files.push_back(o.experiment_file("step_error/table8_timing.yaml"));
   return files;

@@ -35,6 +35,9 @@ StepErrorRun step_error_run(RunRecord record, const std::filesystem::path& file)
 // (experiment/result_inference.hpp); NaN when the result lacks that
 // evaluation (written before it was stored) or the run failed.
 double inference_test_mse(const StepErrorRun& run, DropoutInference inference);
+// Its validation MSE (z-score units: validation.normalised_mse) so evaluated;
+// NaN as above or without a validation split.
+double inference_validation_mse(const StepErrorRun& run, DropoutInference inference);
 
 struct StepErrorStudy {
   std::string profile;  // the tables' --profile ("" none)

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <tuple>
 
 #include "cnclab/core/format.hpp"
 #include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/statistics.hpp"
 #include "cnclab/report/typed_table.hpp"
+#include "cnclab/studies/step_error/step_error_measures.hpp"
 #include "cnclab/studies/step_error/step_error_seed_notes.hpp"
 #include "cnclab/studies/step_error/step_error_table_parts.hpp"
 
@@ -16,11 +16,17 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kNoDropout = 1.0;  // the surface-1 point of the keep-probability sweep
 // No dropout reaches 0.002 in z-score units, whose spread needs a fourth decimal.
 constexpr int kMseDecimals = 4;
-constexpr const char* kDeterministic = "test_mse_deterministic";
-constexpr const char* kMc = "test_mse_mc";
+
+// Table 2's two evaluations of each network: how the notes name it, and the
+// suffix of its figures (run_figures).
+struct Table2Evaluation {
+  const char* name;
+  const char* suffix;
+};
+constexpr Table2Evaluation kTable2Deterministic{"deterministic", "_deterministic"};
+constexpr Table2Evaluation kTable2Mc{"MC dropout", "_mc"};
 
 std::string seeds_fixed(double v) {
   char buf[48];
@@ -57,6 +63,36 @@ std::string mc_passes(const RepeatedSweep& sweep) {
   return out.empty() ? "-" : out;
 }
 
+// "60/10/30" (train/validation/test, % of the samples); "70/30" without validation.
+std::string split_text(const RunRecord& r) {
+  const double n =
+      static_cast<double>(r.split.train.size() + r.split.validation.size() + r.split.test.size());
+  std::string out;
+  for (const auto* part : {&r.split.train, &r.split.validation, &r.split.test}) {
+    if (part == &r.split.validation && part->empty()) continue;
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%s%.0f", out.empty() ? "" : "/",
+                  100.0 * static_cast<double>(part->size()) / n);
+    out += buf;
+  }
+  return out;
+}
+
+// The splits of Table 2's runs, "60/10/30" (several: "60/10/30 and 70/30").
+std::string table2_splits(const std::vector<const StepErrorRun*>& runs) {
+  std::vector<std::string> texts;
+  for (const StepErrorRun* r : runs) {
+    const std::string t = split_text(r->record);
+    if (std::find(texts.begin(), texts.end(), t) == texts.end()) texts.push_back(t);
+  }
+  std::string out;
+  for (const auto& t : texts) {
+    if (!out.empty()) out += " and ";
+    out += t;
+  }
+  return out.empty() ? "-" : out;
+}
+
 }  // namespace
 
 void print_table2(const StepErrorStudy& s, TableFormat format, std::ostream& out) {
@@ -78,60 +114,71 @@ void print_table2(const StepErrorStudy& s, TableFormat format, std::ostream& out
       paper_min == s.ref.table2_mse.end()
           ? NAN
           : s.ref.table2_p[static_cast<std::size_t>(paper_min - s.ref.table2_mse.begin())];
-  bool mc_absent = false;
+  bool mc_absent = false, validation = false;
+  const auto cell = [](double v) { return number_cell(v, table_number(v, 3)); };
   for (const auto& v : s.manifest.variants) {
+    std::vector<TableCell> val = {source_cell(ours(v)),
+                                  label_cell("validation MSE, deterministic", "validation_mse")};
     std::vector<TableCell> test = {source_cell(ours(v)),
                                    label_cell("test MSE, deterministic", "test_mse")};
     std::vector<TableCell> mc = {source_cell(ours(v)),
                                  label_cell("test MSE, MC dropout", "test_mse_mc")};
     std::vector<TableCell> train = {source_cell(ours(v)),
                                     label_cell("training loss, last epoch", "train_loss")};
-    double best = NAN, best_p = NAN, best_mc = NAN, best_p_mc = NAN;
     for (double p : s.ref.table2_p) {
       const StepErrorRun* run = s.find(v.table2, p);
       if (run) read.push_back(run);
       if (run && !run->failure.empty()) {
-        for (auto* row : {&test, &mc, &train}) row->push_back(missing_cell("diverged"));
+        for (auto* row : {&val, &test, &mc, &train}) row->push_back(missing_cell("diverged"));
         continue;
       }
-      const double mse = run ? inference_test_mse(*run, DropoutInference::deterministic) : NAN;
       const double mse_mc = run ? inference_test_mse(*run, DropoutInference::mc) : NAN;
       mc_absent = mc_absent || (run && std::isnan(mse_mc));
+      validation = validation || (run && !run->record.split.validation.empty());
       const auto& h = run ? run->record.training.history : std::vector<EpochRecord>{};
-      test.push_back(number_cell(mse, table_number(mse, 3)));
-      mc.push_back(number_cell(mse_mc, table_number(mse_mc, 3)));
-      train.push_back(h.empty()
-                          ? missing_cell("-")
-                          : number_cell(h.back().train_loss, table_number(h.back().train_loss, 3)));
-      for (auto [value, least, at] :
-           {std::tuple{mse, &best, &best_p}, std::tuple{mse_mc, &best_mc, &best_p_mc}}) {
-        if (!std::isnan(value) && !(value >= *least)) {
-          *least = value;
-          *at = p;
-        }
-      }
+      val.push_back(
+          cell(run ? inference_validation_mse(*run, DropoutInference::deterministic) : NAN));
+      test.push_back(cell(run ? inference_test_mse(*run, DropoutInference::deterministic) : NAN));
+      mc.push_back(cell(mse_mc));
+      train.push_back(h.empty() ? missing_cell("-") : cell(h.back().train_loss));
     }
-    t.rows.push_back(test);
-    t.rows.push_back(mc);
-    t.rows.push_back(train);
-    notes.push_back(ours(v) + ": the run shown has its lowest test MSE at p = " +
-                    table_number(best_p) + ", under MC dropout at p = " + table_number(best_p_mc) +
-                    " (paper: minimum at p = " + table_number(paper_best_p) + ")" +
-                    (s.repeats && s.repeats->variant == v.name
-                         ? "; over seeds: the next table."
-                         : "; one run per p, no seed repeats: not a finding."));
+    for (auto* row : {&val, &test, &mc, &train}) t.rows.push_back(*row);
+    const Table2Choice choice = table2_choice(s, v, DropoutInference::deterministic);
+    const Table2Choice choice_mc = table2_choice(s, v, DropoutInference::mc);
+    notes.push_back(
+        ours(v) + ": chosen on validation, p = " + table_number(choice.on_validation) +
+        " (the lowest validation MSE of the run shown, deterministic evaluation); on test "
+        "instead (Table 2's own reading, which chooses on the data it reports; shown beside, not "
+        "used): p = " +
+        table_number(choice.on_test) +
+        (choice.on_validation == choice.on_test ? ", the same" : ", another") +
+        "; under MC dropout, chosen on its own validation MSE (stored in the result files), p = " +
+        table_number(choice_mc.on_validation) + ", on test p = " + table_number(choice_mc.on_test) +
+        "; paper: minimum at p = " + table_number(paper_best_p) +
+        (s.repeats && s.repeats->variant == v.name
+             ? ". Over seeds: the next table."
+             : ". One run per p, no seed repeats: not a finding."));
   }
-  print_table_title(
-      out, format, "Seed 000 Table 2: dropout keep probability p and MSE (surface 1, 70/30 split)");
+  print_table_title(out, format,
+                    "Seed 000 Table 2: dropout keep probability p and MSE (surface 1, " +
+                        table2_splits(read) + " split)");
   t.print(out, format);
   notes.push_back(
       "MSE in the z-score units of the targets (Eq. 7, fitted on the training split). The paper "
       "does not say whether its MSE is the training loss or a test error, nor in which units; "
-      "both of ours are shown. Training loss is with dropout active (mean over the epoch).");
+      "ours are shown on each. Training loss is with dropout active (mean over the epoch).");
   notes.push_back(
-      "Test MSE: the network evaluated deterministically (every unit kept, r = 1); MC dropout: "
-      "the same trained network, per test sample the mean of model.dropout.mc_samples passes "
-      "with new masks (Gal & Ghahramani 2016). Seed 000 does not say which it used.");
+      validation
+          ? "Split: the paper's 70/30 has no validation part, so Table 2's runs hold 10 % of the "
+            "samples out of its 70 % training part to choose p on (60/10/30; the 30 % test "
+            "samples are those of surface 1's 70/30 split): p is chosen on validation, test is "
+            "reported after."
+          : "Split: Table 2's runs have no validation part, so no p is chosen ('-'); the lowest "
+            "test MSE is shown, not used.");
+  notes.push_back(
+      "Deterministic: the network evaluated with every unit kept (r = 1); MC dropout: the same "
+      "trained network, per sample the mean of model.dropout.mc_samples passes with new masks "
+      "(Gal & Ghahramani 2016). Seed 000 does not say which it used.");
   if (mc_absent) {
     notes.push_back(
         "MC dropout '-': a result written before cnclab stored the MC evaluation; `cnclab run` "
@@ -149,28 +196,55 @@ void print_table2(const StepErrorStudy& s, TableFormat format, std::ostream& out
   print_sources(out, format, s.reference_file, read);
 }
 
-std::vector<std::string> table2_seed_notes(const StepErrorRepeats& r, const std::string& figure,
+std::vector<std::string> table2_seed_notes(const StepErrorRepeats& r, const std::string& suffix,
                                            const std::string& evaluation) {
-  std::vector<SeedSample> by_p;
-  for (const auto& point : r.surface1.points) {
-    if (point.number() != kNoDropout) by_p.push_back({"p = " + point.value, point.sample(figure)});
+  const std::string validation_figure = "validation_mse" + suffix;
+  const std::string test_figure = "test_mse" + suffix;
+  // Table 2's keep probabilities (not 1.0, no dropout), by each split's MSE.
+  std::vector<SeedSample> by_validation, by_test;
+  for (const auto& point : r.table2.points) {
+    if (point.number() == kNoDropout) continue;
+    by_validation.push_back({"p = " + point.value, point.sample(validation_figure)});
+    by_test.push_back({"p = " + point.value, point.sample(test_figure)});
   }
+  const std::string ours = "ours, " + r.variant + ", " + evaluation;
   std::vector<std::string> notes;
-  const std::string what = "ours, " + r.variant + ", " + evaluation + ", test MSE over seeds";
-  const std::string lowest = lowest_mean_sentence(what, by_p, kMseDecimals);
-  if (!lowest.empty()) notes.push_back(lowest);
-  const RepeatedPoint* none = r.surface1.find(kNoDropout);
-  const SeedSample* best = nullptr;
-  for (const auto& s : by_p) {
-    if (s.values.size() >= 2 &&
-        (!best || summarize(s.values).mean < summarize(best->values).mean)) {
-      best = &s;
-    }
+  const std::string chosen_text = lowest_mean_sentence(
+      ours + ", validation MSE over seeds (the choice of p)", by_validation, kMseDecimals);
+  if (!chosen_text.empty()) notes.push_back(chosen_text);
+  const RepeatedPoint* chosen = table2_choice_over_seeds(r.table2, validation_figure);
+  const RepeatedPoint* on_test = table2_choice_over_seeds(r.table2, test_figure);
+  const RepeatedPoint* none = r.table2.find(kNoDropout);
+  if (!chosen) {
+    notes.push_back(ours + ": no p has a validation MSE over 2 seeds or more, so none is chosen.");
+  } else {
+    notes.push_back(ours + ", the chosen p = " + chosen->value +
+                    ", test MSE over seeds (reported after the choice): " +
+                    seed_mean_std_text(summarize(chosen->sample(test_figure)), kMseDecimals) + ".");
   }
-  if (none && best) {
+  if (chosen && none) {
+    const std::string p = "p = " + chosen->value;
     notes.push_back(seed_difference_sentence(
-        "ours, " + r.variant + ", " + evaluation + ", no dropout against the best p (test MSE)",
-        {"keep 1.0", none->sample(figure)}, *best, kMseDecimals));
+        ours + ", no dropout against the chosen p (validation MSE, the choice)",
+        {"keep 1.0", none->sample(validation_figure)}, {p, chosen->sample(validation_figure)},
+        kMseDecimals));
+    notes.push_back(seed_difference_sentence(ours + ", the same on test (reported after)",
+                                             {"keep 1.0", none->sample(test_figure)},
+                                             {p, chosen->sample(test_figure)}, kMseDecimals));
+  }
+  // Beside it, the choice the paper's Table 2 invites (it reports one MSE
+  // per p and picks the lowest): on test, which selects on the data it
+  // reports. Shown, not used.
+  const std::string test_text = lowest_mean_sentence(
+      ours +
+          ", on test instead (Table 2's own reading: choosing on the data it reports; shown "
+          "beside, not used)",
+      by_test, kMseDecimals);
+  if (!test_text.empty()) notes.push_back(test_text);
+  if (chosen && on_test) {
+    notes.push_back(ours + ": the lowest mean on validation (p = " + chosen->value +
+                    ") and on test (p = " + on_test->value + ") " +
+                    (chosen == on_test ? "agree." : "differ; the validation choice stands."));
   }
   return notes;
 }
@@ -178,44 +252,60 @@ std::vector<std::string> table2_seed_notes(const StepErrorRepeats& r, const std:
 void print_table2_over_seeds(const StepErrorStudy& s, TableFormat format, std::ostream& out) {
   if (!s.repeats) return;
   const StepErrorRepeats& r = *s.repeats;
-  const RepeatedSweep& sweep = r.surface1;
+  const RepeatedSweep& sweep = r.table2;
   const std::string passes = mc_passes(sweep);
   TypedTable t;
-  t.columns = {number_column("p (keep probability)", "p"), number_column("paper MSE", "paper_mse"),
-               mean_std_column("deterministic", "test_mse_deterministic", ""),
-               mean_std_column("MC dropout (" + passes + " masks)", "test_mse_mc", ""),
-               pair_column("seeds", "complete", "planned")};
+  t.columns = {number_column("p (keep probability)", "p"), number_column("paper MSE", "paper_mse")};
+  for (const Table2Evaluation& e : {kTable2Deterministic, kTable2Mc}) {
+    const std::string name =
+        std::string(e.suffix) == kTable2Mc.suffix ? "MC dropout (" + passes + " masks)" : e.name;
+    t.columns.push_back(
+        mean_std_column("validation, " + name, std::string("validation_mse") + e.suffix, ""));
+    t.columns.push_back(mean_std_column("test, " + name, std::string("test_mse") + e.suffix, ""));
+  }
+  t.columns.push_back(pair_column("seeds", "complete", "planned"));
   std::vector<double> ps = s.ref.table2_p;
   ps.push_back(kNoDropout);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const double p = ps[i];
     const double paper = i < s.ref.table2_mse.size() ? s.ref.table2_mse[i] : NAN;
     const RepeatedPoint* point = sweep.find(p);
-    t.rows.push_back(
-        {number_cell(p, p == kNoDropout ? "1.0 (no dropout)" : table_number(p)),
-         std::isnan(paper) ? missing_cell("-") : number_cell(paper, table_number(paper)),
-         seeds_cell(point, kDeterministic), seeds_cell(point, kMc), planned_cell(point)});
+    std::vector<TableCell> row = {
+        number_cell(p, p == kNoDropout ? "1.0 (no dropout)" : table_number(p)),
+        std::isnan(paper) ? missing_cell("-") : number_cell(paper, table_number(paper))};
+    for (const Table2Evaluation& e : {kTable2Deterministic, kTable2Mc}) {
+      row.push_back(seeds_cell(point, std::string("validation_mse") + e.suffix));
+      row.push_back(seeds_cell(point, std::string("test_mse") + e.suffix));
+    }
+    row.push_back(planned_cell(point));
+    t.rows.push_back(row);
   }
   print_table_title(out, format,
                     "Seed 000 Table 2 over seeds (ours, " + r.variant +
-                        "): test MSE (z-score units), mean ± std, each network evaluated "
-                        "deterministically and by MC dropout");
+                        "): validation and test MSE (z-score units), mean ± std, each network "
+                        "evaluated deterministically and by MC dropout");
   t.print(out, format);
   std::vector<std::string> notes = {
       "One training per seed and p, evaluated both ways: deterministic (one pass with every unit "
-      "kept, r = 1) and MC dropout (per test sample the mean of " +
+      "kept, r = 1) and MC dropout (per sample the mean of " +
           passes +
           " passes with new masks r ~ Bernoulli(p), from the run's own random stream; Gal & "
           "Ghahramani 2016). Seed 000 does not say which it used. With no dropout (1.0) the two "
           "are the same network.",
+      "Each evaluation chooses p on its own lowest mean validation MSE (the validation part "
+      "held out of the training part); its test MSE is reported after the choice. A seed draws "
+      "the split, the initial weights and the mini-batch order.",
       "Variant " + r.variant + " " +
           ran_with(s.profile, sweep.configs, step_error_settings_keys()) +
-          "; seeds: the sweep's repeats (sweep repeats)."};
-  for (auto& n : table2_seed_notes(r, kDeterministic, "deterministic")) notes.push_back(n);
-  for (auto& n : table2_seed_notes(r, kMc, "MC dropout")) notes.push_back(n);
+          "; seeds: the sweep's repeats (sweep repeats).",
+      "Differences are stated below only where Welch's test over the seeds gives p < 0.05."};
+  for (const Table2Evaluation& e : {kTable2Deterministic, kTable2Mc}) {
+    for (auto& n : table2_seed_notes(r, e.suffix, e.name)) notes.push_back(n);
+  }
   bool absent = false;
+  const std::string mc_test = std::string("test_mse") + kTable2Mc.suffix;
   for (const auto& point : sweep.points) {
-    absent = absent || point.sample(kMc).size() < point.runs.size();
+    absent = absent || point.sample(mc_test).size() < point.runs.size();
   }
   if (absent) {
     notes.push_back(

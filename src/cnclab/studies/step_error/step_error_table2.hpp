@@ -1,14 +1,18 @@
 #pragma once
 // Seed 000 Table 2 (dropout keep probability p against MSE): the single runs
-// of each variant, and the table over the seed sweep of the manifest's `repeats:`
-// (surface 1 over keep probabilities p and 1.0, no dropout): per p the test
-// MSE's mean ± std over the seeds with the trained networks evaluated both
-// ways (model.dropout.inference, nn/mlp.hpp): deterministically (one pass,
-// r = 1) and by Monte-Carlo dropout (the mean of N masked passes). Each
-// result holds both evaluations of its one training, so the two columns
-// compare the same networks. The notes state a best p, and dropout against
-// none, only as far as Welch's test over the seeds supports, under each
-// evaluation (step_error_seed_notes.hpp).
+// of each variant, and the table over the seed sweep of the manifest's
+// `repeats:` (Table 2's keep probabilities and 1.0, no dropout, each over
+// seeds). Table 2's runs hold a validation part out of the training part
+// (configs/splits/step_error_table2.yaml): p is chosen on validation and the
+// test MSE is reported after the choice; the lowest test MSE (the paper's
+// own reading, which chooses on the data it reports) is shown beside it,
+// never used. Every trained network is evaluated both ways
+// (model.dropout.inference, nn/mlp.hpp): deterministically (one pass, r = 1)
+// and by Monte-Carlo dropout (the mean of N masked passes), from one
+// training, so the two compare the same networks; each evaluation chooses p
+// on its own validation MSE. The notes over seeds state a best p, and
+// dropout against none, only as far as Welch's test supports
+// (step_error_seed_notes.hpp).
 #include <ostream>
 #include <string>
 #include <vector>
@@ -18,15 +22,19 @@
 
 namespace cnclab {
 
-// One evaluation's sentences: the lowest mean test MSE against the next
-// lowest p, and no dropout (keep 1.0) against that p. `figure`:
-// test_mse_deterministic or test_mse_mc (run_figures); `evaluation` names it.
+// One evaluation's sentences over the seeds of Table 2's sweep: the lowest
+// mean validation MSE against the next (the choice of p), the chosen p's test
+// MSE (reported after), no dropout (keep 1.0) against the chosen p on each
+// split, and the choice on test beside it. `suffix`: "_deterministic" or
+// "_mc" (run_figures' validation_mse<suffix>, test_mse<suffix>);
+// `evaluation` names it.
 std::vector<std::string> table2_seed_notes(const StepErrorRepeats& repeats,
-                                           const std::string& figure,
+                                           const std::string& suffix,
                                            const std::string& evaluation);
 
-// Table 2 of the single runs: per variant the test MSE of each p evaluated
-// both ways, and the last training loss.
+// Table 2 of the single runs: per variant the validation and test MSE of each
+// p evaluated deterministically, the test MSE by MC dropout, and the last
+// training loss.
 void print_table2(const StepErrorStudy& study, TableFormat format, std::ostream& out);
 
 // The table over seeds; prints nothing when the study has no repeats.
