@@ -7,6 +7,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/share_paths.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/profiles.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/io/atomic_file.hpp"
@@ -80,6 +81,7 @@ void print_config_text(const std::string& resolved, const CommandOptions& option
 int run_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                 std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
                 std::ostream& log) {
+  check_profile(experiment, options.profile);
   if (const auto job = job_of(experiment, overrides, seed, options, &log)) {
     clean_stale_partials({options.results_dir, options.datasets_dir}, log);
     const JobReport report = job->first.run(experiment, job->second);
@@ -115,6 +117,7 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
 int validate_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                      std::optional<std::uint64_t> seed, const CommandOptions& options,
                      std::ostream& out) {
+  check_profile(experiment, options.profile);
   if (const auto job = job_of(experiment, overrides, seed, options, nullptr)) {
     // Resolved before anything is printed: an invalid file prints no "valid".
     const std::string resolved = job->first.resolved_yaml(experiment, job->second);

@@ -163,7 +163,10 @@ TEST(NarxCli, FeedrateJobAloneTrainsItsPredictorAndNamesWhatItCannotPlan) {
   std::ofstream(dir.path() / "other.yaml")
       << "kind: feedrate_optimisation\nname: other\npredictor: " CNCLAB_SOURCE_DIR
          "/experiments/friedman/friedman1_mlp.yaml\n";
-  const Result other = sh(dir.path(), kCnclab + " reproduce other.yaml" + common);
+  // Without --quick: neither file declares a quick profile (that is exit 2
+  // of its own, experiment/profiles.hpp).
+  const Result other =
+      sh(dir.path(), kCnclab + " reproduce other.yaml --out results --data-dir data -j1");
   EXPECT_EQ(other.code, 2) << other.out << other.err;
   EXPECT_NE(other.out.find("friedman1_mlp.yaml: needs a narx experiment on the following_error"),
             std::string::npos)

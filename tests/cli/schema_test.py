@@ -6,9 +6,11 @@ The schema describes one experiment file as written and as the reader sees
 it after `include:` is merged (src/cnclab/experiment/experiment_schema.hpp).
 So every file under experiments/ is validated as written (what an editor
 checks; the keys an include may supply are required only of a file without
-`include:`) and in its resolved form (`cnclab validate FILE`, with and
-without --profile quick: the config a result stores), each against the
-whole schema and against its kind's (`cnclab schema --kind K`). Misspelt
+`include:`) and in its resolved form (`cnclab validate FILE`, and with
+--profile quick where the file, its includes or a sweep's experiment define
+it (read here from the YAML): the config a result stores), each against the
+whole schema and against its kind's (`cnclab schema --kind K`). A file that
+does not define quick must refuse it (exit 2, "unknown profile"). Misspelt
 keys, at the top and in nested sections, must fail, also in a file with
 `include:`.
 
@@ -80,9 +82,37 @@ def resolved(path, profile):
     return load(r.stdout)
 
 
+def config_path(naming, name):
+    """An include or experiment name: beside the naming file, else from the
+    source root (configs/...)."""
+    beside = naming.parent / name
+    return beside if beside.is_file() else SOURCE / name
+
+
+def declared_profiles(path):
+    """The profile names a file defines: its `profiles:`, its includes', and
+    for a `kind: sweep` file its experiment's (whose trials load with it)."""
+    raw = load(path.read_text()) or {}
+    names = set(raw.get("profiles") or {})
+    includes = raw.get("include") or []
+    for name in [includes] if isinstance(includes, str) else includes:
+        names |= declared_profiles(config_path(path, name))
+    if raw.get("kind") == "sweep" and "experiment" in raw:
+        names |= declared_profiles(config_path(path, raw["experiment"]))
+    return names
+
+
+def refuses_profile(path, profile):
+    r = run("validate", str(path), "--profile", profile)
+    if r.returncode != 2 or f"unknown profile '{profile}'" not in r.stderr:
+        failures.append(f"{path} defines no profile {profile}, yet validate --profile {profile}: "
+                        f"exit {r.returncode}, {r.stderr.strip()}")
+
+
 validator = schema_of()
 kind_validators = {}
 checked = 0
+refused = 0
 kinds = set()
 train_example = None
 for path in sorted((SOURCE / "experiments").rglob("*.yaml")):
@@ -94,6 +124,10 @@ for path in sorted((SOURCE / "experiments").rglob("*.yaml")):
         kind_validators[kind] = schema_of("--kind", kind)
     docs = [(raw, "as written")]
     for profile in ("", "quick"):
+        if profile and profile not in declared_profiles(path):
+            refuses_profile(rel, profile)
+            refused += 1
+            continue
         doc = resolved(rel, profile)
         if doc is not None:
             docs.append((doc, f"resolved{' --profile ' + profile if profile else ''}"))
@@ -107,6 +141,7 @@ for path in sorted((SOURCE / "experiments").rglob("*.yaml")):
             train_example = example
 
 assert checked > 150, f"only {checked} documents checked"
+assert refused < checked / 4, f"{refused} files refuse --profile quick"
 assert {"train", "sweep", "gcode"} <= kinds, kinds
 assert train_example is not None
 

@@ -92,6 +92,7 @@ def main():
         check_csv(csv_tables(texts["csv"]))
         check_table2_choice(csv_tables(texts["csv"]), texts["text"])
         check_seed_spread(csv_tables(texts["csv"]), tables_results)
+        check_table2_over_seeds(csv_tables(texts["csv"]), tables_results)
         check_trivial_predictor(cnclab, tables_results, source)
         check_targets(cnclab, source, common, tmp)
         run(["bash", os.path.join(source, "scripts/figures/run"), tables_results], source)
@@ -112,15 +113,15 @@ def check_sources(text, source):
     (except the normaliser table, which has none), then result files that
     exist."""
     lines = [l[len("sources: "):] for l in text.splitlines() if l.startswith("sources: ")]
-    # Tables 2, 3, surface-1 text, 4, 6, 5, 7, normaliser, seed spread, 8.
-    check(len(lines) == 10, f"one sources line per table: {len(lines)}")
+    # Tables 2, 2 over seeds, 3, surface-1 text, 4, 6, 5, 7, normaliser, seed spread, 8.
+    check(len(lines) == 11, f"one sources line per table: {len(lines)}")
     for line in lines:
         files = line.split(", ")
         for f in files:
             check(os.path.isfile(os.path.join(source, f)), f"sources: {f} exists")
         check(sum(f.endswith("seed000_step_error.yaml") for f in files) <= 1, f"reference once: {line}")
         check(any(f.endswith(".h5") for f in files), f"sources name result files: {line}")
-    check(sum(l.startswith("results/reference/seed000_step_error.yaml") for l in lines) == 9,
+    check(sum(l.startswith("results/reference/seed000_step_error.yaml") for l in lines) == 10,
           "the paper's numbers are named where they are used")
 
 
@@ -135,9 +136,11 @@ def check_csv(tables):
         width = len(rows[0])
         check(all(len(r) == width for r in rows), f"{title}: every row as wide as the header")
 
-    t2 = find(tables, "Seed 000 Table 2")
+    t2 = find(tables, "Seed 000 Table 2:")
     check(t2[0][2:] == [f"p_0.{k}" for k in range(3, 10)], f"Table 2 header {t2[0]}")
-    check((len(t2) - 2) % 3 == 0 and len(t2) >= 5, "Table 2: paper row + 3 rows per variant")
+    check((len(t2) - 2) % 4 == 0 and len(t2) >= 6,
+          "Table 2: paper row + 4 rows per variant (validation MSE, test MSE deterministic and "
+          "MC dropout, training loss)")
 
     # Tables 4 and 5: the test sizes, ours equal to the paper's.
     for prefix in ("Seed 000 Table 4", "Seed 000 Table 5"):
@@ -189,7 +192,7 @@ def check_table2_choice(tables, text):
     """Table 2 chooses p on validation: each variant's note names the p of
     the lowest value of its validation row (not of its test row), and the
     test choice beside it is the lowest of the test row."""
-    t2 = find(tables, "Seed 000 Table 2")
+    t2 = find(tables, "Seed 000 Table 2:")
     ps = [h[len("p_"):] for h in t2[0][2:]]
     rows = {(r[0], r[1]): r[2:] for r in t2[1:]}
     for source in sorted({r[0] for r in t2[1:] if r[0] != "paper"}):
@@ -261,6 +264,49 @@ def check_seed_spread(tables, results):
                 check(abs(float(got[column]) - want) <= 1e-9 * max(1.0, abs(want)),
                       f"seed spread {row} {quantity} {column}: {got[column]} != {want}")
             check(got["seeds"] == str(len(runs)), f"seed spread {row}: seeds {got['seeds']}")
+
+
+def check_table2_over_seeds(tables, results):
+    """Table 2 over seeds under both dropout evaluations: each trial's z-score
+    test MSE computed here from its stored predictions (/test/predictions:
+    deterministic; /other_inference/test_predictions: MC dropout), targets
+    and target scaling, and its validation MSE as stored per evaluation
+    (/metrics and /other_inference attributes validation.normalised_mse),
+    grouped by the trial's keep probability, against the table's mean and
+    std columns; no dropout (1.0) has one evaluation."""
+    rows = find(tables, "Seed 000 Table 2 over seeds")
+    header = rows[0]
+    columns = [f"{split}_mse_{name}" for name in ("deterministic", "mc")
+               for split in ("validation", "test")]
+    check(header == ["p", "paper_mse"] + [f"{c}_{s}" for c in columns for s in ("mean", "std")]
+          + ["complete", "planned"], f"Table 2 over seeds header {header}")
+    groups = {}
+    pattern = os.path.join(results, "step_error_tuned_seeds_table2", "sweep-*", "trials", "*.h5")
+    for path in glob.glob(pattern):
+        with h5py.File(path, "r") as f:
+            text = f["config"][()]
+            config = yaml.safe_load(text.decode() if isinstance(text, bytes) else text)
+            mean = f["model/target_scaling/mean"][()]
+            std = f["model/target_scaling/std"][()]
+            target = (f["test/targets"][()] - mean) / std
+            validation = [float(f["metrics"].attrs["validation.normalised_mse"])]
+            mse = [float(np.mean(((f["test/predictions"][()] - mean) / std - target) ** 2))]
+            if "other_inference" in f:
+                mc = (f["other_inference/test_predictions"][()] - mean) / std
+                mse.append(float(np.mean((mc - target) ** 2)))
+                validation.append(float(f["other_inference"].attrs["validation.normalised_mse"]))
+        p = float(config["model"]["dropout"]["keep_probability"])
+        check(len(mse) == (1 if p == 1.0 else 2), f"{path}: MC evaluation stored iff dropout")
+        groups.setdefault(p, []).append((validation[0], mse[0], validation[-1], mse[-1]))
+    table = {float(r[0]): dict(zip(header, r)) for r in rows[1:]}
+    check(sorted(table) == sorted(groups), f"Table 2 over seeds rows {sorted(table)}")
+    for p, runs in groups.items():
+        values = np.array(runs)
+        for k, column in enumerate(columns):
+            for stat, want in (("mean", values[:, k].mean()), ("std", values[:, k].std(ddof=1))):
+                got = table.get(p, {}).get(f"{column}_{stat}", "nan")
+                check(abs(float(got) - want) <= 1e-9 * max(1.0, abs(want)),
+                      f"Table 2 over seeds p = {p} {column}_{stat}: {got} != {want}")
 
 
 def run_code(args, cwd):

@@ -3,6 +3,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
 #include "cnclab/core/rng.hpp"
+#include "cnclab/data/constant_targets.hpp"
 #include "cnclab/data/dataset_file.hpp"
 #include "cnclab/io/lock_file.hpp"
 
@@ -72,6 +73,12 @@ CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed, const 
   const LockFile lock(dir / ("." + stem + ".lock"), log);
   if (!regenerate && read_cached(out, generator, config_text, log)) return out;
   out.dataset = generate_dataset(spec, seed, progress);
+  if (log) {
+    for (const auto& t : constant_targets(out.dataset, generator.target_resolution())) {
+      *log << "warning: dataset " << out.path.filename().string() << ": " << constant_target_text(t)
+           << "\n";
+    }
+  }
   out.dataset.generator_config = config_text;
   out.content_hash = out.dataset.content_hash();
   write_dataset(out.path, out.dataset);

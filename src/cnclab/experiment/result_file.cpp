@@ -9,6 +9,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/job_result.hpp"
+#include "cnclab/experiment/result_inference.hpp"
 #include "cnclab/experiment/result_lm_history.hpp"
 #include "cnclab/experiment/result_narx.hpp"
 #include "cnclab/experiment/run_warnings.hpp"
@@ -74,6 +75,7 @@ void write_mlp_sections(H5File& f, const RunRecord& r) {
   f.set_attribute("/model", "output_activation", to_string(r.model.output_activation));
   f.set_attribute("/model", "dropout_keep_probability", r.model.dropout_keep_probability);
   f.set_attribute("/model", "dropout_placement", to_string(r.model.dropout_placement));
+  write_inference(f, r);
   f.set_attribute("/model", "parameter_layout",
                   "per layer: W (n_out x n_in, column-major) then b (n_out)");
   f.write_vector("/model/parameters", to_std(r.parameters), "1");
@@ -361,6 +363,16 @@ void read_mlp_sections(const H5File& f, RunRecord& r) {
     bad(std::string("/model: ") + e.what());
   }
   r.model.dropout_keep_probability = f.attribute_double("/model", "dropout_keep_probability");
+  // Read back so that Mlp(r.model) has the run's dropout layers (MC dropout).
+  if (f.has_attribute("/model", "dropout_placement")) {
+    const std::string placement = f.attribute_string("/model", "dropout_placement");
+    if (placement == to_string(DropoutPlacement::after_every_hidden)) {
+      r.model.dropout_placement = DropoutPlacement::after_every_hidden;
+    } else if (placement != to_string(DropoutPlacement::between_hidden)) {
+      bad("/model: unknown dropout_placement '" + placement + "'");
+    }
+  }
+  read_inference(f, r);
   r.parameters = to_eigen(f.read_vector("/model/parameters"));
   r.input_scaling = read_scaling(f, "/model/input_scaling");
   r.target_scaling = read_scaling(f, "/model/target_scaling");
@@ -428,6 +440,9 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
     read_mlp_sections(f, r);
   }
   r.metrics = current_names(read_metrics(f), f, version);
+  if (r.other_inference) {
+    r.other_inference->metrics = current_names(std::move(r.other_inference->metrics), f, version);
+  }
   r.metric_units = current_names(read_metric_units(f), f, version);
   if (r.metric_units.empty()) r.metric_units = training_metric_units(r);  // older files
   r.warnings = read_warnings(f);
@@ -538,6 +553,7 @@ void print_result(const RunRecord& r, std::ostream& out, const ShowOptions& opti
   }
   if (normalised) note += "; scaled²: the network's scaled target units";
   print_metrics(r, note, out);
+  print_inference(r, out);
   print_result_config(r.resolved_yaml, out, options);
 }
 

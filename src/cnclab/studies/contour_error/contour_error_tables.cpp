@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/contour_error/narx_study_runs.hpp"
 
@@ -123,11 +124,21 @@ std::string stable_note() {
          "as in the paper); mean ± std are over the bounded runs, stable or not";
 }
 
+// "The runs ran with profile quick (per the result files' configs): dataset:
+// ...; model: ..." of the study's runs (report/run_settings.hpp).
+std::string settings_note(const NarxStudyRuns& r) {
+  return "The runs " + ran_with(r.profile, r.configs,
+                                {"dataset.options.samples", "dataset.options.runs",
+                                 "dataset.options.path.control_points", "model.hidden",
+                                 "model.input_delays", "model.feedback_delays"});
+}
+
 // `notes`, then the notes both study tables end with (what "stable" means,
 // the second try, each run that is not stable, each trial that did not
 // complete), then the files read.
 void print_training_notes(const NarxStudyRuns& r, std::vector<std::string> notes, TableFormat f,
                           std::ostream& out) {
+  notes.push_back(settings_note(r) + "; their trainer stages give the epochs column.");
   notes.push_back(stable_note());
   notes.push_back(kRetryNote);
   notes.push_back(second_try_note(r));
@@ -292,7 +303,9 @@ void print_estimates(const NarxStudyRuns& r, const ConfigReader& ref, TableForma
                     number_cell(exact_mean, table_number(exact_mean, 3) + " (mean)"),
                     number_cell(exact_max, table_number(exact_max, 3) + " (max)")});
   t.print(out, f);
-  print_table_notes(out, f, {"Paper: " + reference_text(ref, "contour", "estimate")});
+  print_table_notes(out, f,
+                    {"Paper: " + reference_text(ref, "contour", "estimate"),
+                     settings_note(r) + " (the estimates use their simulated data)."});
 }
 
 void print_predictor(const NarxStudyRuns& r, const ConfigReader& ref, TableFormat f,
@@ -324,7 +337,8 @@ void print_predictor(const NarxStudyRuns& r, const ConfigReader& ref, TableForma
                     {"zero predictor: contour RMS = RMS of the exact contour error; its mean is " +
                          table_number(r.metric("exact_contour_mean"), 3) + " µm, max " +
                          table_number(r.metric("exact_contour_max"), 3) + " µm",
-                     stable_note(), "Paper: " + reference_text(ref, "contour", "accuracy")});
+                     stable_note(), "Paper: " + reference_text(ref, "contour", "accuracy"),
+                     settings_note(r) + "."});
 }
 
 // The measured quantities of one group of runs (a method, an architecture)

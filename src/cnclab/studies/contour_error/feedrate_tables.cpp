@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "cnclab/core/format.hpp"
+#include "cnclab/experiment/result_file.hpp"
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/text_table.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/contour_error/feedrate_job.hpp"
@@ -27,6 +29,23 @@ FeedrateTableInput feedrate_table_input(const TablesOptions& options) {
   const ResultKey key{in.job.name, std::nullopt, to_yaml(in.job), file, true};
   in.result = table_store(options).get(key);
   return in;
+}
+
+// "; its predictor: dataset: ..., model: ..." from the predictor's result
+// (the job's upstream), or "" when that result is gone.
+std::string predictor_settings(const RunRecord& job) {
+  std::vector<std::string> configs;
+  for (const auto& u : job.upstream) {
+    try {
+      configs.push_back(read_result(u.result_file).resolved_yaml);
+    } catch (const Error&) {
+      return "";
+    }
+  }
+  if (configs.empty()) return "";
+  return "; its predictor: " +
+         run_settings(configs, {"dataset.options.samples", "model.hidden", "model.input_delays",
+                                "model.feedback_delays"});
 }
 
 double feedrate_metric(const RunRecord& r, const std::string& name) {
@@ -144,6 +163,11 @@ void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
                   " µm; required share " +
                   shortest_double(in.job.verification.required_share * 100) + " %; job wall " +
                   fixed_decimals(feedrate_metric(r, "wall_seconds"), 1) + " s");
+  notes.push_back("The job " +
+                  ran_with(options.profile, {r.resolved_yaml},
+                           {"section.start", "section.length", "tolerances", "prediction_margin",
+                            "optimisation.safety_factor"}) +
+                  predictor_settings(r) + ".");
   print_table_notes(out, format, notes);
   print_table_sources(out, format, {in.result.file});
 }

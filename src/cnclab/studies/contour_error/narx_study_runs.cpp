@@ -106,6 +106,7 @@ NarxStudyRuns load_narx_study(const TablesOptions& o, const std::string& file) {
   const SweepJob job = load_sweep_job(experiment, {}, o.profile);
   const SweepJobState state = sweep_job_state(job, o.results_dir);
   NarxStudyRuns out;
+  out.profile = o.profile;
   out.trials = state.plan.trials.size();
   if (state.summary.missing > 0) {
     const ResultStore store(o.results_dir, o.profile);
@@ -134,6 +135,7 @@ NarxStudyRuns load_narx_study(const TablesOptions& o, const std::string& file) {
     if (state.summary.best_trial == static_cast<std::ptrdiff_t>(i)) out.chosen = out.runs.size();
     out.runs.push_back(run_of(r, path));
     out.sources.push_back(path);
+    out.configs.push_back(r.resolved_yaml);
   }
   out.objective = state.plan.objective.metric;
   if (out.runs.empty()) {

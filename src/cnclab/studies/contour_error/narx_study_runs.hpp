@@ -42,10 +42,12 @@ struct NarxStudyRun {
 inline constexpr double kStableFactor = 3.0;
 
 struct NarxStudyRuns {
+  std::string profile;            // the tables' --profile the runs were loaded with
   std::vector<std::string> axes;  // network axes of the first run (x, y)
   std::size_t train_samples = 0, validation_samples = 0;
   std::vector<NarxStudyRun> runs;              // plan order
   std::vector<std::filesystem::path> sources;  // the result files read
+  std::vector<std::string> configs;            // their resolved configs (the settings notes)
   std::size_t trials = 0;                      // planned; runs.size() completed
   // One line per trial that ran and did not complete: "trial <id> (key=value
   // ..., seed S): failed: <reason>". The tables print them as notes, so a

@@ -14,6 +14,7 @@
 #include "cnclab/data/ik_samples.hpp"
 #include "cnclab/kinematics/joint_error.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/five_axis/ik_runs.hpp"
 
@@ -167,8 +168,22 @@ std::vector<fs::path> result_files(const std::vector<IkVariant>& variants) {
   return files;
 }
 
+// "<label> ran with profile quick (per the result files' configs): trainer:
+// ...; model: hidden ..." of a variant's networks (report/run_settings.hpp).
+std::string settings_note(const std::string& label, const std::string& profile,
+                          const std::vector<const IkAxisRun*>& runs) {
+  std::vector<std::string> configs;
+  for (const IkAxisRun* r : runs) configs.push_back(r->record.resolved_yaml);
+  return label + " " +
+         ran_with(profile, configs,
+                  {"trainer.type", "trainer.learning_rate", "trainer.momentum", "trainer.epochs",
+                   "model.hidden"}) +
+         ".";
+}
+
 void print_table5(const std::vector<IkVariant>& variants, const Reference& ref,
-                  const fs::path& reference_file, TableFormat format, std::ostream& out) {
+                  const fs::path& reference_file, const std::string& profile, TableFormat format,
+                  std::ostream& out) {
   std::vector<const IkVariant*> shown;
   for (const auto& v : variants) {
     if (v.any()) shown.push_back(&v);
@@ -248,6 +263,11 @@ void print_table5(const std::vector<IkVariant>& variants, const Reference& ref,
       "trainbr: the ours networks trained with Levenberg-Marquardt + Bayesian regularisation "
       "(experiments/ik_trainbr/; no learning rate or momentum)."};
   for (const auto& v : variants) {
+    std::vector<const IkAxisRun*> runs;
+    for (const auto& a : v.axes) {
+      if (a) runs.push_back(&*a);
+    }
+    if (!runs.empty()) notes.push_back(settings_note(v.label, profile, runs));
     for (const auto& note : v.notes) notes.push_back(v.label + ": " + note);
   }
   print_table_notes(out, format, notes);
@@ -268,8 +288,8 @@ std::array<const IkAxisRun*, 5> networks(const IkVariant& v, const IkVariant& sg
   return runs;
 }
 
-void print_machine_error(const std::vector<IkVariant>& variants, TableFormat format,
-                         std::ostream& out) {
+void print_machine_error(const std::vector<IkVariant>& variants, const std::string& profile,
+                         TableFormat format, std::ostream& out) {
   const IkVariant& sgdm = variants.front();
   const IkAxisRun& reference = *sgdm.axes.front();
   const RunRecord& first = reference.record;
@@ -295,6 +315,7 @@ void print_machine_error(const std::vector<IkVariant>& variants, TableFormat for
     std::string borrowed;
     const auto runs = networks(v, sgdm, borrowed);
     for (const IkAxisRun* r : runs) sources.push_back(r->result_file);
+    notes.push_back(settings_note(v.label, profile, {runs.begin(), runs.end()}));
     Eigen::MatrixXd predicted(5, n), truth(5, n);
     for (std::size_t i = 0; i < 5; ++i) {
       const IkAxisRun& r = *runs[i];
@@ -368,8 +389,8 @@ void print_ik_tables(const TablesOptions& options, std::ostream& out) {
   const std::vector<IkVariant> variants = load_ik_variants(options);
   const fs::path reference_file = options.reference_file("ik_table5.yaml");
   const Reference ref = read_reference(reference_file);
-  print_table5(variants, ref, reference_file, options.format, out);
-  print_machine_error(variants, options.format, out);
+  print_table5(variants, ref, reference_file, options.profile, options.format, out);
+  print_machine_error(variants, options.profile, options.format, out);
 }
 
 Measurements measure_ik_tables(const TablesOptions& options) {

@@ -12,7 +12,8 @@
 //       surface1_no_dropout: ... # Fig. 6b
 //       surface2: {0: ..., 1: ..., 5: ..., 10: ..., 15: ...}   # fine-tune % -> file
 //       surface3: {0: ..., ...}
-//       note: "one line: what this variant is"
+//       note: "one line: what this variant is meant to be" (the tables add what
+//                                it ran with, from the result files)
 //     tuned: {...}               # optional, same keys
 //   normaliser:
 //     default: refit             # or keep

@@ -68,7 +68,7 @@ const RepeatedPoint* table2_choice_over_seeds(const RepeatedSweep& table2,
   double best_mean = NAN;
   for (const auto& point : table2.points) {
     const std::vector<double> v = point.sample(figure);
-    if (point.number() == 1.0 || v.size() < 2) continue;
+    if (point.number() == kNoDropout || v.size() < 2) continue;
     const double mean = summarize(v).mean;
     if (!best || mean < best_mean) best = &point, best_mean = mean;
   }
@@ -105,9 +105,11 @@ RepeatedSweep load_repeated_sweep(const fs::path& file, const TablesOptions& o) 
     const TrialOutcome& outcome = state.outcomes[i];
     if (outcome.status != TrialOutcome::Status::complete) continue;
     const fs::path path = state.dir / outcome.result_file;
-    point.runs.push_back(run_figures(step_error_run(read_result(path), path)));
+    const StepErrorRun run = step_error_run(read_result(path), path);
+    point.runs.push_back(run_figures(run));
     point.seeds.push_back(t.seed);
     out.sources.push_back(path);
+    out.configs.push_back(run.record.resolved_yaml);
   }
   return out;
 }

@@ -18,6 +18,9 @@
 
 namespace cnclab {
 
+// The keep probability of no dropout: Table 2's sweep point beside its p.
+inline constexpr double kNoDropout = 1.0;
+
 // One value of the swept key over its seeds.
 struct RepeatedPoint {
   // The value as the plan writes it ("0.5"); of an init_from mapping, its
@@ -39,6 +42,7 @@ struct RepeatedSweep {
   std::string key;                                            // the swept key
   std::vector<RepeatedPoint> points;                          // plan order
   std::vector<std::filesystem::path> sources;                 // the result files read
+  std::vector<std::string> configs;                           // their resolved configs
   const RepeatedPoint* find(const std::string& value) const;  // nullptr when absent
   const RepeatedPoint* find(double number) const;
 };

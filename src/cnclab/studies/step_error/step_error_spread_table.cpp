@@ -3,16 +3,16 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/statistics.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/step_error/step_error_measures.hpp"
 #include "cnclab/studies/step_error/step_error_seed_notes.hpp"
+#include "cnclab/studies/step_error/step_error_table_parts.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
-
-constexpr double kNoDropout = 1.0;  // the surface-1 point of the keep-probability sweep
 
 std::string spread_fixed(double v, int decimals) {
   if (std::isnan(v)) return "-";
@@ -34,11 +34,6 @@ const SpreadQuantity kShareBelow1{"|e| < 1 µm (%)", "share_abs_below_1um_percen
                                   "share_abs_below_1um", 2};
 const SpreadQuantity kMaxAbs{"max |e| (µm)", "max_abs_um", "max_abs_um", 3};
 const SpreadQuantity kMeanAbs{"mean |e| (µm)", "mean_abs_um", "mean_abs_um", 3};
-const SpreadQuantity kTestMse{"test MSE (z-score units)", "test_mse", "test_mse", 3};
-const SpreadQuantity kValidationMse{"validation MSE (z-score units)", "validation_mse",
-                                    "validation_mse", 3};
-// The notes' test MSE: no dropout reaches 0.002, whose spread needs a fourth decimal.
-constexpr int kNoteMseDecimals = 4;
 
 TableCell spread_value_cell(double v, int decimals) {
   return std::isnan(v) ? missing_cell("-") : number_cell(v, spread_fixed(v, decimals));
@@ -67,55 +62,6 @@ SeedSample spread_sample(const RepeatedPoint& point, const std::string& label,
 }
 
 }  // namespace
-
-std::vector<std::string> table2_seed_notes(const StepErrorRepeats& r) {
-  // Table 2's keep probabilities (not 1.0, no dropout), by each split's MSE.
-  std::vector<SeedSample> by_validation, by_test;
-  for (const auto& point : r.table2.points) {
-    if (point.number() == kNoDropout) continue;
-    by_validation.push_back(spread_sample(point, "p = " + point.value, kValidationMse.figure));
-    by_test.push_back(spread_sample(point, "p = " + point.value, kTestMse.figure));
-  }
-  const std::string ours = "ours, " + r.variant;
-  std::vector<std::string> notes;
-  const std::string chosen_text = lowest_mean_sentence(
-      ours + ", validation MSE over seeds (the choice of p)", by_validation, kNoteMseDecimals);
-  if (!chosen_text.empty()) notes.push_back(chosen_text);
-  const RepeatedPoint* chosen = table2_choice_over_seeds(r.table2, kValidationMse.figure);
-  const RepeatedPoint* on_test = table2_choice_over_seeds(r.table2, kTestMse.figure);
-  const RepeatedPoint* none = r.table2.find(kNoDropout);
-  if (chosen) {
-    notes.push_back(
-        ours + ", the chosen p = " + chosen->value +
-        ", test MSE over seeds (reported after the choice): " +
-        seed_mean_std_text(summarize(chosen->sample(kTestMse.figure)), kNoteMseDecimals) + ".");
-  }
-  if (chosen && none) {
-    notes.push_back(seed_difference_sentence(
-        ours + ", no dropout against the chosen p (validation MSE, the choice)",
-        spread_sample(*none, "keep 1.0", kValidationMse.figure),
-        spread_sample(*chosen, "p = " + chosen->value, kValidationMse.figure), kNoteMseDecimals));
-    notes.push_back(seed_difference_sentence(
-        ours + ", the same on test (reported after)",
-        spread_sample(*none, "keep 1.0", kTestMse.figure),
-        spread_sample(*chosen, "p = " + chosen->value, kTestMse.figure), kNoteMseDecimals));
-  }
-  // Beside it, the choice the paper's Table 2 invites (it reports one MSE
-  // per p and picks the lowest): on test, which selects on the data it
-  // reports. Shown, not used.
-  const std::string test_text = lowest_mean_sentence(
-      ours +
-          ", on test instead (Table 2's own reading: choosing on the data it reports; shown "
-          "beside, not used)",
-      by_test, kNoteMseDecimals);
-  if (!test_text.empty()) notes.push_back(test_text);
-  if (chosen && on_test) {
-    notes.push_back(ours + ": the lowest mean on validation (p = " + chosen->value +
-                    ") and on test (p = " + on_test->value + ") " +
-                    (chosen == on_test ? "agree." : "differ; the validation choice stands."));
-  }
-  return notes;
-}
 
 std::vector<std::string> normaliser_seed_notes(const StepErrorRepeats& r) {
   std::vector<std::string> notes;
@@ -155,18 +101,6 @@ void print_step_error_spread(const StepErrorStudy& s, TableFormat format, std::o
                           : missing_cell(one ? "diverged" : "-"),
                       spread_seeds_cell(point, q), spread_count_cell(point)});
   };
-  for (std::size_t i = 0; i < s.ref.table2_p.size(); ++i) {
-    const double p = s.ref.table2_p[i];
-    const TableCell label =
-        label_cell("Table 2, p = " + table_number(p), "table2_p" + table_number(p));
-    const StepErrorRun* one = variant ? s.find(variant->table2, p) : nullptr;
-    row(label, kValidationMse, NAN, one, r.table2.find(p));
-    row(label, kTestMse, s.ref.table2_mse[i], one, r.table2.find(p));
-  }
-  const RepeatedPoint* no_dropout = r.table2.find(kNoDropout);
-  const TableCell no_dropout_label = label_cell("Table 2 sweep, no dropout", "table2_p1");
-  row(no_dropout_label, kValidationMse, NAN, nullptr, no_dropout);
-  row(no_dropout_label, kTestMse, NAN, nullptr, no_dropout);
   const RepeatedPoint* s1 = r.surface1.find(kNoDropout);
   const StepErrorRun* s1_run = variant ? &s.at(variant->surface1_no_dropout) : nullptr;
   const TableCell s1_label = label_cell("Surface 1, no dropout", "surface1");
@@ -190,21 +124,24 @@ void print_step_error_spread(const StepErrorStudy& s, TableFormat format, std::o
   }
   print_table_title(out, format,
                     "Seed-to-seed spread of the headline rows (" + ours +
-                        "): the paper's single number, our run of Tables 2-7, mean ± std over "
+                        "): the paper's single number, our run of Tables 3-7, mean ± std over "
                         "seeds");
   t.print(out, format);
   std::vector<std::string> notes = {
       "mean ± std (n − 1) over the complete trials of the seed sweeps (seeds: complete/planned): "
       "repeat 0 at the experiment's seed, the others at seeds derived from it (sweep repeats). "
-      "Surface 1: a seed draws the 70/30 split, the initial weights and the mini-batch order; "
-      "Table 2 the same with a validation part carved from the training part (60/10/30: the "
-      "test samples are surface 1's); the 15 % rows: the fine-tuning share and the order, from "
-      "the one upstream network. The paper reports one run.",
+      "Surface 1: a seed draws the 70/30 split, the initial weights and the "
+      "mini-batch order; the 15 % rows: the fine-tuning share and the order, from the one "
+      "upstream network. The paper reports one run.",
       "Differences are stated below only where Welch's test over the seeds gives p < 0.05."};
-  for (auto& n : table2_seed_notes(r)) notes.push_back(n);
+  std::vector<std::string> configs;
+  for (const auto* sweep : {&r.surface1, &r.surface2_ft15, &r.surface3_ft15}) {
+    configs.insert(configs.end(), sweep->configs.begin(), sweep->configs.end());
+  }
+  notes.push_back("The trials " + ran_with(s.profile, configs, step_error_settings_keys()) + ".");
   for (auto& n : normaliser_seed_notes(r)) notes.push_back(n);
   print_table_notes(out, format, notes);
-  for (const auto* sweep : {&r.table2, &r.surface1, &r.surface2_ft15, &r.surface3_ft15}) {
+  for (const auto* sweep : {&r.surface1, &r.surface2_ft15, &r.surface3_ft15}) {
     read.insert(read.end(), sweep->sources.begin(), sweep->sources.end());
   }
   print_table_sources(out, format, read);
