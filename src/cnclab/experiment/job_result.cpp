@@ -87,7 +87,7 @@ void print_job_result(const RunRecord& r, std::ostream& out, const ShowOptions& 
   out << "experiment   " << r.experiment << " (kind: " << r.kind << ")\n"
       << "status       " << status_text(p.status, r.warnings)
       << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n"
-      << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
+      << "cnclab       " << version_text(p) << "\n"
       << "run          " << p.start_utc << " -> " << p.end_utc << " ("
       << format_metric(p.wall_seconds) << " s) on " << p.host << "\n";
   for (const auto& u : r.upstream) {

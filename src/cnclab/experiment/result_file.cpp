@@ -427,7 +427,7 @@ void print_result(const RunRecord& r, std::ostream& out, const ShowOptions& opti
   out << "experiment   " << r.experiment << "\n"
       << "status       " << status_text(p.status, r.warnings)
       << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n"
-      << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
+      << "cnclab       " << version_text(p) << "\n"
       << "run          " << p.start_utc << " -> " << p.end_utc << " ("
       << format_metric(p.wall_seconds) << " s) on " << p.host << "\n"
       << "seed         " << p.master_seed << " (";
