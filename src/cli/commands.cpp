@@ -1,10 +1,12 @@
 #include "cli/commands.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <iomanip>
 
 #include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/isa.hpp"
 #include "cnclab/core/share_paths.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/profiles.hpp"
@@ -203,6 +205,14 @@ int gcode_command(const std::string& toolpath, const fs::path& config, const fs:
 int version_command(std::ostream& out) {
   const Provenance p = make_provenance(0);
   out << "cnclab " << p.cnclab_version << " (git " << p.git_commit << ")\n";
+  // The hot kernels' instruction-set level (core/isa.hpp; CNCLAB_ISA forces one).
+  const char* forced = std::getenv("CNCLAB_ISA");
+  std::string compiled;
+  for (const IsaLevel l : compiled_isa_levels())
+    compiled += (compiled.empty() ? "" : ", ") + std::string(to_string(l));
+  out << "kernels: " << describe(active_isa())
+      << (forced && *forced ? ", set by CNCLAB_ISA" : ", the widest this CPU supports")
+      << " (compiled: " << compiled << ")\n";
   for (const auto& [name, version] : p.libraries) out << "  " << name << " " << version << "\n";
   // Where shared configs, experiments and reference numbers come from
   // after the project's own (core/share_paths.hpp).

@@ -1,8 +1,9 @@
 #pragma once
 // trainer: {type: sgdm | lm | trainbr, ...}: which trainer an experiment uses
 // and its options. Keys per type (defaults in the options structs):
-//   sgdm:       learning_rate, momentum, batch_size, epochs, shuffle, early_stop_patience
-//   lm/trainbr: epochs, goal, mu, mu_dec, mu_inc, mu_max, min_gradient
+//   sgdm:       learning_rate, momentum, batch_size, epochs, shuffle, early_stop_patience,
+//               precision
+//   lm/trainbr: epochs, goal, mu, mu_dec, mu_inc, mu_max, min_gradient, form
 // A key that only another type has (left from a fragment written for that
 // type, e.g. after `trainer.type=trainbr` on an sgdm experiment) is dropped,
 // with a note saying which; any other key of no type is an unknown key.
