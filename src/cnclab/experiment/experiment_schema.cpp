@@ -16,27 +16,34 @@ using nlohmann::json;
 
 constexpr const char* kDraft = "https://json-schema.org/draft/2020-12/schema";
 
+// One schema per registered trainer that passes `allowed`, each with the
+// keys `head` before its own.
+std::vector<TaggedVariant> trainer_variants(const std::vector<FieldInfo>& head,
+                                            bool (*allowed)(const TrainerDef&)) {
+  std::vector<TaggedVariant> variants;
+  for (const auto& d : trainers().all()) {
+    if (allowed && !allowed(d)) continue;
+    std::vector<FieldInfo> fields = head;
+    const auto own = d.fields();
+    fields.insert(fields.end(), own.begin(), own.end());
+    variants.push_back({d.name, object_schema(fields)});
+  }
+  return variants;
+}
+
 // One entry of trainer.stages: its own keys (mode) and those of its type.
 json stage_schema() {
-  const auto with_head = [](const std::vector<FieldInfo>& trainer) {
-    std::vector<FieldInfo> fields = stage_fields().info();
-    fields.insert(fields.end(), trainer.begin(), trainer.end());
-    return object_schema(fields);
-  };
-  return tagged_schema("type", "",
-                       {{"lm", with_head(lm_fields().info())},
-                        {"trainbr", with_head(trainbr_fields().info(TrainbrOptions{}))}},
-                       "one training stage (lm or trainbr), from the previous stage's weights");
+  const auto residual = [](const TrainerDef& d) { return d.capabilities.needs_jacobian; };
+  const auto names = trainer_names(residual);
+  return tagged_schema(
+      "type", "", trainer_variants(stage_fields().info(), residual),
+      "one training stage (" + join(names, " or ") + "), from the previous stage's weights");
 }
 
 // trainer: {type, ...} or, for model.type narx, {stages: [...]} alone (the
 // if/then of train_file_schema says which one a file needs).
 json trainer_schema(const std::string& doc) {
-  json s = tagged_schema("type", "",
-                         {{"sgdm", object_schema(sgdm_fields().info())},
-                          {"lm", object_schema(lm_fields().info())},
-                          {"trainbr", object_schema(trainbr_fields().info(TrainbrOptions{}))}},
-                         doc);
+  json s = tagged_schema("type", "", trainer_variants({}, nullptr), doc);
   s.erase("required");
   // Without a type (stages, or a type from an include) the keys of every
   // type are checked: stages is one of them.

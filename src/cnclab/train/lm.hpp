@@ -34,6 +34,7 @@ namespace cnclab {
 
 template <class S>
 class FieldList;
+struct TrainerDef;
 
 struct LmOptions {
   std::size_t epochs = 1000;  // maximum number of accepted steps (trainlm: 1000)
@@ -79,5 +80,8 @@ struct LmHooks {
 // Minimises E_D = e^T e over `params` (updated in place).
 Summary train_lm(ResidualObjective& objective, Eigen::VectorXd& params, const LmOptions& options,
                  const LmHooks& hooks = {});
+
+// `trainer.type: lm` (trainer_registry.hpp; lm_trainers.cpp).
+TrainerDef lm_trainer();
 
 }  // namespace cnclab

@@ -9,6 +9,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/fields.hpp"
+#include "cnclab/train/trainer_registry.hpp"
 
 namespace cnclab {
 
@@ -151,6 +152,21 @@ Summary train_sgdm(SeparableObjective& objective, Eigen::VectorXd& params,
   }
   Eigen::VectorXf w = params.cast<float>();
   return sgdm_loop<float>(objective, params, w, options, shuffle_rng, hooks);
+}
+
+TrainerDef sgdm_trainer() {
+  TrainerCapabilities can;
+  can.dropout = can.mini_batches = can.validation_stop = can.float32 = true;
+  return make_trainer<SgdmOptions>(
+      "sgdm", "stochastic gradient descent with momentum (seed 000 Eq. 14)", sgdm_fields(), can,
+      TrainerHistory::epochs,
+      [](const SgdmOptions& options, const MlpTrainingProblem& p, Eigen::VectorXd& params) {
+        Rng dropout_rng(p.seed, "dropout");
+        Rng shuffle_rng(p.seed, "shuffle");
+        MlpRegressionObjective objective(p.mlp, p.x, p.y, dropout_rng);
+        return train_sgdm(objective, params, options, shuffle_rng,
+                          SgdmHooks{p.hooks.validation_loss, p.hooks.on_epoch});
+      });
 }
 
 }  // namespace cnclab

@@ -15,6 +15,7 @@ namespace cnclab {
 
 template <class S>
 class FieldList;
+struct TrainerDef;
 
 // The arithmetic of the training loop. float64 is the default and the
 // reference; float32 keeps the weights, the momentum and every product of
@@ -56,5 +57,9 @@ struct SgdmHooks {
 
 Summary train_sgdm(SeparableObjective& objective, Eigen::VectorXd& params,
                    const SgdmOptions& options, Rng& shuffle_rng, const SgdmHooks& hooks = {});
+
+// `trainer.type: sgdm` (trainer_registry.hpp): an MLP with dropout masks from
+// Rng(seed, "dropout") and the sample order from Rng(seed, "shuffle").
+TrainerDef sgdm_trainer();
 
 }  // namespace cnclab

@@ -38,6 +38,9 @@ struct TrainbrOptions : LmOptions {
 Summary train_trainbr(ResidualObjective& objective, Eigen::VectorXd& params,
                       const TrainbrOptions& options, const LmHooks& hooks = {});
 
+// `trainer.type: trainbr` (trainer_registry.hpp; lm_trainers.cpp).
+TrainerDef trainbr_trainer();
+
 // gamma = N_w - alpha tr((beta J^T J + alpha I)^-1) from the lower triangle of
 // J^T J by Cholesky (the reference formula); NaN if beta J^T J + alpha I is
 // not positive definite.
