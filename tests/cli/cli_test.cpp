@@ -274,8 +274,8 @@ TEST_F(Cli, TrainbrExperimentValidatesWithMatlabDefaultsAndRuns) {
   EXPECT_EQ(shown.code, 0) << shown.err;
   EXPECT_NE(shown.out.find("gamma "), std::string::npos) << shown.out;
   EXPECT_NE(shown.out.find("validation   " + note), std::string::npos) << shown.out;
-  expect_one_line_error(cnclab("run " + exp + " trainer.type=adam --quiet"), 2,
-                        "trainer.type = adam: must be one of: sgdm, lm, trainbr");
+  expect_one_line_error(cnclab("run " + exp + " trainer.type=rprop --quiet"), 2,
+                        "trainer.type = rprop: must be one of: sgdm, lm, trainbr");
   expect_one_line_error(cnclab("run " + exp + " trainer.mu_dec=2 --quiet"), 2,
                         "trainer.mu_dec = 2: must be in (0, 1)");
 }
