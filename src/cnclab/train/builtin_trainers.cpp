@@ -1,5 +1,6 @@
 // The trainers of `trainer.type`, one line each (trainer_registry.hpp); the
 // first is the default type.
+#include "cnclab/train/adam.hpp"
 #include "cnclab/train/lm.hpp"
 #include "cnclab/train/sgdm.hpp"
 #include "cnclab/train/trainbr.hpp"
@@ -13,6 +14,7 @@ TrainerRegistry builtin_trainer_registry() {
   registry.add(sgdm_trainer());
   registry.add(lm_trainer());
   registry.add(trainbr_trainer());
+  registry.add(adam_trainer());
   return registry;
 }
 
