@@ -6,7 +6,7 @@
 // them one by one, since a run depends only on its resolved config. The
 // `kind:` jobs run after the graph; their datasets (JobKind::prework) are
 // generated into the cache in free slots while the graph trains, under the
-// same --jobs budget (issue 21 item 2).
+// same --jobs budget.
 #include <ostream>
 #include <string>
 #include <vector>

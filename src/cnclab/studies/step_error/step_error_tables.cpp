@@ -223,7 +223,8 @@ void print_table3(const Study& s, TableFormat format, std::ostream& out) {
   print_table_title(out, format, "Surface 1 in the text (below Fig. 6; Fig. 5's final MSE)");
   t.print(out, format);
   std::vector<std::string> notes = {
-      "Issue targets on our surfaces: >= 99.5 % of |e| < 0.5 µm and max |e| < 1 µm (paper: " +
+      "Targets on our surfaces (configs/studies/step_error_tables.yaml): >= 99.5 % of |e| < 0.5 µm "
+      "and max |e| < 1 µm (paper: " +
           fixed_or_dash(s.ref.table3_share_below_0_5um, 2) + " %, " +
           table_number(s.ref.table3_max_abs_um) + " µm).",
       paper_relative_above_10_note(s.ref), kSurfacesNote};
@@ -315,7 +316,7 @@ void print_fine_tune_table(const Study& s, TableFormat format, std::ostream& out
                                    : "network trained on surface 1 and 15 % of surface 2") +
           " with that share of surface " + std::to_string(surface) +
           "'s samples and tests on the rest; '-': the paper gives no value there.",
-      "Issue target: >= 99 % of |e| < 1 µm at 15 % (paper: " +
+      "Target: >= 99 % of |e| < 1 µm at 15 % (paper: " +
           fixed_or_dash(paper.share_below_1um_at_15, 2) + " %).",
       kSurfacesNote};
   if (surface == 2) {
