@@ -21,32 +21,6 @@
 
 namespace cnclab {
 namespace fs = std::filesystem;
-std::string metrics_line(const std::map<std::string, double>& metrics) {
-  // Grouped by split, in metric_splits() order, then names without one:
-  // "train: mse 0.1, rmse 0.3; validation: ...; test: ...".
-  std::vector<std::string> groups = metric_splits();
-  groups.emplace_back("");
-  std::string s;
-  for (const auto& split : groups) {
-    std::string part;
-    for (const auto& [k, v] : metrics) {
-      if (metric_split(k) != split) continue;
-      part += (part.empty() ? "" : ", ") + metric_base(k) + " " + format_metric(v);
-    }
-    if (!part.empty()) s += (s.empty() ? "" : "; ") + (split.empty() ? "" : split + ": ") + part;
-  }
-  return s;
-}
-
-RunOptions run_options(const CommandOptions& options, std::ostream& log) {
-  RunOptions r;
-  r.results_dir = options.results_dir;
-  r.datasets_dir = options.datasets_dir;
-  r.progress = options.quiet ? ProgressMode::quiet : ProgressMode::automatic;
-  r.log = options.quiet ? nullptr : &log;
-  r.regenerate_dataset = options.regenerate;
-  return r;
-}
 
 namespace {
 
@@ -166,29 +140,6 @@ int show_command(const std::vector<std::string>& result_files, const CommandOpti
     }
   }
   return 0;
-}
-
-std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
-  std::vector<fs::path> files;
-  const std::vector<std::string> roots =
-      paths.empty() ? std::vector<std::string>{"experiments"} : paths;
-  for (const auto& root : roots) {
-    std::error_code ec;
-    if (fs::is_regular_file(root, ec)) {
-      files.emplace_back(root);
-    } else if (fs::is_directory(root, ec)) {
-      for (const auto& entry : fs::recursive_directory_iterator(root)) {
-        const auto ext = entry.path().extension();
-        if (entry.is_regular_file() && (ext == ".yaml" || ext == ".yml"))
-          files.push_back(entry.path());
-      }
-    } else {
-      throw ConfigError(root + ": no such experiment file or folder");
-    }
-  }
-  std::sort(files.begin(), files.end());
-  files.erase(std::unique(files.begin(), files.end()), files.end());
-  return files;
 }
 
 int gcode_command(const std::string& toolpath, const fs::path& config, const fs::path& output,

@@ -77,7 +77,7 @@ def main():
               "reproduce --check: the quick profile's declared targets pass")
         tables_results = os.path.join(results, "quick")
         check(os.path.isdir(tables_results), "reproduce --out ROOT --quick wrote ROOT/quick")
-        # One rule (issue 21 item 4): --results names the root, --profile its subfolder.
+        # One rule: --results names the root, --profile its subfolder.
         common = ["tables", "step-error", "--results", results, "--profile", "quick"]
         texts = {f: run([cnclab] + common + ["--format", f], source)
                  for f in ("text", "md", "csv", "latex", "json")}

@@ -1,4 +1,4 @@
-// Every declared field is part of a run's identity (issue 16 item 6): for each
+// Every declared field is part of a run's identity: for each
 // key of each declaration, an override with another valid value must change
 // the resolved config (whose hash names the result, so `reproduce` cannot
 // reuse a stale result), and the resolved config must read back to itself

@@ -10,7 +10,7 @@
 namespace cnclab {
 namespace {
 
-// What every experiment must name (issue 22: no silent default dataset,
+// What every experiment must name (no silent default dataset,
 // model or trainer), and the rest of a minimal experiment.
 const std::string kHead = "name: t\nseed: 3\n";
 const std::string kDataset = "dataset: {generator: friedman1}\n";
@@ -60,7 +60,7 @@ TEST(Spec, RequiredKeysAndUnknownKeys) {
             std::string::npos);
 }
 
-// Issue 22 item 1: an experiment that forgets its dataset include must not
+// An experiment that forgets its dataset include must not
 // train on a built-in data set; model and trainer type are required too.
 TEST(Spec, DatasetGeneratorModelAndTrainerTypeAreRequired) {
   EXPECT_NE(error_of(kHead + kModel + kTrainer).find("dataset.generator: is required"),
@@ -76,7 +76,7 @@ TEST(Spec, DatasetGeneratorModelAndTrainerTypeAreRequired) {
             std::string::npos);
 }
 
-// Issue 22 item 6: every enumerated value gets "did you mean".
+// Every enumerated value gets "did you mean".
 TEST(Spec, MisspeltEnumeratedValuesGetDidYouMean) {
   EXPECT_NE(error_of(kMinimal, {"metrics=[mse,rsme]"})
                 .find("unknown metric 'rsme' (did you mean 'rmse'?)"),
@@ -161,7 +161,7 @@ TEST(Spec, LevenbergMarquardtTrainersWithMatlabDefaults) {
   EXPECT_EQ(trainer_options<TrainbrOptions>(o.spec.trainer).epochs, 7u);
 }
 
-// Issue 22 item 3: switching trainer.type drops the keys only the old trainer
+// Switching trainer.type drops the keys only the old trainer
 // has (one note names them) and keeps the shared ones; a key of no trainer is
 // still an unknown key.
 TEST(Spec, SwitchingTrainerTypeDropsTheOldTrainersKeysWithANote) {

@@ -42,7 +42,7 @@ TEST(SweepSummary, MeanAndSampleStdOverRepeatsAndRanking) {
   EXPECT_EQ(max.best_trial, 1);        // rmse 4.0
 }
 
-// Issue 22's case: the best single trial (0.030) is a lucky repeat of the
+// The case of a lucky seed: the best single trial (0.030) is a lucky repeat of the
 // worse point (mean 4.83); the best trial must be a repeat of the best point.
 TEST(SweepSummary, BestTrialIsOfTheBestPointNotTheBestSingleTrial) {
   const SweepPlan plan = plan_of(false);
@@ -97,7 +97,7 @@ TEST(SweepSummary, FileHoldsTheTableInPlanAndRankOrder) {
   EXPECT_NEAR(f.read_vector("/points/metrics/rmse/std")[1], std::sqrt(2.0), kTol);
 }
 
-// Issue 22 item 5: `cnclab show summary.h5` reads the summary back alone:
+// `cnclab show summary.h5` reads the summary back alone:
 // the plan and every trial's outcome as written (warnings included), so
 // summarize() gives the same ranking and best trial.
 TEST(SweepSummary, ReadBackGivesThePlanOutcomesAndRanking) {

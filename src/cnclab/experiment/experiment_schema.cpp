@@ -2,6 +2,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/field_schema.hpp"
+#include "cnclab/data/generator_registry.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/model_spec.hpp"
 #include "cnclab/experiment/narx_spec.hpp"
@@ -108,7 +109,7 @@ json model_schema(const std::string& doc) {
 // dataset: the generator picks the schema of `options`.
 json dataset_schema(const std::vector<FieldInfo>& dataset_info, const std::string& doc) {
   std::vector<TaggedVariant> variants;
-  for (const auto& g : builtin_generators()) {
+  for (const auto& g : known_generators()) {
     std::vector<FieldInfo> fields = dataset_info;
     for (auto& f : fields) {
       if (f.key != "options") continue;

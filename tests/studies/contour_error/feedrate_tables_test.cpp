@@ -1,5 +1,5 @@
 // `cnclab tables feedrate`'s measurements over the tolerances and the
-// manifest's targets (issue 18's "Done when"), on a result written here with
+// manifest's targets (configs/studies/feedrate_tables.yaml), on a result written here with
 // known metrics for the study's own experiment file: the minimum share and
 // ratio are the ones put in, a plan below 99.9 % or slower than the uniform
 // slowdown fails its target, and a tolerance that was not planned fails too.

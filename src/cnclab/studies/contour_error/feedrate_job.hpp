@@ -1,5 +1,5 @@
 #pragma once
-// The contour-error feedrate job (`kind: feedrate_optimisation`, issue 18):
+// The contour-error feedrate job (`kind: feedrate_optimisation`, docs/motion.md):
 // on a section of the seed-002 dataset's random NURBS path, at the
 // dataset's axis limits and on its simulated machine, for each tolerance:
 // the predictive feedrate optimisation (feedrate_optimisation.hpp) with the
