@@ -23,7 +23,7 @@ table.data th,table.data td{border:1px solid #ccc;padding:.25em .55em;text-align
 table.data th{background:#f0f0f0}table.data td:first-child,table.data th:first-child{text-align:left}
 table.data caption{caption-side:top;text-align:left;font-weight:600;padding:.2em 0}
 td.pass{background:#e3f4e3;font-weight:600}td.fail{background:#f9dede;font-weight:600}
-figure{margin:1em 0}figcaption{font-size:.85em;color:#555}svg{max-width:100%;height:auto}
+figure{margin:1em 0}figcaption{font-size:.85em;color:#555}svg,img.figure{max-width:100%;height:auto}
 dl{display:grid;grid-template-columns:max-content auto;gap:.15em 1em;font-size:.9em}dt{font-weight:600}dd{margin:0;word-break:break-all}
 p.note{font-size:.85em;color:#555}
 @media print{body{max-width:none;font-size:10.5pt;padding:0}h2{break-after:avoid}figure,tr{break-inside:avoid}
