@@ -174,6 +174,7 @@ void add_study(Builder& b, const TableEntry& entry, const ReportOptions& o) {
   StudyFigureOptions figures;
   figures.figures_dir = t.results_dir / "figures";
   figures.topics = entry.figure_topics;
+  figures.anchor = "figures-" + entry.name;
   figures.draw_command = "bash scripts/figures/run " + t.results_dir.string();
   for (const auto& f : sources) {
     std::error_code ec;

@@ -68,7 +68,7 @@ std::optional<PngInfo> png_info(const std::string& b) {
 
 std::size_t add_study_figures(HtmlPage& page, const StudyFigureOptions& o) {
   if (o.topics.empty()) return 0;
-  page.heading(3, "Figures", "");
+  page.heading(3, "Figures", o.anchor);
   std::size_t embedded = 0, used = 0;
   for (const auto& topic : o.topics) {
     const fs::path dir = o.figures_dir / topic;

@@ -37,6 +37,7 @@ std::optional<PngInfo> png_info(const std::string& bytes);
 struct StudyFigureOptions {
   std::filesystem::path figures_dir;  // RESULTS/figures
   std::vector<std::string> topics;    // its subfolders drawn for this study
+  std::string anchor;                 // the section heading's id ("" none)
   // The newest result file behind the study's tables: a figure older than it
   // is marked as possibly out of date.
   std::optional<std::filesystem::file_time_type> newest_source;
