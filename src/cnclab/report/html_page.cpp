@@ -15,6 +15,8 @@ namespace {
 
 // Screen and print: system fonts, tables that break across pages by row,
 // figures kept whole, no colours needed to read PASS/FAIL (the words say it).
+// Printed, numbers do not break inside a cell (7.5 pt, narrow padding: a
+// paper table of 11 columns fits a portrait page).
 constexpr const char* kStyle = R"(
 body{font:15px/1.45 system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;color:#222;max-width:1180px;margin:0 auto;padding:1em 1.5em}
 h1{font-size:1.6em;border-bottom:2px solid #444}h2{font-size:1.3em;margin-top:2em;border-bottom:1px solid #bbb}h3{font-size:1.1em}
@@ -23,11 +25,11 @@ table.data th,table.data td{border:1px solid #ccc;padding:.25em .55em;text-align
 table.data th{background:#f0f0f0}table.data td:first-child,table.data th:first-child{text-align:left}
 table.data caption{caption-side:top;text-align:left;font-weight:600;padding:.2em 0}
 td.pass{background:#e3f4e3;font-weight:600}td.fail{background:#f9dede;font-weight:600}
-figure{margin:1em 0}figcaption{font-size:.85em;color:#555}svg{max-width:100%;height:auto}
+figure{margin:1em 0}figcaption{font-size:.85em;color:#555}svg,img.figure{max-width:100%;height:auto}
 dl{display:grid;grid-template-columns:max-content auto;gap:.15em 1em;font-size:.9em}dt{font-weight:600}dd{margin:0;word-break:break-all}
 p.note{font-size:.85em;color:#555}
 @media print{body{max-width:none;font-size:10.5pt;padding:0}h2{break-after:avoid}figure,tr{break-inside:avoid}
-table.data{font-size:8.5pt}td.pass,td.fail{-webkit-print-color-adjust:exact;print-color-adjust:exact}a{color:inherit}}
+table.data{font-size:7.5pt}table.data th,table.data td{padding:.1em .3em}table.data td{white-space:nowrap}table.data td:first-child{white-space:normal}td.pass,td.fail{-webkit-print-color-adjust:exact;print-color-adjust:exact}a{color:inherit}}
 )";
 
 std::string num(double v) {

@@ -60,7 +60,7 @@ std::string selection_yaml(const SweepJob& job, const SweepJobState& s) {
 // The selection as a standard result (sweep_job.hpp, "Result").
 RunRecord selection_record(const SweepJob& job, const SweepJobState& s, const fs::path& file,
                            double wall_seconds) {
-  RunRecord rec = make_job_record("sweep", sweep_job_key(job, s.plan));
+  RunRecord rec = make_job_record("sweep", sweep_job_key(job, s.plan), job.request);
   rec.provenance.end_utc = utc_now_iso8601();
   rec.provenance.wall_seconds = wall_seconds;
   const auto beside = [&](const fs::path& p) {
@@ -111,6 +111,7 @@ SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& ov
   if (root.get<std::string>("kind", "sweep") != "sweep") root.fail("kind", "must be sweep");
   SweepJob job;
   job.source_file = file;
+  job.request = {overrides, profile};
   job.profile = profile;
   job.name = read_experiment_name(root);
   job.description = root.get<std::string>("description", "");

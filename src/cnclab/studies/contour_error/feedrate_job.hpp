@@ -23,6 +23,7 @@
 
 #include "cnclab/core/fields.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/studies/contour_error/contour_verification.hpp"
 #include "cnclab/studies/contour_error/feedrate_optimisation.hpp"
@@ -51,6 +52,7 @@ struct FeedrateJob {
   FeedrateOptimisationOptions optimisation;  // tolerance and limits set per run
   VerificationOptions verification;          // tolerance and machine set per run
   std::filesystem::path source_file;
+  JobRequest request;  // the command's overrides and --profile (provenance only)
 };
 
 // The declared keys below kind, name and description.
