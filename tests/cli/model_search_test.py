@@ -31,6 +31,11 @@ experiment = os.path.join(source, "experiments/friedman/friedman1_mlp.yaml")
 failures = []
 
 
+def text(v):
+    """An HDF5 string attribute as str (h5py gives bytes for fixed-length strings)."""
+    return v.decode() if isinstance(v, (bytes, np.bytes_)) else str(v)
+
+
 def check(ok, what):
     if not ok:
         failures.append(what)
@@ -57,7 +62,7 @@ with tempfile.TemporaryDirectory() as work:
     code, out, err = run(sweep_args(8))
     check(code == 0, "tpe sweep exit 0 (got %d): %s %s" % (code, out[-2000:], err[-2000:]))
     with h5py.File("study/summary.h5", "r") as f:
-        check(f.attrs["method"] == "tpe", "method recorded")
+        check(text(f.attrs["method"]) == "tpe", "method recorded")
         status = [s.decode() for s in f["trials/status"][:]]
         done = sum(s in ("complete", "pruned") for s in status)
         check(done == 8, "8 complete or pruned trials (got %s)" % status)
@@ -66,13 +71,13 @@ with tempfile.TemporaryDirectory() as work:
         # Pruned trials keep their history: fewer epochs than configured.
         for s, rf in zip(status, f["trials/result_file"][:]):
             with h5py.File(os.path.join("study", rf.decode()), "r") as r:
-                check(r.attrs["status"] == s, "result status %s" % s)
+                check(text(r.attrs["status"]) == s, "result status %s" % s)
                 epochs = len(r["history/epoch"][:]) if "history/epoch" in r \
                     else None
                 if s == "pruned" and epochs is not None:
                     check(epochs < 8, "a pruned trial stopped early (%d epochs)" % epochs)
         # Ranking from the complete trials only, recomputed here.
-        metric = f.attrs["objective_metric"]
+        metric = text(f.attrs["objective_metric"])
         rmse = f["trials/metrics/" + metric][:]
         point = f["trials/point"][:]
         means = {}
@@ -83,12 +88,12 @@ with tempfile.TemporaryDirectory() as work:
         expected = sorted(means, key=lambda p: means[p])
         ranked = [p for p in f["points/point"][:] if p in means]
         check(ranked == expected, "ranking by complete trials: %s vs %s" % (ranked, expected))
-        best = f.attrs["best_trial"]
+        best = text(f.attrs["best_trial"])
         ids = [s.decode() for s in f["trials/id"][:]]
         check(status[ids.index(best)] == "complete", "the best trial is complete")
         # Importance layout.
         g = f["importance"]
-        check(g.attrs["evaluator"] == "fanova", "importance evaluator fanova")
+        check(text(g.attrs["evaluator"]) == "fanova", "importance evaluator fanova")
         names = [s.decode() for s in g["parameter"][:]]
         values = g["value"][:]
         check(g["value"].dtype == np.float64 and len(names) == len(values) == 3,
@@ -121,7 +126,7 @@ with tempfile.TemporaryDirectory() as work:
         f.write("#!/bin/sh\nexec /usr/bin/python3 -S \"$@\"\n")
     os.chmod("python-without-site", 0o755)
     env = dict(os.environ, CNCLAB_PYTHON=os.path.abspath("python-without-site"))
-    code, out, err = run(sweep_args(2)[:-4] + ["--dir", "other", "--quiet"], env=env)
+    code, out, err = run(sweep_args(2)[:-3] + ["--dir", "other", "--quiet"], env=env)
     check(code == 2 and "python3-optuna" in err, "no optuna: exit 2 naming python3-optuna "
           "(got %d: %s)" % (code, err[-500:]))
     code, out, err = run(["sweep", experiment, "trainer.epochs=2", "dataset.options.samples=300",
