@@ -17,6 +17,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 import warnings
 
 import h5py
@@ -133,6 +134,42 @@ with tempfile.TemporaryDirectory() as work:
                           "model.hidden=[8]", "trainer.learning_rate=1e-3,1e-2",
                           "--data-dir", "data", "--dir", "grid", "--quiet"], env=env)
     check(code == 0, "grid without optuna exit 0 (got %d: %s)" % (code, err[-500:]))
+
+    # Two workers on one study (as two Slurm array tasks), one killed with
+    # SIGKILL while it trains: the other ends, a restarted worker fails the
+    # dead worker's trial (its holder pid has ended) and completes the study;
+    # no trial number twice.
+    worker = [cnclab, "sweep", experiment, "trainer.epochs=300", "dataset.options.samples=1500",
+              "model.hidden=[32,16]", "trainer.learning_rate=log_uniform(1e-4,3e-1)",
+              "model.dropout.keep_probability=uniform(0.5,1.0)", "--method", "tpe",
+              "--trials", "6", "--jobs", "1", "--data-dir", "data", "--dir", "shared", "--quiet"]
+    a = subprocess.Popen(worker, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    b = subprocess.Popen(worker, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                         env=dict(os.environ, SLURM_ARRAY_TASK_ID="1"))
+    deadline = time.time() + 300
+    while time.time() < deadline:  # until b holds a running trial
+        time.sleep(0.5)
+        if not os.path.exists("shared/study.journal"):
+            continue
+        s = optuna.load_study(study_name="cnclab",
+                              storage=JournalStorage(JournalFileStorage("shared/study.journal")))
+        if any(t.state.name == "RUNNING" and t.user_attrs.get("cnclab_pid") == b.pid
+               for t in s.trials):
+            break
+    b.kill()
+    b.wait()
+    a.wait(timeout=600)
+    code, out, err = run(worker[1:])
+    check(code == 0, "restarted worker completes the study (got %d: %s)" % (code, err[-800:]))
+    s = optuna.load_study(study_name="cnclab",
+                          storage=JournalStorage(JournalFileStorage("shared/study.journal")))
+    numbers = [t.number for t in s.trials]
+    check(len(numbers) == len(set(numbers)), "shared study: no trial number twice")
+    finished = [t for t in s.trials if t.state.name in ("COMPLETE", "PRUNED")]
+    check(len(finished) == 6, "shared study: 6 finished trials (got %d)" % len(finished))
+    check(not any(t.state.name == "RUNNING" for t in s.trials), "shared study: none left running")
+    check(any(t.state.name == "FAIL" and t.user_attrs.get("cnclab_pid") == b.pid
+              for t in s.trials), "the killed worker's trial was failed")
 
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)
