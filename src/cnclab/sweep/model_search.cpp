@@ -217,8 +217,11 @@ ModelSearch run_model_search(const SweepPlan& header, const SweepSpec& spec,
 
   std::map<std::size_t, AskedPoint> running;  // by pool index
   std::size_t next_index = 0, failures = 0;
+  const std::size_t max_failures = std::max<std::size_t>(spec.trials, 3);
   const auto ask = [&]() -> std::optional<TrialJob> {
-    while (failures < std::max<std::size_t>(spec.trials, 3)) {
+    // A space where most points fail (diverge, time out) would ask forever:
+    // this worker stops asking after as many failed points as trials (>= 3).
+    while (failures < max_failures) {
       const json a = helper.request({{"op", "ask"}, {"limit", spec.trials}});
       if (a.at("number").is_null()) return std::nullopt;
       AskedPoint point;
@@ -307,6 +310,10 @@ ModelSearch run_model_search(const SweepPlan& header, const SweepSpec& spec,
     *note << "\n";
   });
 
+  if (note && failures >= max_failures) {
+    *note << "note: stopped asking after " << failures
+          << " failed points (their reasons are in the lines above); run again to go on\n";
+  }
   realise_plan(s, helper.request({{"op", "trials"}}).at("trials"), dir);
   s.findings.importance_target = header.objective.metric;
   try {
