@@ -116,6 +116,7 @@ void show_summary(const fs::path& file, std::ostream& out) {
   const StoredSummary stored = read_summary(file);
   const SweepSummary summary = summarize(stored.plan, stored.outcomes);
   print_summary(out, stored.plan, stored.outcomes, summary, file.parent_path());
+  if (stored.search) print_search_findings(out, *stored.search);
   const std::string best = summary.best_trial >= 0
                                ? stored.plan.trials[static_cast<std::size_t>(summary.best_trial)].id
                                : "";

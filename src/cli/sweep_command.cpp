@@ -15,6 +15,36 @@ int summary_exit_code(const SweepSummary& s) {
   return s.failed + s.errors + s.missing == 0 ? 0 : 1;
 }
 
+// A model-based sweep (model_search.hpp): the study runs to its count; exit 0
+// when it has it, 1 otherwise.
+int model_search_command(const PreparedSweep& prepared, const SweepCommandOptions& o,
+                         std::ostream& out, std::ostream& log) {
+  if (prepared.exec.shards > 1 || !o.trial_ids.empty()) {
+    throw ConfigError("sweep method " + prepared.plan.method +
+                      ": --shard and --trial-ids split a fixed plan; a study's workers share its "
+                      "journal instead (run the same command in each, e.g. as Slurm array tasks)");
+  }
+  store_plan(prepared.dir, prepared.plan);
+  clean_stale_partials({o.common.results_dir, prepared.dir, o.common.datasets_dir}, log);
+  const ModelSearch s =
+      run_model_search(prepared.plan, prepared.spec, prepared.source, prepared.dir, prepared.exec,
+                       o.common.quiet ? nullptr : &log);
+  if (s.stopped != 0) {
+    out << "interrupted by signal " << s.stopped
+        << "; run the same command again to continue the study (finished trials are kept)\n";
+    return 128 + s.stopped;
+  }
+  const SweepSummary summary = summarize(s.plan, s.outcomes);
+  write_summary(prepared.dir / "summary.h5", s.plan, s.outcomes, summary, &s.findings);
+  print_summary(out, s.plan, s.outcomes, summary, prepared.dir, prepared.name);
+  print_search_findings(out, s.findings);
+  out << "study: " << s.finished << " of " << prepared.spec.trials << " trials complete or pruned ("
+      << summary.pruned << " pruned, not ranked); " << s.ran << " point(s) trained now, "
+      << s.reused << " reused\n";
+  out << "summary: " << (prepared.dir / "summary.h5").string() << "\n";
+  return s.finished >= prepared.spec.trials ? 0 : 1;
+}
+
 }  // namespace
 
 int sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
@@ -24,6 +54,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
   const SweepPlan& plan = prepared.plan;
   const fs::path& dir = prepared.dir;
   const std::size_t shard = prepared.exec.shard, shards = prepared.exec.shards;
+  if (model_based(plan)) return model_search_command(prepared, o, out, log);
   store_plan(dir, plan);
   clean_stale_partials({o.common.results_dir, dir, o.common.datasets_dir}, log);
 

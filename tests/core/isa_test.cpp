@@ -52,7 +52,9 @@ TEST(Isa, ThisProcessRunsACompiledLevelThisCpuSupports) {
   EXPECT_EQ(active_isa(), l);  // chosen once
   EXPECT_TRUE(cpu_supports(IsaLevel::baseline));
   // v4 implies v3 on any CPU.
-  if (cpu_supports(IsaLevel::v4)) EXPECT_TRUE(cpu_supports(IsaLevel::v3));
+  if (cpu_supports(IsaLevel::v4)) {
+    EXPECT_TRUE(cpu_supports(IsaLevel::v3));
+  }
 }
 
 }  // namespace

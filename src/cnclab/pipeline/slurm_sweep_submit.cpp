@@ -173,6 +173,12 @@ SweepSlurmResult submit_sweep_slurm(const fs::path& experiment,
                                     const SweepSlurmRequest& request, std::ostream& out,
                                     std::ostream& log) {
   const PreparedSweep prepared = prepare_sweep(experiment, words, seed, o);
+  if (model_based(prepared.plan)) {
+    throw ConfigError("--slurm with sweep method " + prepared.plan.method +
+                      ": not submitted by cnclab yet; submit a job array whose tasks each run "
+                      "this `cnclab sweep` command without --slurm and with the same --dir (the "
+                      "tasks share the study's journal)");
+  }
   const SlurmOptions slurm = resolve_slurm_options(command_line, experiment, o.common.profile);
   SweepSlurmResult result;
   result.dir = prepared.dir;

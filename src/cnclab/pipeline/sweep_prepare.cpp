@@ -54,10 +54,12 @@ SweepSpec resolve_spec(SweepSpec spec, const SweepArguments& args, const SweepCo
   if (o.sweep_seed) spec.seed = *o.sweep_seed;
   if (o.objective) spec.objective = parse_objective(*o.objective);
   if (o.method) {
-    if (*o.method != "grid" && *o.method != "random") {
-      throw ConfigError("--method " + *o.method + ": must be one of: grid, random");
+    const auto method = parse_sweep_method(*o.method);
+    if (!method) {
+      throw ConfigError("--method " + *o.method +
+                        ": must be one of: grid, random, tpe, cmaes, nsga2, qmc");
     }
-    spec.method = *o.method == "grid" ? SweepMethod::grid : SweepMethod::random;
+    spec.method = *method;
   }
   return spec;
 }
@@ -81,7 +83,12 @@ PreparedSweep prepare_sweep(const fs::path& experiment, const std::vector<std::s
   const std::string folder = target.folder.empty() ? plan.experiment : target.folder;
   fs::path dir =
       o.dir.empty() ? o.common.results_dir / folder / ("sweep-" + plan.hash().substr(0, 8)) : o.dir;
-  return {std::move(plan), std::move(dir), std::move(exec), target.folder};
+  return {std::move(plan),
+          std::move(dir),
+          std::move(exec),
+          target.folder,
+          spec,
+          {target.experiment, target.overrides, seed, o.common.profile}};
 }
 
 }  // namespace cnclab

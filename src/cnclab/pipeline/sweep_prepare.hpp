@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cnclab/experiment/command_options.hpp"
+#include "cnclab/sweep/model_search.hpp"
 #include "cnclab/sweep/sweep_execute.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 
@@ -37,6 +38,8 @@ struct PreparedSweep {
   std::filesystem::path dir;
   SweepExecuteOptions exec;  // jobs (the kind: sweep file's if not given), shard, ...
   std::string name;          // a kind: sweep file's name; "": the swept experiment's
+  SweepSpec spec;            // the resolved sweep block
+  SearchSource source;       // what the trials are made from (model-based methods)
 };
 PreparedSweep prepare_sweep(const std::filesystem::path& experiment,
                             const std::vector<std::string>& words,
