@@ -26,17 +26,14 @@
 #include "cnclab/train/lm.hpp"
 #include "cnclab/train/mlp_residuals.hpp"
 #include "cnclab/train/trainbr.hpp"
+#include "random_matrix.hpp"
 
 namespace cnclab {
 namespace {
 
 constexpr double kAgree = 1e-9;
 
-Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = rng.normal();
-  return m;
-}
+using test::random_matrix;
 
 double relative_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return (a - b).norm() / std::max(a.norm(), b.norm());

@@ -19,15 +19,12 @@
 #include "cnclab/train/mlp_residuals.hpp"
 #include "cnclab/train/normal_equations.hpp"
 #include "cnclab/train/trainbr.hpp"
+#include "random_matrix.hpp"
 
 namespace cnclab {
 namespace {
 
-Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = rng.normal();
-  return m;
-}
+using test::random_matrix;
 
 // e = A w - t: a linear residual with a known Jacobian A.
 class LinearResiduals : public ResidualObjective {
