@@ -164,7 +164,10 @@ TEST(Kernels, GemmWithinTheSumBoundAtEveryLevelAndIndependentOfAddresses) {
 
 TEST(Kernels, SyrkAndGemvWithinTheSumBoundAtEveryLevel) {
   Rng rng(2);
-  for (const auto& [n, k] : {std::pair<long, long>{121, 700}, {13, 5}, {1, 9}, {64, 64}}) {
+  for (const auto& shape : {std::pair<long, long>{121, 700}, {13, 5}, {1, 9}, {64, 64}}) {
+    // Named copies, not a structured binding: the lambda below captures them
+    // (clang before 16 cannot capture a structured binding).
+    const long n = shape.first, k = shape.second;
     for (const bool trans : {true, false}) {
       // trans: A is k x n, C += A^T A; else A is n x k, C += A A^T.
       const long lda = (trans ? k : n) + 1, ldc = n + 2;
