@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
 #include "cnclab/io/h5.hpp"
 #include "cnclab/report/text_table.hpp"
 
@@ -12,12 +13,6 @@ namespace cnclab {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", v);
-  return buf;
-}
 
 std::string value_text(double v) {
   char buf[32];
@@ -57,10 +52,11 @@ std::string svg_bar_chart(const std::vector<std::pair<std::string, double>>& bar
                           const std::string& title, const std::string& value_label) {
   const double W = 640, L = 180, R = 70, T = 34, bar = 18, gap = 6;
   const double H = T + static_cast<double>(bars.size()) * (bar + gap) + 30;
-  const std::string size = "viewBox=\"0 0 640 " + num(H) + "\" width=\"640\" height=\"" + num(H);
+  const std::string size = "viewBox=\"0 0 640 " + fixed_decimals(H, 1) +
+                           "\" width=\"640\" height=\"" + fixed_decimals(H, 1);
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" " + size +
                     "\" role=\"img\" aria-label=\"" + html_escape(title) +
-                    "\"><rect width=\"640\" height=\"" + num(H) +
+                    "\"><rect width=\"640\" height=\"" + fixed_decimals(H, 1) +
                     "\" fill=\"#fff\"/><text x=\"10\" y=\"18\" font-size=\"13\" "
                     "font-weight=\"600\">" +
                     html_escape(title) + "</text>";
@@ -71,18 +67,20 @@ std::string svg_bar_chart(const std::vector<std::pair<std::string, double>>& bar
   for (std::size_t i = 0; i < bars.size(); ++i) {
     const double y = T + static_cast<double>(i) * (bar + gap);
     const double w = bars[i].second / top * (W - L - R);
-    svg += "<text x=\"" + num(L - 6) + "\" y=\"" + num(y + bar - 5) + "\" text-anchor=\"end\">" +
-           html_escape(bars[i].first) + "</text>";
-    svg += "<rect class=\"bar\" x=\"" + num(L) + "\" y=\"" + num(y) + "\" width=\"" + num(w) +
-           "\" height=\"" + num(bar) + "\" fill=\"#1f77b4\"/>";
-    svg += "<text x=\"" + num(L + w + 4) + "\" y=\"" + num(y + bar - 5) + "\">" +
-           value_text(bars[i].second) + "</text>";
+    svg += "<text x=\"" + fixed_decimals(L - 6, 1) + "\" y=\"" + fixed_decimals(y + bar - 5, 1) +
+           "\" text-anchor=\"end\">" + html_escape(bars[i].first) + "</text>";
+    svg += "<rect class=\"bar\" x=\"" + fixed_decimals(L, 1) + "\" y=\"" + fixed_decimals(y, 1) +
+           "\" width=\"" + fixed_decimals(w, 1) + "\" height=\"" + fixed_decimals(bar, 1) +
+           "\" fill=\"#1f77b4\"/>";
+    svg += "<text x=\"" + fixed_decimals(L + w + 4, 1) + "\" y=\"" +
+           fixed_decimals(y + bar - 5, 1) + "\">" + value_text(bars[i].second) + "</text>";
   }
   const double axis = T + static_cast<double>(bars.size()) * (bar + gap);
-  svg += "<line x1=\"" + num(L) + "\" y1=\"" + num(T - 4) + "\" x2=\"" + num(L) + "\" y2=\"" +
-         num(axis) + "\" stroke=\"#666\"/><text x=\"" + num((L + W - R) / 2) + "\" y=\"" +
-         num(axis + 18) + "\" text-anchor=\"middle\" fill=\"#444\">" + html_escape(value_label) +
-         "</text></g>";
+  svg += "<line x1=\"" + fixed_decimals(L, 1) + "\" y1=\"" + fixed_decimals(T - 4, 1) + "\" x2=\"" +
+         fixed_decimals(L, 1) + "\" y2=\"" + fixed_decimals(axis, 1) +
+         "\" stroke=\"#666\"/><text x=\"" + fixed_decimals((L + W - R) / 2, 1) + "\" y=\"" +
+         fixed_decimals(axis + 18, 1) + "\" text-anchor=\"middle\" fill=\"#444\">" +
+         html_escape(value_label) + "</text></g>";
   return svg + "</svg>";
 }
 
