@@ -147,6 +147,12 @@ with tempfile.TemporaryDirectory() as tmp:
             definitions.setdefault(k, []).append(v)
     for override in ("trainer.learning_rate=0.02", "description=by hand"):
         check(override in definitions.get("override", []), f"provenance: override {override}")
+    # A run's heading names the point it is (a sweep trial keeps its base experiment's name).
+    headings = re.findall(r"<h[2-6][^>]*>(Run [^<]*)</h", dom)
+    check(any("[trainer.learning_rate=0.02]" in h for h in headings),
+          f"the run's heading shows its override: {headings}")
+    check(any("model.hidden=" in h and "trainer.learning_rate=" in h for h in headings),
+          f"the best trial's heading shows its sweep point: {headings}")
     check(definitions.get("profile", []).count("short") >= 2,
           f"provenance: profile short of the result and the job ({definitions.get('profile')})")
     # The importance: one bar per parameter, longest first, and the table.

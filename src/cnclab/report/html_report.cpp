@@ -53,7 +53,15 @@ void add_run(Builder& b, const fs::path& file, int level) {
   const std::string key = fs::absolute(file).lexically_normal().string();
   if (!b.runs_shown.insert(key).second) return;
   const RunRecord r = read_result(file);
-  b.page.heading(level, "Run " + r.experiment + " — " + file.filename().string(), "");
+  // A sweep trial keeps its base experiment's name: the overrides in the heading say which
+  // point of the sweep it is (e.g. keep 0.8 of a sweep whose base file is named keep_0.5).
+  std::string heading = "Run " + r.experiment;
+  if (!r.provenance.overrides.empty()) {
+    std::string joined;
+    for (const auto& o : r.provenance.overrides) joined += (joined.empty() ? "" : ", ") + o;
+    heading += " [" + joined + "]";
+  }
+  b.page.heading(level, heading + " — " + file.filename().string(), "");
   std::vector<std::pair<std::string, std::string>> facts = {
       {"result file", file.string()},
       {"status",
