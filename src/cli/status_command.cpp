@@ -1,15 +1,14 @@
 // `cnclab status RESULTS_DIR`: a results folder (not a sweep folder) lists
 // the jobs `reproduce --slurm` submitted into it and every sweep folder below
 // it, one line each (slurm_command.hpp, status_command).
-#include <algorithm>
 #include <filesystem>
 #include <ostream>
 
 #include "cli/reproduce_slurm.hpp"
 #include "cli/slurm_command.hpp"
 #include "cnclab/core/error.hpp"
-#include "cnclab/io/lock_file.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/pipeline/sweep_census.hpp"
 #include "cnclab/sweep/slurm_reproduce_record.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 #include "cnclab/sweep/sweep_summary.hpp"
@@ -17,24 +16,6 @@
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
-
-// Sweep folders (holding sweep.yaml) below `dir`, sorted; a sweep folder's
-// own subfolders are not searched.
-std::vector<fs::path> sweep_folders(const fs::path& dir) {
-  std::vector<fs::path> found;
-  std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(dir, ec);
-       it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    if (ec) break;
-    if (!it->is_directory(ec)) continue;
-    if (fs::exists(it->path() / "sweep.yaml", ec)) {
-      found.push_back(it->path());
-      it.disable_recursion_pending();
-    }
-  }
-  std::sort(found.begin(), found.end());
-  return found;
-}
 
 // "  DIR (experiment): 12 trials, 10 complete, 1 failed, 1 running here, 0 without result; best
 // ..."
@@ -48,21 +29,9 @@ void sweep_line(const fs::path& dir, std::ostream& out) {
     return;
   }
   const auto outcomes = read_trial_outcomes(dir, plan);
-  std::size_t complete = 0, failed = 0, running = 0, none = 0;
-  for (std::size_t i = 0; i < plan.trials.size(); ++i) {
-    const auto status = outcomes[i].status;
-    if (status == TrialOutcome::Status::complete) {
-      ++complete;
-    } else if (status == TrialOutcome::Status::failed) {
-      ++failed;
-    } else if (LockFile::held(trial_lock_path(dir, plan.trials[i].id))) {
-      ++running;
-    } else {
-      ++none;
-    }
-  }
-  out << " (" << plan.experiment << "): " << plan.trials.size() << " trials, " << complete
-      << " complete, " << failed << " failed, " << running << " running, " << none
+  const TrialCensus c = count_trials(dir, plan, outcomes);
+  out << " (" << plan.experiment << "): " << plan.trials.size() << " trials, " << c.complete
+      << " complete, " << c.failed << " failed, " << c.running << " running, " << c.without_result
       << " without result";
   const SweepSummary summary = summarize(plan, outcomes);
   if (summary.best_trial >= 0) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "cnclab/core/error.hpp"
 
@@ -142,6 +143,37 @@ TEST(Mlp, OptionsValidated) {
   o.dropout_keep_probability = 1.0;
   o.hidden = {0};
   EXPECT_THROW(o.validate(), OptionError);
+}
+
+// validate() checks the rules its config fields declare (nn/mlp_fields.hpp),
+// naming the YAML key: every case breaks one declared rule.
+TEST(Mlp, ValidateChecksTheDeclaredRulesUnderTheirKeys) {
+  const auto error_of = [](const std::function<void(MlpOptions&)>& change) {
+    MlpOptions o;
+    change(o);
+    try {
+      o.validate();
+    } catch (const OptionError& e) {
+      return e.field() + ": " + e.rule();
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of([](MlpOptions& o) { o.dropout_keep_probability = 1.5; }),
+            "dropout.keep_probability: must be in (0, 1]");
+  EXPECT_EQ(error_of([](MlpOptions& o) { o.dropout_mc_samples = 0; }),
+            "dropout.mc_samples: must be in [1, 1000000]");
+  EXPECT_EQ(error_of([](MlpOptions& o) { o.hidden = {28, 0}; }), "hidden: must be in [1, 100000]");
+  EXPECT_EQ(error_of([](MlpOptions& o) { o.weights.std = -1; }),
+            "init.weights.std: must be a finite number >= 0");
+  EXPECT_EQ(error_of([](MlpOptions& o) { o.weights.mean = std::nan(""); }),
+            "init.weights.mean: must be a finite number");
+  EXPECT_EQ(error_of([](MlpOptions& o) {
+              o.biases.kind = Initializer::Kind::uniform;
+              o.biases.low = 1;
+              o.biases.high = 0;
+            }).substr(0, 5),
+            "high:");  // the cross-field rule, Initializer::validate
+  EXPECT_EQ(error_of([](MlpOptions&) {}), "no error");
 }
 
 TEST(Initializer, MomentsAndBounds) {

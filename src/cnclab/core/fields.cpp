@@ -39,6 +39,7 @@ std::string Rule::text(bool integer) const {
   const std::string what = integer ? "must be an integer " : "must be a finite number ";
   if (min) return what + (min->inclusive ? ">= " : "> ") + number(min->value, integer);
   if (max) return what + (max->inclusive ? "<= " : "< ") + number(max->value, integer);
+  if (finite) return integer ? "must be an integer" : "must be a finite number";
   return "";
 }
 

@@ -17,15 +17,11 @@
 #include "cnclab/core/fields.hpp"
 #include "cnclab/nn/initializer.hpp"
 #include "cnclab/nn/mlp.hpp"
+#include "cnclab/nn/mlp_fields.hpp"
 
 namespace cnclab {
 
-// {type: normal, mean, std} | {type: uniform, low, high} | {type: xavier} |
-// {type: he}; mean/std only with normal, low/high only with uniform.
-const FieldList<Initializer>& initializer_fields();
-
-// model: {type: mlp, hidden, hidden_activation, output_activation,
-// dropout: {keep_probability, placement}, init: {weights, biases}};
+// model: {type: mlp, then the MLP's fields (with_mlp_fields, nn/mlp_fields.hpp)};
 // `inputs`/`outputs` come from the dataset at run time.
 const FieldList<MlpOptions>& mlp_fields();
 

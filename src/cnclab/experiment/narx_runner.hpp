@@ -3,7 +3,7 @@
 // dataset -> sequential halves -> per target one NARX network trained
 // through trainer.stages on the first half -> closed-loop prediction of the
 // second half from measured initial states -> registered sequence metrics
-// (sequence_metrics.hpp) -> one result file (result_file.hpp, result_narx.hpp).
+// (sequence_metrics.hpp) -> one result file (result_file.hpp, result_layout.hpp).
 // run_experiment (runner.hpp) calls it for narx experiments.
 #include "cnclab/experiment/runner.hpp"
 

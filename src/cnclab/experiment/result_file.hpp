@@ -1,5 +1,7 @@
 #pragma once
-// The HDF5 result file of one run (layout: README.md, "Where results go").
+// The HDF5 result file of one run (layout: README.md, "Where results go";
+// declared once in result_layout.hpp). Written by result_writer.cpp, read by
+// result_reader.cpp, printed for `show` by result_print.cpp.
 //
 // Written under a partial name and renamed when complete; the root attribute
 // `complete` = 1 is the last thing written, so a file without it (or with a

@@ -1,21 +1,10 @@
 #include "cnclab/experiment/result_inference.hpp"
 
-#include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace {
-
-constexpr const char* kGroup = "/other_inference";
-
-DropoutInference parse_inference(const H5File& f, const std::string& object,
-                                 const std::string& attr) {
-  const std::string text = f.attribute_string(object, attr);
-  if (text == "deterministic") return DropoutInference::deterministic;
-  if (text == "mc") return DropoutInference::mc;
-  throw IoError(f.path().string() + ": " + object + ": unknown " + attr + " '" + text + "'");
-}
 
 // "deterministic" or "mc (100 masks)".
 std::string inference_text(DropoutInference inference, std::size_t passes) {
@@ -35,38 +24,6 @@ const T* by_inference(const RunRecord& r, DropoutInference inference, const T* o
 }
 
 }  // namespace
-
-void write_inference(H5File& f, const RunRecord& r) {
-  f.set_attribute("/model", "dropout_inference", to_string(r.model.dropout_inference));
-  f.set_attribute("/model", "dropout_mc_samples",
-                  static_cast<std::int64_t>(r.model.dropout_mc_samples));
-  if (!r.other_inference) return;
-  const OtherInference& o = *r.other_inference;
-  f.create_group(kGroup);
-  f.set_attribute(kGroup, "inference", to_string(o.inference));
-  f.set_attribute(kGroup, "mc_samples", static_cast<std::int64_t>(r.model.dropout_mc_samples));
-  for (const auto& [name, value] : o.metrics) f.set_attribute(kGroup, name, value);
-  f.write_matrix(std::string(kGroup) + "/test_predictions", o.test_predictions,
-                 join(r.target_units, ","));
-}
-
-void read_inference(const H5File& f, RunRecord& r) {
-  if (f.has_attribute("/model", "dropout_inference")) {
-    r.model.dropout_inference = parse_inference(f, "/model", "dropout_inference");
-    r.model.dropout_mc_samples =
-        static_cast<std::size_t>(f.attribute_int("/model", "dropout_mc_samples"));
-  }
-  if (!f.is_group(kGroup)) return;
-  OtherInference o;
-  o.inference = parse_inference(f, kGroup, "inference");
-  for (const auto& name : f.attribute_names(kGroup)) {
-    if (name != "inference" && name != "mc_samples") {
-      o.metrics[name] = f.attribute_double(kGroup, name);
-    }
-  }
-  o.test_predictions = f.read_matrix(std::string(kGroup) + "/test_predictions");
-  r.other_inference = std::move(o);
-}
 
 void print_inference(const RunRecord& r, std::ostream& out) {
   if (!r.other_inference) return;

@@ -1,7 +1,7 @@
 #pragma once
 // How an MLP run's network was evaluated (model.dropout.inference, nn/mlp.hpp)
 // and, for a network with dropout, its evaluation the other way
-// (RunRecord::other_inference), in the result file:
+// (RunRecord::other_inference), in the result file (result_layout.hpp):
 //   /model attrs dropout_inference, dropout_mc_samples
 //   /other_inference attrs inference, mc_samples, one number per metric;
 //   /other_inference/test_predictions (target units)
@@ -14,11 +14,6 @@
 #include "cnclab/io/h5.hpp"
 
 namespace cnclab {
-
-void write_inference(H5File& f, const RunRecord& r);
-// Fills r.model's dropout_inference and dropout_mc_samples and
-// r.other_inference; IoError naming the file on an unknown inference name.
-void read_inference(const H5File& f, RunRecord& r);
 
 // `show`'s lines: the inference of the metrics above, and the other
 // evaluation's metrics, when the network has dropout.

@@ -1,12 +1,14 @@
 // `cnclab show` of a training result: the model, how validation was used,
 // provenance, metrics, config (declared in result_file.hpp).
+#include <algorithm>
 #include <string>
 #include <vector>
 
+#include "cnclab/core/config_abbreviate.hpp"
+#include "cnclab/core/format.hpp"
 #include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/result_inference.hpp"
-#include "cnclab/experiment/result_narx.hpp"
 #include "cnclab/experiment/run_warnings.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/train/trainer_registry.hpp"
@@ -14,6 +16,37 @@
 namespace cnclab {
 
 namespace {
+// The model and training lines of a narx run.
+void print_narx_model(const RunRecord& r, std::ostream& out) {
+  const NarxRecord& n = *r.narx;
+  const NarxOptions& o = n.options;
+  out << "model        narx, one network per target: " << o.hidden << " "
+      << to_string(o.hidden_activation) << " units, input delays " << o.first_input_delay << ".."
+      << o.first_input_delay + o.input_delays - 1 << ", feedback delays 1.." << o.feedback_delays;
+  if (!n.networks.empty()) out << " (" << n.networks[0].parameters.size() << " parameters each)";
+  out << "\n";
+  out << "training     " << r.trainer << ", " << to_string(r.training.termination) << "\n";
+  for (const auto& net : n.networks) {
+    out << "  " << net.axis << " (" << net.input << " -> " << net.target << ", "
+        << format_metric(net.seconds) << " s):";
+    for (const auto& st : net.stages) {
+      out << (st.fallback ? " second try: " : " ") << st.mode;
+      if (st.horizon != 0) out << " (windows of " << st.horizon << " steps)";
+      out << " " << st.trainer << " " << st.summary.history.size() << " epochs ("
+          << to_string(st.summary.termination) << ")";
+      const Summary& sm = st.summary;
+      if (sm.lm_initial) out << " SSE " << format_metric(sm.lm_initial->sse) << " ->";
+      if (!sm.lm_history.empty()) {
+        out << (sm.lm_initial ? " " : " SSE ") << format_metric(sm.lm_history.back().sse);
+      } else if (sm.lm_initial) {
+        out << " (no step)";
+      }
+      out << ";";
+    }
+    out << "\n";
+  }
+}
+
 void print_mlp_model(const RunRecord& r, std::ostream& out) {
   out << "model        mlp " << r.model.inputs;
   for (auto h : r.model.hidden) out << "-" << h;
@@ -48,6 +81,53 @@ void print_mlp_model(const RunRecord& r, std::ostream& out) {
 }
 
 }  // namespace
+
+void print_metrics(const RunRecord& r, const std::string& note, std::ostream& out) {
+  std::size_t name_width = 14, value_width = 0;
+  for (const auto& [name, value] : r.metrics) {
+    name_width = std::max(name_width, name.size() + 2);
+    value_width = std::max(value_width, format_metric(value).size() + 2);
+  }
+  out << "metrics" << (note.empty() ? "" : "      (" + note + ")") << "\n";
+  // Split by split (train, validation, test), then names without a split.
+  std::vector<std::pair<std::string, double>> ordered(r.metrics.begin(), r.metrics.end());
+  const auto rank = [](const std::string& name) {
+    const auto& splits = metric_splits();
+    return std::find(splits.begin(), splits.end(), metric_split(name)) - splits.begin();
+  };
+  std::stable_sort(ordered.begin(), ordered.end(),
+                   [&](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
+  for (const auto& [name, value] : ordered) {
+    const auto it = r.metric_units.find(name);
+    const std::string unit = it == r.metric_units.end() ? "" : it->second;
+    std::string line = "  " + name + std::string(name_width - name.size(), ' ') +
+                       format_metric(value) +
+                       std::string(value_width - format_metric(value).size(), ' ') +
+                       (unit == "1" ? "1 (dimensionless)" : unit);
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out << line << "\n";
+  }
+}
+
+void print_result_config(const std::string& resolved_yaml, std::ostream& out,
+                         const ShowOptions& options) {
+  const AbbreviatedConfig shown =
+      options.full_config ? AbbreviatedConfig{resolved_yaml, 0} : abbreviate_config(resolved_yaml);
+  out << "config";
+  if (shown.abbreviated > 0) {
+    out << " (" << shown.abbreviated << " array(s) of more than " << kAbbreviateScalars
+        << " numbers abbreviated; --full prints them)";
+  }
+  out << "\n";
+  const std::string& text = shown.text;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const auto end = text.find('\n', start);
+    out << "  " << text.substr(start, end - start) << "\n";
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+}
 
 std::vector<std::string> validation_notes(const RunRecord& r) {
   const std::string held_out =

@@ -3,17 +3,13 @@
 #include <cmath>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/nn/mlp_fields.hpp"
 
 namespace cnclab {
 
 void Initializer::validate() const {
-  if (kind == Kind::normal) {
-    if (!std::isfinite(mean)) throw OptionError("mean", std::to_string(mean), "must be finite");
-    if (!(std >= 0) || !std::isfinite(std)) {
-      throw OptionError("std", std::to_string(std), "must be a finite number >= 0");
-    }
-  }
-  if (kind == Kind::uniform && !(low < high && std::isfinite(low) && std::isfinite(high))) {
+  initializer_fields().check(*this);  // the declared rules of the fields `kind` uses
+  if (kind == Kind::uniform && !(low < high)) {
     throw OptionError("high", std::to_string(high),
                       "must be finite and greater than low = " + std::to_string(low));
   }

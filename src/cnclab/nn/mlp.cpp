@@ -5,6 +5,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/nn/kernels.hpp"
+#include "cnclab/nn/mlp_fields.hpp"
 
 namespace cnclab {
 namespace {
@@ -29,20 +30,10 @@ std::string to_string(DropoutInference i) {
 void MlpOptions::validate() const {
   if (inputs < 1) throw OptionError("inputs", std::to_string(inputs), "must be at least 1");
   if (outputs < 1) throw OptionError("outputs", std::to_string(outputs), "must be at least 1");
-  for (std::size_t i = 0; i < hidden.size(); ++i) {
-    if (hidden[i] < 1 || hidden[i] > 100000) {
-      throw OptionError("hidden", std::to_string(hidden[i]),
-                        "layer " + std::to_string(i + 1) + " width must be in [1, 100000]");
-    }
-  }
-  if (!(dropout_keep_probability > 0.0 && dropout_keep_probability <= 1.0)) {
-    throw OptionError("dropout_keep_probability", std::to_string(dropout_keep_probability),
-                      "must be in (0, 1] (it is the probability of keeping a unit)");
-  }
-  if (dropout_mc_samples < 1 || dropout_mc_samples > 1000000) {
-    throw OptionError("dropout_mc_samples", std::to_string(dropout_mc_samples),
-                      "must be in [1, 1000000]");
-  }
+  // The declared rules (hidden widths, dropout, the initialisers' fields),
+  // errors naming the YAML key (dropout.keep_probability); then each
+  // initialiser's cross-field rule.
+  mlp_option_fields().check(*this);
   weights.validate();
   biases.validate();
 }

@@ -2,12 +2,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <numeric>
 #include <vector>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/fields.hpp"
+#include "cnclab/train/epoch_end.hpp"
 
 namespace cnclab {
 
@@ -61,9 +61,9 @@ Summary train_adam(SeparableObjective& objective, Eigen::VectorXd& params,
   Eigen::VectorXd v = Eigen::VectorXd::Zero(params.size());
   Eigen::VectorXd v_max = Eigen::VectorXd::Zero(options.amsgrad ? params.size() : 0);
   Eigen::VectorXd gradient(params.size());
-  Eigen::VectorXd best_params;
-  double best_validation = std::numeric_limits<double>::infinity();
-  double step = 0;  // t
+  EpochEnd<Eigen::VectorXd> end_epoch(options.early_stop_patience, start);
+  const auto nothing_to_publish = [] {};  // the hooks see `params`, the trained weights
+  double step = 0;                        // t
   Summary summary;
 
   for (std::size_t epoch = 1; epoch <= options.epochs; ++epoch) {
@@ -96,37 +96,8 @@ Summary train_adam(SeparableObjective& objective, Eigen::VectorXd& params,
       loss_sum += loss;
       ++batches;
     }
-    EpochRecord record;
-    record.epoch = epoch;
-    record.train_loss = batches ? loss_sum / static_cast<double>(batches) : std::nan("");
-    record.validation_loss = hooks.validation_loss ? hooks.validation_loss(params) : std::nan("");
-    record.wall_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    summary.history.push_back(record);
-    if (!params.allFinite()) {
-      summary.termination = Termination::diverged;
-      summary.message = "diverged: parameters not finite after epoch " + std::to_string(epoch);
+    if (end_epoch(epoch, loss_sum, batches, params, params, nothing_to_publish, hooks, summary))
       return summary;
-    }
-    if (hooks.on_epoch && !hooks.on_epoch(record, params)) {
-      summary.termination = Termination::stopped_by_callback;
-      summary.message = "stopped by callback after epoch " + std::to_string(epoch);
-      return summary;
-    }
-    if (hooks.validation_loss && record.validation_loss < best_validation) {
-      best_validation = record.validation_loss;
-      summary.best_epoch = epoch;
-      if (options.early_stop_patience > 0) best_params = params;
-    }
-    if (options.early_stop_patience > 0 &&
-        epoch - summary.best_epoch >= options.early_stop_patience) {
-      if (best_params.size() == params.size()) params = best_params;
-      summary.termination = Termination::early_stop;
-      summary.message = "early stop: no validation improvement for " +
-                        std::to_string(options.early_stop_patience) + " epochs; restored epoch " +
-                        std::to_string(summary.best_epoch);
-      return summary;
-    }
   }
   summary.termination = Termination::max_epochs;
   summary.message = "completed " + std::to_string(options.epochs) + " epochs";

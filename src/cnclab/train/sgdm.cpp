@@ -2,13 +2,13 @@
 
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <numeric>
 #include <type_traits>
 #include <vector>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/fields.hpp"
+#include "cnclab/train/epoch_end.hpp"
 #include "cnclab/train/trainer_registry.hpp"
 
 namespace cnclab {
@@ -62,8 +62,7 @@ Summary sgdm_loop(SeparableObjective& objective, Eigen::VectorXd& params,
   const T learning_rate = static_cast<T>(options.learning_rate);
   Vector velocity = Vector::Zero(w.size());
   Vector gradient(w.size());
-  Vector best_params;
-  double best_validation = std::numeric_limits<double>::infinity();
+  EpochEnd<Vector> end_epoch(options.early_stop_patience, start);
   Summary summary;
 
   for (std::size_t epoch = 1; epoch <= options.epochs; ++epoch) {
@@ -92,39 +91,7 @@ Summary sgdm_loop(SeparableObjective& objective, Eigen::VectorXd& params,
       loss_sum += loss;
       ++batches;
     }
-    EpochRecord record;
-    record.epoch = epoch;
-    record.train_loss = batches ? loss_sum / static_cast<double>(batches) : std::nan("");
-    publish();
-    record.validation_loss = hooks.validation_loss ? hooks.validation_loss(params) : std::nan("");
-    record.wall_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    summary.history.push_back(record);
-    if (!w.allFinite()) {
-      summary.termination = Termination::diverged;
-      summary.message = "diverged: parameters not finite after epoch " + std::to_string(epoch);
-      return summary;
-    }
-    if (hooks.on_epoch && !hooks.on_epoch(record, params)) {
-      summary.termination = Termination::stopped_by_callback;
-      summary.message = "stopped by callback after epoch " + std::to_string(epoch);
-      return summary;
-    }
-    if (hooks.validation_loss && record.validation_loss < best_validation) {
-      best_validation = record.validation_loss;
-      summary.best_epoch = epoch;
-      if (options.early_stop_patience > 0) best_params = w;
-    }
-    if (options.early_stop_patience > 0 &&
-        epoch - summary.best_epoch >= options.early_stop_patience) {
-      if (best_params.size() == w.size()) w = best_params;
-      publish();
-      summary.termination = Termination::early_stop;
-      summary.message = "early stop: no validation improvement for " +
-                        std::to_string(options.early_stop_patience) + " epochs; restored epoch " +
-                        std::to_string(summary.best_epoch);
-      return summary;
-    }
+    if (end_epoch(epoch, loss_sum, batches, w, params, publish, hooks, summary)) return summary;
   }
   summary.termination = Termination::max_epochs;
   summary.message = "completed " + std::to_string(options.epochs) + " epochs";
