@@ -20,8 +20,8 @@ namespace cnclab {
 struct SearchedSpace {
   std::filesystem::path file;  // the kind: sweep file
   std::string method;          // grid, tpe, ...
-  std::string space;           // "model.dropout.keep_probability: 8 values" or the
-                               // model-based space ("key=uniform(0.3, 1.0), ...")
+  std::string space;           // a grid's "key in {0.3, 0.4, ...}" or the model-based
+                               // space ("key=uniform(0.3, 1.0), ...")
   std::string pruner;          // model-based: as written in the sweep block
   std::size_t trainings = 0;   // trials with a result (complete, pruned or failed)
   std::size_t complete = 0, pruned = 0;
@@ -43,7 +43,7 @@ struct Table2Search {
 };
 
 struct StepErrorStudy;
-// The table (step_error_search_table.cpp; nothing when the manifest names no search).
+// The table (nothing when the manifest names no search).
 void print_table2_search(const StepErrorStudy& s, TableFormat format, std::ostream& out);
 
 }  // namespace cnclab

@@ -1,3 +1,5 @@
+#include "cnclab/studies/step_error/step_error_search.hpp"
+
 #include <cmath>
 #include <set>
 
@@ -7,7 +9,6 @@
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/typed_table.hpp"
-#include "cnclab/studies/step_error/step_error_search.hpp"
 #include "cnclab/studies/step_error/step_error_study.hpp"
 #include "cnclab/studies/step_error/step_error_table_parts.hpp"
 #include "cnclab/sweep/sweep_job.hpp"
