@@ -20,7 +20,6 @@ namespace {
 // Table 2's MSE: the objective both sweeps choose on, and its test twin.
 constexpr const char* kValidation = "validation.normalised_mse";
 constexpr const char* kTest = "test.normalised_mse";
-constexpr int kMseDecimals = 4;  // as Table 2 over seeds
 
 // "key: N values" per swept key of a grid (its values from the plan).
 std::string grid_space(const SweepPlan& plan) {
@@ -99,8 +98,8 @@ void print_table2_search(const StepErrorStudy& s, TableFormat format, std::ostre
                    std::to_string(sp->complete) + "/" + std::to_string(sp->trainings)),
          number_cell(static_cast<double>(sp->pruned), std::to_string(sp->pruned)),
          number_cell(static_cast<double>(sp->epochs), std::to_string(sp->epochs)), sp->chosen,
-         number_cell(sp->validation_mse, fixed_or_dash(sp->validation_mse, kMseDecimals)),
-         number_cell(sp->test_mse, fixed_or_dash(sp->test_mse, kMseDecimals))});
+         number_cell(sp->validation_mse, fixed_or_dash(sp->validation_mse, kTable2MseDecimals)),
+         number_cell(sp->test_mse, fixed_or_dash(sp->test_mse, kTable2MseDecimals))});
   }
   print_table_title(out, format,
                     "Seed 000 Table 2's search (ours, " + s.repeats->variant +
