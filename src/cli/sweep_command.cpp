@@ -15,6 +15,16 @@ int summary_exit_code(const SweepSummary& s) {
   return s.failed + s.errors + s.missing == 0 ? 0 : 1;
 }
 
+// summary.h5 of a model-based sweep's study, and its table.
+SweepSummary write_study_summary(const ModelSearch& s, const fs::path& dir, const std::string& name,
+                                 std::ostream& out) {
+  const SweepSummary summary = summarize(s.plan, s.outcomes);
+  write_summary(dir / "summary.h5", s.plan, s.outcomes, summary, &s.findings);
+  print_summary(out, s.plan, s.outcomes, summary, dir, name);
+  print_search_findings(out, s.findings);
+  return summary;
+}
+
 // A model-based sweep (model_search.hpp): the study runs to its count; exit 0
 // when it has it, 1 otherwise.
 int model_search_command(const PreparedSweep& prepared, const SweepCommandOptions& o,
@@ -34,10 +44,7 @@ int model_search_command(const PreparedSweep& prepared, const SweepCommandOption
         << "; run the same command again to continue the study (finished trials are kept)\n";
     return 128 + s.stopped;
   }
-  const SweepSummary summary = summarize(s.plan, s.outcomes);
-  write_summary(prepared.dir / "summary.h5", s.plan, s.outcomes, summary, &s.findings);
-  print_summary(out, s.plan, s.outcomes, summary, prepared.dir, prepared.name);
-  print_search_findings(out, s.findings);
+  const SweepSummary summary = write_study_summary(s, prepared.dir, prepared.name, out);
   out << "study: " << s.finished << " of " << prepared.spec.trials << " trials complete or pruned ("
       << summary.pruned << " pruned, not ranked); " << s.ran << " point(s) trained now, "
       << s.reused << " reused\n";
@@ -87,6 +94,15 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
 
 int sweep_merge_command(const fs::path& dir, std::ostream& out) {
   const SweepPlan plan = load_plan(dir);
+  if (model_based(plan)) {
+    // The study's trials as they stand, nothing asked. Its failed points
+    // were asked again (model_search.hpp): they do not fail the merge.
+    const ModelSearch s = read_study(plan, dir);
+    const SweepSummary summary = write_study_summary(s, dir, "", out);
+    out << "study: " << s.finished << " trials complete or pruned (" << summary.pruned
+        << " pruned, not ranked)\nsummary: " << (dir / "summary.h5").string() << "\n";
+    return 0;
+  }
   const std::vector<TrialOutcome> outcomes = read_trial_outcomes(dir, plan);
   const SweepSummary summary = summarize(plan, outcomes);
   write_summary(dir / "summary.h5", plan, outcomes, summary);

@@ -28,7 +28,9 @@ void add_slurm_options(CLI::App& app, SlurmSweepOptions& s, const std::string& s
                  "With --slurm: array tasks running at once (the %K throttle; 0: no limit)")
       ->check(count_validator());
   app.add_option("--tasks", so.tasks,
-                 "With --slurm: array tasks, trials dealt round-robin (default: one per trial)")
+                 "With --slurm: array tasks, trials dealt round-robin (default: one per trial); "
+                 "a model-based study: at most this many worker tasks (default: one per trial "
+                 "it lacks)")
       ->check(count_validator());
   app.add_option("--signal", so.signal,
                  "With --slurm: warning SIG@SECONDS before a kill; an array task then starts no "

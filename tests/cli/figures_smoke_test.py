@@ -1,7 +1,7 @@
 """Smoke test of scripts/figures: on small result files this
 test writes itself (the layouts the scripts read: step-error results named by
 configs/studies/step_error_tables.yaml, a contour-error sweep with a
-two-stage NARX trial and its following-error dataset), `scripts/figures/run`
+two-stage NARX trial and its following-error dataset, a TPE sweep's summary), `scripts/figures/run`
 draws every figure as PDF and as SVG, each a file of that format, with text
 kept as text and the large point sets rasterised inside the vector file.
 The two formats run in parallel; the test takes ~15 s.
@@ -134,6 +134,7 @@ EXPECTED = {
                       "fig14_contour_prediction_error"],
     "narx_training": ["closed_loop_stage"],
     "feedrate": ["feedrate_eps10um", "feedrate_eps5um"],
+    "search": [f"study_sweep-0123abcd_{fig}" for fig in ("history", "parallel", "importance")],
 }
 MAGIC = {"pdf": b"%PDF", "svg": b"<?xml"}
 
@@ -157,6 +158,33 @@ def feedrate_ticks(results, rng, ticks=1500):
                     g["predicted"] = scale * 7e-3 * np.abs(np.sin(9 * t))
 
 
+def search_summary(results, rng, trials=30):
+    """summary.h5 of a TPE sweep (sweep_summary.hpp's layout): trials in
+    study order, some pruned (no metrics), two float parameters (one
+    log_uniform) and a string one, and the importance group."""
+    folder = os.path.join(results, "study", "sweep-0123abcd")
+    os.makedirs(folder)
+    status = np.array(["pruned" if i % 3 == 2 else "complete" for i in range(trials)], dtype="S")
+    lr = 10 ** rng.uniform(-3, -1, trials)
+    keep = rng.uniform(0.3, 1.0, trials)
+    mse = np.where(status == b"complete", (1.05 - keep) * 0.5 + 0.01 / lr * 1e-3, np.nan)
+    with h5py.File(os.path.join(folder, "summary.h5"), "w") as f:
+        f.attrs.update(format="cnclab-sweep-summary", experiment="study", method="tpe",
+                       objective_metric="validation.normalised_mse", objective_mode="min",
+                       complete=1)
+        f["plan"] = ("space: [trainer.learning_rate=log_uniform(1e-3, 1e-1), "
+                     "model.dropout.keep_probability=uniform(0.3, 1.0)]\n")
+        f["trials/status"] = status
+        f["trials/point"] = np.arange(trials, dtype=np.int64)
+        f["trials/parameters/trainer.learning_rate"] = lr
+        f["trials/parameters/model.dropout.keep_probability"] = keep
+        f["trials/parameters/description"] = np.array(["a"] * trials, dtype="S")
+        f["trials/metrics/validation.normalised_mse"] = mse
+        f["importance/parameter"] = np.array(["model.dropout.keep_probability",
+                                              "trainer.learning_rate"], dtype="S")
+        f["importance/value"] = np.array([0.8, 0.2])
+
+
 def main():
     source = os.path.abspath(sys.argv[1])
     sys.path.insert(0, os.path.join(source, "scripts", "figures"))
@@ -168,6 +196,7 @@ def main():
         step_error_results(source, results, rng)
         contour_error_results(results, tmp, rng)
         feedrate_ticks(results, rng)
+        search_summary(results, rng)
         with open(os.path.join(source, "configs/studies/step_error_tables.yaml")) as f:
             variants = list(yaml.safe_load(f)["variants"])
         expected = dict(EXPECTED, step_error=[

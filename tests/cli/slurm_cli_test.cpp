@@ -213,5 +213,39 @@ TEST(SlurmSweep, WarningSignalDrainsTheTaskAndRequeuesIt) {
       << again.err;
 }
 
+// A model-based sweep: the array's tasks are workers of one study (no trial
+// lists), as many as the study lacks trials, less the workers in flight.
+TEST(SlurmSweep, StudySubmitsWorkerTasksForTheTrialsItLacks) {
+  if (run_shell(".", "/usr/bin/python3 -c 'import optuna'").code != 0)
+    GTEST_SKIP() << "no python3-optuna for /usr/bin/python3";
+  TempDir tmp;
+  const std::string path = fake_slurm(tmp.path());
+  const std::string submit = path + kSlurmTestCnclab + " sweep " + kSlurmTestExperiment +
+                             " trainer.epochs=5 dataset.options.samples=200 model.hidden=[8]"
+                             " 'trainer.learning_rate=log_uniform(1e-3,1e-1)' --method tpe"
+                             " --trials 4 --data-dir data --out r --dir sw --slurm --tasks 3";
+  const ShellResult first = run_shell(tmp.path(), submit);
+  ASSERT_EQ(first.code, 0) << first.out << first.err;
+  EXPECT_NE(first.out.find("3 worker task(s) to submit (0 of 4 study trials complete or pruned, "
+                           "0 worker task(s) queued or running)"),
+            std::string::npos)
+      << first.out;
+  auto subs = read_submissions(tmp / "sw");
+  ASSERT_EQ(subs.size(), 1u);
+  ASSERT_EQ(subs[0].tasks.size(), 3u);
+  const std::string script = slurp(tmp / "sw/slurm/submit-001/sweep.sbatch");
+  EXPECT_EQ(script.find("--trial-ids"), std::string::npos) << script;
+  EXPECT_NE(script.find("--trials 4 --method tpe"), std::string::npos) << script;
+  EXPECT_EQ(run_shell(tmp.path(), "bash -n sw/slurm/submit-001/sweep.sbatch").code, 0);
+
+  // Workers 0 and 1 in flight, 2 failed: 4 trials lacking, 2 more workers.
+  std::ofstream(tmp / "queue.txt") << "100|0|RUNNING\n100|1|PENDING\n100|2|FAILED\n";
+  const ShellResult second = run_shell(tmp.path(), submit);
+  ASSERT_EQ(second.code, 0) << second.out << second.err;
+  subs = read_submissions(tmp / "sw");
+  ASSERT_EQ(subs.size(), 2u) << second.out;
+  EXPECT_EQ(subs[1].tasks.size(), 2u) << second.out;
+}
+
 }  // namespace
 }  // namespace cnclab

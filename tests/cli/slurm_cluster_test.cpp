@@ -19,6 +19,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -348,6 +349,115 @@ TEST(SlurmCluster, ArraySweepSurvivesCancelAndPreemptionAndMatchesLocalRun) {
   EXPECT_EQ(finished_runs(dir / "slurm/sw").size(), 6u);
 
   reproduce_graph_on(cluster, dir / "graph");
+}
+
+// One study over a job array (model_search.hpp): a TPE sweep submitted as 2
+// worker tasks that run at once against one journal; one task's worker is
+// killed with SIGKILL mid-trial; the array's merge job and a resubmission
+// (one worker task: the study lacks one trial) leave the study complete.
+// Checked by Optuna's own reading of the journal: no trial number twice,
+// exactly the requested count complete, none left running, the killed
+// worker's trial failed; then nothing is left to submit.
+struct StudyTrial {
+  long number = 0;
+  std::string state;  // COMPLETE, PRUNED, RUNNING, FAIL
+  long pid = 0;       // the worker holding (or that held) it
+};
+
+std::vector<StudyTrial> study_trials(const fs::path& journal) {
+  const ShellResult r = run_shell(
+      journal.parent_path(),
+      "/usr/bin/python3 -W ignore -c \"import sys, optuna\n"
+      "from optuna.storages import JournalStorage, JournalFileStorage\n"
+      "optuna.logging.set_verbosity(optuna.logging.ERROR)\n"
+      "s = optuna.load_study(study_name='cnclab', storage=JournalStorage(JournalFileStorage("
+      "sys.argv[1])))\n"
+      "for t in s.trials: print(t.number, t.state.name, t.user_attrs.get('cnclab_pid', 0))\" '" +
+          journal.string() + "'");
+  std::vector<StudyTrial> trials;
+  std::istringstream in(r.out);
+  StudyTrial t;
+  while (in >> t.number >> t.state >> t.pid) trials.push_back(t);
+  return trials;
+}
+
+TEST(SlurmCluster, StudyOfTwoArrayTasksSurvivesKillAndResubmit) {
+  const std::string why = why_not_runnable();
+  if (!why.empty()) GTEST_SKIP() << "no local Slurm: " << why;
+  if (run_shell(".", "/usr/bin/python3 -c 'import optuna'").code != 0)
+    GTEST_SKIP() << "no python3-optuna for /usr/bin/python3";
+  TempDir tmp;
+  const fs::path dir = tmp.path();
+  const fs::path state =
+      fs::temp_directory_path() / ("cnclab-slurm-study-" + std::to_string(::getpid()));
+  LocalCluster cluster(state);
+  const ShellResult started = cluster.start();
+  ASSERT_EQ(started.code, 0) << started.out << started.err;
+
+  // 6 trials of about 3 s on an idle core (20000 epochs, as above).
+  const std::string submit =
+      cluster.env() + kCnclab + " sweep " + kExperiment +
+      " trainer.epochs=20000 dataset.options.samples=300 model.hidden=[16,8]"
+      " 'trainer.learning_rate=log_uniform(1e-3,1e-1)' 'model.dropout.keep_probability="
+      "uniform(0.8,1.0)' --method tpe --trials 6 --sweep-seed 5 --data-dir data --out slurm"
+      " --dir slurm/study --slurm --tasks 2";
+  const ShellResult first = run_shell(dir, submit);
+  ASSERT_EQ(first.code, 0) << first.out << first.err;
+  EXPECT_NE(first.out.find("2 worker task(s) to submit"), std::string::npos) << first.out;
+  const auto subs = read_submissions(dir / "slurm/study");
+  ASSERT_EQ(subs.size(), 1u);
+  const std::string array = subs[0].array_job;
+
+  // Both tasks run at once, each a worker of the study: kill one worker
+  // (SIGKILL, its running trial left RUNNING in the journal).
+  const fs::path journal = dir / "slurm/study/study.journal";
+  long victim = 0;
+  ASSERT_TRUE(wait_for([&] {
+    const auto s = task_states(dir, cluster);
+    if (!(s.count(array + "_0") && s.at(array + "_0") == "RUNNING" && s.count(array + "_1") &&
+          s.at(array + "_1") == "RUNNING") ||
+        !fs::exists(journal))
+      return false;
+    std::set<long> holders;
+    for (const auto& t : study_trials(journal))
+      if (t.state == "RUNNING") holders.insert(t.pid);
+    if (holders.size() < 2) return false;  // both workers mid-trial
+    victim = *holders.begin();
+    return true;
+  })) << "the two worker tasks never ran trials together";
+  ASSERT_GT(victim, 0);
+  ASSERT_EQ(::kill(static_cast<pid_t>(victim), SIGKILL), 0);
+  ASSERT_TRUE(wait_for([&] { return queue_empty(dir, cluster); })) << "jobs still queued";
+  std::size_t finished = 0;
+  for (const auto& t : study_trials(journal)) finished += t.state == "COMPLETE";
+  EXPECT_EQ(finished, 5u) << "the surviving worker stops at the count, the killed trial held";
+
+  // Resubmission: one worker task for the missing trial.
+  const ShellResult second = run_shell(dir, submit);
+  ASSERT_EQ(second.code, 0) << second.out << second.err;
+  EXPECT_NE(second.out.find("1 worker task(s) to submit"), std::string::npos) << second.out;
+  ASSERT_TRUE(wait_for([&] { return queue_empty(dir, cluster); })) << "jobs still queued";
+
+  const auto trials = study_trials(journal);
+  std::set<long> numbers;
+  std::size_t complete = 0, running = 0, killed = 0;
+  for (const auto& t : trials) {
+    EXPECT_TRUE(numbers.insert(t.number).second) << "trial number " << t.number << " twice";
+    complete += t.state == "COMPLETE";
+    running += t.state == "RUNNING";
+    killed += t.state == "FAIL" && t.pid == victim;
+  }
+  EXPECT_EQ(complete, 6u);
+  EXPECT_EQ(running, 0u);
+  EXPECT_GE(killed, 1u) << "the killed worker's trial is failed";
+  // The merge job's summary lists the study's 6 trials, all complete.
+  const StoredSummary summary = read_summary(dir / "slurm/study/summary.h5");
+  std::size_t ranked = 0;
+  for (const auto& o : summary.outcomes) ranked += o.status == TrialOutcome::Status::complete;
+  EXPECT_EQ(ranked, 6u);
+  const ShellResult third = run_shell(dir, submit);
+  ASSERT_EQ(third.code, 0) << third.out << third.err;
+  EXPECT_NE(third.out.find("nothing to submit"), std::string::npos) << third.out;
 }
 
 }  // namespace

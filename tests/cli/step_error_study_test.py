@@ -98,6 +98,7 @@ def main():
         check_table2_choice(csv_tables(texts["csv"]), texts["text"])
         check_seed_spread(csv_tables(texts["csv"]), tables_results)
         check_table2_over_seeds(csv_tables(texts["csv"]), tables_results)
+        check_table2_search(csv_tables(texts["csv"]), tables_results)
         check_trivial_predictor(cnclab, tables_results, source)
         check_targets(cnclab, source, common, tmp)
         run(["bash", os.path.join(source, "scripts/figures/run"), tables_results], source)
@@ -151,8 +152,9 @@ def check_sources(text, source):
     (except the normaliser table, which has none), then result files that
     exist."""
     lines = [l[len("sources: "):] for l in text.splitlines() if l.startswith("sources: ")]
-    # Tables 2, 2 over seeds, 3, surface-1 text, 4, 6, 5, 7, normaliser, seed spread, 8.
-    check(len(lines) == 11, f"one sources line per table: {len(lines)}")
+    # Tables 2, 2 over seeds, 2's search, 3, surface-1 text, 4, 6, 5, 7, normaliser, seed
+    # spread, 8.
+    check(len(lines) == 12, f"one sources line per table: {len(lines)}")
     for line in lines:
         files = line.split(", ")
         for f in files:
@@ -345,6 +347,54 @@ def check_table2_over_seeds(tables, results):
                 got = table.get(p, {}).get(f"{column}_{stat}", "nan")
                 check(abs(float(got) - want) <= 1e-9 * max(1.0, abs(want)),
                       f"Table 2 over seeds p = {p} {column}_{stat}: {got} != {want}")
+
+
+def check_table2_search(tables, results):
+    """Table 2's search, grid against TPE: per sweep, its trainings (result
+    files in the sweep folder), how many were pruned (root attribute status),
+    the epochs they trained (history lengths), and the chosen point: the
+    lowest mean validation MSE over the complete trainings of a point (its
+    keep probability, learning rate and momentum, read from each trial's own
+    config), with that point's mean test MSE, all recomputed here with h5py
+    and numpy."""
+    rows = find(tables, "Seed 000 Table 2's search")
+    header = rows[0]
+    check(header == ["method", "space", "complete", "trainings", "pruned", "epochs", "chosen",
+                     "validation_mse", "test_mse"], f"Table 2's search header {header}")
+    check(len(rows) == 3, f"Table 2's search: grid and TPE rows ({len(rows) - 1})")
+    for row, sweep in zip(rows[1:], ("step_error_tuned_seeds_table2",
+                                     "step_error_tuned_tpe_table2")):
+        got = dict(zip(header, row))
+        trainings = pruned = complete = epochs = 0
+        points = {}
+        for path in glob.glob(os.path.join(results, sweep, "sweep-*", "trials", "*.h5")):
+            with h5py.File(path, "r") as f:
+                status = f.attrs["status"]
+                status = status.decode() if isinstance(status, bytes) else str(status)
+                trainings += 1
+                pruned += status == "pruned"
+                epochs += len(f["history/epoch"]) if "history/epoch" in f else 0
+                if status != "complete":
+                    continue
+                complete += 1
+                text = f["config"][()]
+                c = yaml.safe_load(text.decode() if isinstance(text, bytes) else text)
+                key = (float(c["model"]["dropout"]["keep_probability"]),
+                       float(c["trainer"]["learning_rate"]), float(c["trainer"]["momentum"]))
+                m = f["metrics"].attrs
+                points.setdefault(key, []).append((float(m["validation.normalised_mse"]),
+                                                   float(m["test.normalised_mse"])))
+        for column, want in (("trainings", trainings), ("pruned", pruned),
+                             ("complete", complete), ("epochs", epochs)):
+            check(got[column] == str(want), f"{sweep}: {column} {got[column]} != {want}")
+        check(trainings > 0 and complete > 0, f"{sweep}: trials read ({trainings})")
+        if not points:
+            continue
+        means = {k: np.mean(np.array(v), axis=0) for k, v in points.items()}
+        best = min(means, key=lambda k: means[k][0])
+        for column, want in (("validation_mse", means[best][0]), ("test_mse", means[best][1])):
+            check(abs(float(got[column]) - want) <= 1e-9 * max(1.0, abs(want)),
+                  f"{sweep}: chosen point's {column} {got[column]} != {want}")
 
 
 def run_code(args, cwd):

@@ -1,5 +1,7 @@
 #include "cnclab/pipeline/slurm_sweep_submit.hpp"
 
+#include <algorithm>
+
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/io/atomic_file.hpp"
@@ -134,6 +136,27 @@ void check_sbatch_paths(const fs::path& dir) {
   }
 }
 
+// A model-based sweep's worker tasks (model_search.hpp): one per trial the
+// study still lacks (at most --tasks, at most kMaxArrayTasks), less its
+// worker tasks queued or running; tasks.txt holds "study" per task. Each
+// task asks until the study has its trials, so a surplus task ends at once.
+SubmitSelection study_tasks_to_submit(const PreparedSweep& p, const SlurmOptions& slurm,
+                                      const SlurmQueueView& v) {
+  SubmitSelection sel;
+  sel.done = study_finished(p.plan, p.dir);
+  for (const auto& s : v.submissions) {
+    for (std::size_t k = 0; k < s.tasks.size(); ++k) {
+      const auto it = v.states.find(task_key(s, k));
+      if (it != v.states.end() && slurm_phase(it->second) != SlurmPhase::ended) ++sel.in_flight;
+    }
+  }
+  const std::size_t missing = p.spec.trials > sel.done ? p.spec.trials - sel.done : 0;
+  std::size_t n = missing > sel.in_flight ? missing - sel.in_flight : 0;
+  n = std::min(n, slurm.tasks > 0 ? slurm.tasks : kMaxArrayTasks);
+  sel.ids.assign(n, "study");
+  return sel;
+}
+
 }  // namespace
 
 // Job names: letters, digits, '-', '_' (sbatch's #SBATCH lines split at spaces).
@@ -173,12 +196,7 @@ SweepSlurmResult submit_sweep_slurm(const fs::path& experiment,
                                     const SweepSlurmRequest& request, std::ostream& out,
                                     std::ostream& log) {
   const PreparedSweep prepared = prepare_sweep(experiment, words, seed, o);
-  if (model_based(prepared.plan)) {
-    throw ConfigError("--slurm with sweep method " + prepared.plan.method +
-                      ": not submitted by cnclab yet; submit a job array whose tasks each run "
-                      "this `cnclab sweep` command without --slurm and with the same --dir (the "
-                      "tasks share the study's journal)");
-  }
+  const bool study = model_based(prepared.plan);
   const SlurmOptions slurm = resolve_slurm_options(command_line, experiment, o.common.profile);
   SweepSlurmResult result;
   result.dir = prepared.dir;
@@ -191,22 +209,36 @@ SweepSlurmResult submit_sweep_slurm(const fs::path& experiment,
     store_plan(dir, prepared.plan);
   }
   const SlurmQueueView view = slurm_queue_view(dir, !slurm.dry_run);
-  const SubmitSelection sel = trials_to_submit(prepared.plan, dir, o, view);
-  result.total = prepared.plan.trials.size();
+  const SubmitSelection sel = study ? study_tasks_to_submit(prepared, slurm, view)
+                                    : trials_to_submit(prepared.plan, dir, o, view);
+  result.total = study ? prepared.spec.trials : prepared.plan.trials.size();
   result.to_submit = sel.ids.size();
   result.done = sel.done;
   result.in_flight = sel.in_flight;
   const std::size_t total = result.total;
+  // What is submitted and why: trials, or a study's worker tasks.
+  const std::string counts =
+      study ? std::to_string(sel.done) + " of " + std::to_string(total) +
+                  " study trials complete or pruned, " + std::to_string(sel.in_flight) +
+                  " worker task(s) queued or running"
+            : std::to_string(sel.done) + " done, " + std::to_string(sel.in_flight) + " in flight";
+  const std::string what =
+      study ? std::to_string(sel.ids.size()) + " worker task(s)"
+            : std::to_string(sel.ids.size()) + " of " + std::to_string(total) + " trials";
   if (sel.ids.empty() && request.final_command.empty()) {
-    out << "nothing to submit for " << dir.string() << ": " << sel.done << " of " << total
-        << " trials done, " << sel.in_flight << " queued or running\n";
+    if (study) {
+      out << "nothing to submit for " << dir.string() << ": " << counts << "\n";
+    } else {
+      out << "nothing to submit for " << dir.string() << ": " << sel.done << " of " << total
+          << " trials done, " << sel.in_flight << " queued or running\n";
+    }
     return result;
   }
   if (slurm.tasks == 0 && sel.ids.size() > kMaxArrayTasks) {
     throw ConfigError(std::to_string(sel.ids.size()) + " trials to submit: more than " +
                       std::to_string(kMaxArrayTasks) + " array tasks; give --tasks N");
   }
-  const auto tasks = split_into_tasks(sel.ids, slurm.tasks);
+  const auto tasks = split_into_tasks(sel.ids, study ? 0 : slurm.tasks);
   const std::string cnclab = fs::read_symlink("/proc/self/exe").string();
   check_sbatch_paths(dir);
   SlurmArrayScript array;
@@ -216,6 +248,7 @@ SweepSlurmResult submit_sweep_slurm(const fs::path& experiment,
   array.workdir = fs::current_path();
   array.tasks = tasks.size();
   array.task_command = array_task_command(cnclab, experiment, words, seed, o, dir);
+  array.study = study;
   const auto final_script = [&](const fs::path& submission) {
     if (request.final_command.empty()) {
       return merge_script(slurm, slurm_job_name(name, "-merge"), array.workdir, submission, cnclab,
@@ -227,8 +260,7 @@ SweepSlurmResult submit_sweep_slurm(const fs::path& experiment,
   };
   if (slurm.dry_run) {
     array.submission = dir / "slurm" / "submit-NNN";
-    out << "# dry run: nothing written or submitted; " << sel.ids.size() << " of " << total
-        << " trials to submit (" << sel.done << " done, " << sel.in_flight << " in flight)\n";
+    out << "# dry run: nothing written or submitted; " << what << " to submit (" << counts << ")\n";
     if (!tasks.empty()) {
       if (!request.after.empty()) {
         out << "# sbatch --parsable --dependency=" << request.after << " --kill-on-invalid-dep=yes "
@@ -249,8 +281,12 @@ SweepSlurmResult submit_sweep_slurm(const fs::path& experiment,
   if (!tasks.empty())
     write_text_atomically(sub.folder / "sweep.sbatch", array_script(slurm, array));
   write_text_atomically(sub.folder / "merge.sbatch", final_script(sub.folder));
-  out << dir.string() << ": " << sel.ids.size() << " of " << total << " trials to submit ("
-      << sel.done << " done, " << sel.in_flight << " queued or running)\n";
+  if (study) {
+    out << dir.string() << ": " << what << " to submit (" << counts << ")\n";
+  } else {
+    out << dir.string() << ": " << what << " to submit (" << sel.done << " done, " << sel.in_flight
+        << " queued or running)\n";
+  }
   submit_scripts(sub, dir, earlier_jobs(view), request, result, out, log);
   return result;
 }

@@ -171,33 +171,62 @@ void realise_plan(ModelSearch& s, const json& trials, const fs::path& dir) {
   }
 }
 
-}  // namespace
-
-fs::path study_journal(const fs::path& dir) {
-  return dir / "study.journal";
+// The study's trials as a plan with their outcomes, its parameter
+// importance and (several objectives) its Pareto front.
+void read_findings(ModelSearch& s, OptunaHelper& helper, const SweepPlan& header,
+                   const fs::path& dir) {
+  realise_plan(s, helper.request({{"op", "trials"}}).at("trials"), dir);
+  s.findings.importance_target = header.objective.metric;
+  try {
+    const json imp = helper.request({{"op", "importance"}});
+    s.findings.importance_parameter = imp.at("parameter").get<std::vector<std::string>>();
+    s.findings.importance_value = imp.at("value").get<std::vector<double>>();
+  } catch (const Error& e) {
+    s.findings.importance_note = e.what();
+  }
+  if (!header.objectives.empty()) {
+    s.findings.multi_objective = true;
+    for (const auto& objective : header.objectives) {
+      s.findings.objectives += (s.findings.objectives.empty() ? "" : ", ") + objective.metric +
+                               (objective.maximize ? ":max" : ":min");
+    }
+    const json front = helper.request({{"op", "pareto"}}).at("numbers");
+    const json trials = helper.request({{"op", "trials"}}).at("trials");
+    for (const auto& number : front) {
+      for (const auto& t : trials) {
+        if (t.at("number") != number) continue;
+        const json attrs = t.value("user_attrs", json::object());
+        if (attrs.contains("cnclab_trials"))
+          s.findings.pareto.push_back(attrs["cnclab_trials"][0].at("id").get<std::string>());
+      }
+    }
+  }
 }
 
-ModelSearch run_model_search(const SweepPlan& header, const SweepSpec& spec,
-                             const SearchSource& source, const fs::path& dir,
-                             const SweepExecuteOptions& o, std::ostream* note) {
-  ModelSearch s;
-  s.plan = header;
+OptunaHelperOptions helper_options(const SweepPlan& header) {
   OptunaHelperOptions ho;
   ho.purpose = "sweep method " + header.method;
-  OptunaHelper helper(ho);
-  fs::create_directories(dir / "trials");
+  return ho;
+}
 
+// Opens (or creates) the study of `header` in `dir`; `spec` null: only to
+// read it (no space, no pruner). Fails the running trials whose worker on
+// this host has ended (model_search.hpp); returns the helper's answer.
+json open_study(OptunaHelper& helper, const SweepPlan& header, const SweepSpec* spec,
+                const fs::path& dir) {
   std::vector<Objective> one;
   json directions = json::array();
   for (const auto& objective : objectives_of(header, one))
     directions.push_back(objective.maximize ? "maximize" : "minimize");
-  json pruner{{"name", spec.pruner.name}};
-  for (const auto& [k, v] : spec.pruner.options) pruner[k] = v;
+  json pruner{{"name", spec ? spec->pruner.name : std::string("none")}};
   json params = json::array();
-  for (const auto& p : spec.parameters) params.push_back(distribution(p));
+  if (spec) {
+    for (const auto& [k, v] : spec->pruner.options) pruner[k] = v;
+    for (const auto& p : spec->parameters) params.push_back(distribution(p));
+  }
   const std::string holder = LockFile::holder_text(static_cast<long>(::getpid()));
   const std::string host = holder.substr(0, holder.find(' '));
-  const json opened = helper.request(
+  return helper.request(
       {{"op", "open"},
        {"journal", fs::absolute(study_journal(dir)).string()},
        {"study", "cnclab"},
@@ -208,7 +237,40 @@ ModelSearch run_model_search(const SweepPlan& header, const SweepSpec& spec,
        {"params", params},
        {"holder", {{"host", host}, {"pid", static_cast<long long>(::getpid())}}}},
       true);
-  s.reaped = opened.at("reaped").size();
+}
+
+}  // namespace
+
+fs::path study_journal(const fs::path& dir) {
+  return dir / "study.journal";
+}
+
+std::size_t study_finished(const SweepPlan& header, const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::exists(study_journal(dir), ec)) return 0;
+  OptunaHelper helper(helper_options(header));
+  open_study(helper, header, nullptr, dir);
+  const json c = helper.request({{"op", "count"}});
+  return c.at("complete").get<std::size_t>() + c.at("pruned").get<std::size_t>();
+}
+
+ModelSearch read_study(const SweepPlan& header, const fs::path& dir) {
+  ModelSearch s;
+  s.plan = header;
+  OptunaHelper helper(helper_options(header));
+  s.reaped = open_study(helper, header, nullptr, dir).at("reaped").size();
+  read_findings(s, helper, header, dir);
+  return s;
+}
+
+ModelSearch run_model_search(const SweepPlan& header, const SweepSpec& spec,
+                             const SearchSource& source, const fs::path& dir,
+                             const SweepExecuteOptions& o, std::ostream* note) {
+  ModelSearch s;
+  s.plan = header;
+  OptunaHelper helper(helper_options(header));
+  fs::create_directories(dir / "trials");
+  s.reaped = open_study(helper, header, &spec, dir).at("reaped").size();
   if (note && s.reaped) {
     *note << "note: " << s.reaped << " trial(s) of the study were held by a worker of this host "
           << "that has ended; marked failed and asked again\n";
@@ -314,32 +376,7 @@ ModelSearch run_model_search(const SweepPlan& header, const SweepSpec& spec,
     *note << "note: stopped asking after " << failures
           << " failed points (their reasons are in the lines above); run again to go on\n";
   }
-  realise_plan(s, helper.request({{"op", "trials"}}).at("trials"), dir);
-  s.findings.importance_target = header.objective.metric;
-  try {
-    const json imp = helper.request({{"op", "importance"}});
-    s.findings.importance_parameter = imp.at("parameter").get<std::vector<std::string>>();
-    s.findings.importance_value = imp.at("value").get<std::vector<double>>();
-  } catch (const Error& e) {
-    s.findings.importance_note = e.what();
-  }
-  if (!header.objectives.empty()) {
-    s.findings.multi_objective = true;
-    for (const auto& objective : header.objectives) {
-      s.findings.objectives += (s.findings.objectives.empty() ? "" : ", ") + objective.metric +
-                               (objective.maximize ? ":max" : ":min");
-    }
-    const json front = helper.request({{"op", "pareto"}}).at("numbers");
-    const json trials = helper.request({{"op", "trials"}}).at("trials");
-    for (const auto& number : front) {
-      for (const auto& t : trials) {
-        if (t.at("number") != number) continue;
-        const json attrs = t.value("user_attrs", json::object());
-        if (attrs.contains("cnclab_trials"))
-          s.findings.pareto.push_back(attrs["cnclab_trials"][0].at("id").get<std::string>());
-      }
-    }
-  }
+  read_findings(s, helper, header, dir);
   return s;
 }
 

@@ -66,6 +66,16 @@ struct ModelSearch {
 // The journal of the sweep in `dir`.
 std::filesystem::path study_journal(const std::filesystem::path& dir);
 
+// The complete and pruned trials of the study in `dir` (0 when it has no
+// journal yet), after failing the trials whose worker on this host has
+// ended: what `sweep --slurm` still has to submit workers for.
+std::size_t study_finished(const SweepPlan& header, const std::filesystem::path& dir);
+
+// The study in `dir` as it stands, nothing asked or trained: its trials as a
+// plan, their outcomes and the findings (`cnclab sweep merge`, the merge job
+// of a Slurm array). `finished` as in run_model_search.
+ModelSearch read_study(const SweepPlan& header, const std::filesystem::path& dir);
+
 // Runs the study of `header` (plan_sweep of a model-based `spec`, stored in
 // `dir`) until it has spec.trials complete or pruned trials. One line per
 // finished point to `note` (nullptr: silent). ConfigError (exit 2) when

@@ -51,6 +51,10 @@ struct SlurmArrayScript {
   std::filesystem::path submission;       // <sweep dir>/slurm/submit-NNN (logs, tasks.txt)
   std::size_t tasks = 1;                  // array size
   std::vector<std::string> task_command;  // cnclab sweep ... (without --trial-ids / --jobs)
+  // A model-based sweep (model_search.hpp): each task runs a worker of the
+  // study (no --trial-ids; tasks.txt holds "study" per task) until the study
+  // has its trials; a task killed mid-trial leaves it to a resubmission.
+  bool study = false;
 };
 
 // The job-array script (bash).

@@ -77,6 +77,7 @@ StudyManifest read_step_error_manifest(const fs::path& file) {
     rep.surface1 = read_path(r, "surface1");
     rep.surface2_ft15 = read_path(r, "surface2_ft15");
     rep.surface3_ft15 = read_path(r, "surface3_ft15");
+    if (r.has("search")) rep.search = read_path(r, "search");
     m.repeats = std::move(rep);
   }
   // The study's targets: read by `--check` (report/targets.hpp), not here.

@@ -26,6 +26,8 @@
 //     surface1: FILE             # kind: sweep of surface 1 itself (keep 1.0, 70/30 split)
 //     surface2_ft15: FILE        # kind: sweep over init_from (refit and keep chains)
 //     surface3_ft15: FILE
+//     search: FILE               # optional: kind: sweep, a model-based search over Table 2's
+//                                # space (step_error_search.hpp), shown beside table2's grid
 //   targets: [...]                 # `--check` (report/targets.hpp; names: step_error_measures.hpp)
 #include <filesystem>
 #include <map>
@@ -54,6 +56,7 @@ struct NormaliserChoice {
 struct StudyRepeats {
   std::string variant;  // a variant of `variants`
   std::filesystem::path table2, surface1, surface2_ft15, surface3_ft15;
+  std::filesystem::path search;  // "" when the manifest names none
 };
 
 struct StudyManifest {

@@ -69,6 +69,7 @@ std::vector<fs::path> step_error_experiment_files(const TablesOptions& o) {
   if (m.repeats) {
     files.insert(files.end(), {m.repeats->table2, m.repeats->surface1, m.repeats->surface2_ft15,
                                m.repeats->surface3_ft15});
+    if (!m.repeats->search.empty()) files.push_back(m.repeats->search);
   }
   files.push_back(o.experiment_file("step_error/table8_timing.yaml"));
   return files;
@@ -103,6 +104,10 @@ StepErrorStudy load_step_error_study(const TablesOptions& o) {
     if (!s.runs.at(f).failure.empty()) throw Error(s.runs.at(f).failure);
   }
   if (s.manifest.repeats) s.repeats = load_step_error_repeats(*s.manifest.repeats, o);
+  if (s.manifest.repeats && !s.manifest.repeats->search.empty()) {
+    s.search = Table2Search{load_searched_space(s.manifest.repeats->table2, o),
+                            load_searched_space(s.manifest.repeats->search, o)};
+  }
   return s;
 }
 

@@ -14,6 +14,7 @@
 #include "cnclab/studies/step_error/step_error_manifest.hpp"
 #include "cnclab/studies/step_error/step_error_reference.hpp"
 #include "cnclab/studies/step_error/step_error_repeats.hpp"
+#include "cnclab/studies/step_error/step_error_search.hpp"
 #include "cnclab/studies/step_error/step_error_stats.hpp"
 
 namespace cnclab {
@@ -46,6 +47,7 @@ struct StepErrorStudy {
   std::filesystem::path reference_file;
   std::map<std::filesystem::path, StepErrorRun> runs;  // experiment file -> its result
   std::optional<StepErrorRepeats> repeats;             // when the manifest has `repeats:`
+  std::optional<Table2Search> search;                  // when `repeats:` has `search:`
   const StepErrorRun& at(const std::filesystem::path& file) const { return runs.at(file); }
   const StepErrorRun* find(const std::map<double, std::filesystem::path>& files, double key) const {
     const auto it = files.find(key);

@@ -16,9 +16,6 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-// No dropout reaches 0.002 in z-score units, whose spread needs a fourth decimal.
-constexpr int kMseDecimals = 4;
-
 // Table 2's two evaluations of each network: how the notes name it, and the
 // suffix of its figures (run_figures).
 struct Table2Evaluation {
@@ -32,10 +29,10 @@ constexpr Table2Evaluation kTable2Mc{"MC dropout", "_mc"};
 TableCell seeds_cell(const RepeatedPoint* point, const std::string& figure) {
   if (!point || point->sample(figure).empty()) return missing_cell("-");
   const SampleSummary s = summarize(point->sample(figure));
-  return mean_std_cell(
-      s.mean, s.std,
-      s.n < 2 ? fixed_decimals(s.mean, kMseDecimals)
-              : fixed_decimals(s.mean, kMseDecimals) + " ± " + fixed_decimals(s.std, kMseDecimals));
+  return mean_std_cell(s.mean, s.std,
+                       s.n < 2 ? fixed_decimals(s.mean, kTable2MseDecimals)
+                               : fixed_decimals(s.mean, kTable2MseDecimals) + " ± " +
+                                     fixed_decimals(s.std, kTable2MseDecimals));
 }
 
 TableCell planned_cell(const RepeatedPoint* point) {
@@ -205,7 +202,7 @@ std::vector<std::string> table2_seed_notes(const StepErrorRepeats& r, const std:
   const std::string ours = "ours, " + r.variant + ", " + evaluation;
   std::vector<std::string> notes;
   const std::string chosen_text = lowest_mean_sentence(
-      ours + ", validation MSE over seeds (the choice of p)", by_validation, kMseDecimals);
+      ours + ", validation MSE over seeds (the choice of p)", by_validation, kTable2MseDecimals);
   if (!chosen_text.empty()) notes.push_back(chosen_text);
   const RepeatedPoint* chosen = table2_choice_over_seeds(r.table2, validation_figure);
   const RepeatedPoint* on_test = table2_choice_over_seeds(r.table2, test_figure);
@@ -215,17 +212,18 @@ std::vector<std::string> table2_seed_notes(const StepErrorRepeats& r, const std:
   } else {
     notes.push_back(ours + ", the chosen p = " + chosen->value +
                     ", test MSE over seeds (reported after the choice): " +
-                    seed_mean_std_text(summarize(chosen->sample(test_figure)), kMseDecimals) + ".");
+                    seed_mean_std_text(summarize(chosen->sample(test_figure)), kTable2MseDecimals) +
+                    ".");
   }
   if (chosen && none) {
     const std::string p = "p = " + chosen->value;
     notes.push_back(seed_difference_sentence(
         ours + ", no dropout against the chosen p (validation MSE, the choice)",
         {"keep 1.0", none->sample(validation_figure)}, {p, chosen->sample(validation_figure)},
-        kMseDecimals));
+        kTable2MseDecimals));
     notes.push_back(seed_difference_sentence(ours + ", the same on test (reported after)",
                                              {"keep 1.0", none->sample(test_figure)},
-                                             {p, chosen->sample(test_figure)}, kMseDecimals));
+                                             {p, chosen->sample(test_figure)}, kTable2MseDecimals));
   }
   // Beside it, the choice the paper's Table 2 invites (it reports one MSE
   // per p and picks the lowest): on test, which selects on the data it
@@ -234,7 +232,7 @@ std::vector<std::string> table2_seed_notes(const StepErrorRepeats& r, const std:
       ours +
           ", on test instead (Table 2's own reading: choosing on the data it reports; shown "
           "beside, not used)",
-      by_test, kMseDecimals);
+      by_test, kTable2MseDecimals);
   if (!test_text.empty()) notes.push_back(test_text);
   if (chosen && on_test) {
     notes.push_back(ours + ": the lowest mean on validation (p = " + chosen->value +

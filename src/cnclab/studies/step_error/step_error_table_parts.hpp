@@ -18,6 +18,10 @@
 
 namespace cnclab {
 
+// Decimals of Table 2's MSE in z-score units (no dropout reaches 0.002,
+// whose spread needs a fourth decimal).
+inline constexpr int kTable2MseDecimals = 4;
+
 // `v` with `decimals` decimals (core/format.hpp's fixed_decimals), or "-"
 // for NaN (a cell without a value).
 std::string fixed_or_dash(double v, int decimals);

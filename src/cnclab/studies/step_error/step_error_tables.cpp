@@ -407,6 +407,7 @@ void print_step_error_tables(const TablesOptions& options, std::ostream& out) {
   const TableFormat f = options.format;
   print_table2(study, f, out);
   print_table2_over_seeds(study, f, out);
+  print_table2_search(study, f, out);
   print_table3(study, f, out);
   print_fine_tune_table(study, f, out, 2, study.ref.surface2);
   print_bins_at_15(study, f, out, 2);
