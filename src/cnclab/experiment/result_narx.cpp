@@ -87,11 +87,14 @@ void write_narx_sections(H5File& f, const RunRecord& r) {
   f.set_attribute("/model", "feedback_delays", static_cast<std::int64_t>(o.feedback_delays));
   f.set_attribute("/model", "first_input_delay", static_cast<std::int64_t>(o.first_input_delay));
   f.set_attribute("/model", "parameter_layout",
-                  "per network: W1 (H x (D_V + D_E), column-major), b1 (H), W2 (1 x H), b2");
+                  o.inputs == 1
+                      ? "per network: W1 (H x (D_V + D_E), column-major), b1 (H), W2 (1 x H), b2"
+                      : "per network: W1 (H x (C D_V + D_E), column-major; C input channels, "
+                        "each's delays together), b1 (H), W2 (1 x H), b2");
   std::vector<std::string> axes, inputs, targets;
   for (const auto& net : n.networks) {
     axes.push_back(net.axis);
-    inputs.push_back(net.input);
+    inputs.push_back(join(net.inputs, "+"));  // a network's channels, e.g. v_x+direction_x
     targets.push_back(net.target);
     f.write_vector("/model/" + net.axis + "/parameters", to_std(net.parameters), "1");
   }
@@ -137,7 +140,16 @@ void read_narx_sections(const H5File& f, RunRecord& r) {
   for (std::size_t a = 0; a < axes.size(); ++a) {
     NarxNetworkRecord net;
     net.axis = axes[a];
-    net.input = inputs[a];
+    for (std::size_t from = 0;;) {
+      const std::size_t plus = inputs[a].find('+', from);
+      net.inputs.push_back(inputs[a].substr(from, plus - from));
+      if (plus == std::string::npos) break;
+      from = plus + 1;
+    }
+    if (a > 0 && net.inputs.size() != o.inputs) {
+      throw IoError(f.path().string() + ": /model/inputs: networks with different channel counts");
+    }
+    o.inputs = net.inputs.size();
     net.target = targets[a];
     const auto p = f.read_vector("/model/" + net.axis + "/parameters");
     net.parameters =
@@ -170,7 +182,7 @@ void print_narx_model(const RunRecord& r, std::ostream& out) {
   out << "\n";
   out << "training     " << r.trainer << ", " << to_string(r.training.termination) << "\n";
   for (const auto& net : n.networks) {
-    out << "  " << net.axis << " (" << net.input << " -> " << net.target << ", "
+    out << "  " << net.axis << " (" << join(net.inputs, ", ") << " -> " << net.target << ", "
         << format_metric(net.seconds) << " s):";
     for (const auto& st : net.stages) {
       out << (st.fallback ? " second try: " : " ") << st.mode;
