@@ -59,7 +59,11 @@ RunOptions run_options(const CommandOptions& options, std::ostream& log);
 std::string metrics_line(const std::map<std::string, double>& metrics);
 
 // Experiment YAML files under `paths` (files as given, folders recursively),
-// sorted; a missing path is a ConfigError.
+// sorted; a missing path is a ConfigError. A folder below a given one that
+// holds a file kOptInMarker is an opt-in set (a study too long for
+// `reproduce` of everything, README command 1): skipped unless it is
+// itself given (or a folder or file inside it).
+inline constexpr const char* kOptInMarker = "OPT_IN.md";
 std::vector<std::filesystem::path> find_experiments(const std::vector<std::string>& paths);
 
 }  // namespace cnclab

@@ -4,6 +4,7 @@
 #include "cnclab/report/tables.hpp"
 #include "cnclab/studies/contour_error/contour_error_tables.hpp"
 #include "cnclab/studies/contour_error/feedrate_job.hpp"
+#include "cnclab/studies/contour_error/feedrate_sections_tables.hpp"
 #include "cnclab/studies/contour_error/feedrate_tables.hpp"
 #include "cnclab/studies/contour_error/narx_metrics.hpp"
 
@@ -18,10 +19,17 @@ void register_contour_error_study() {
        print_contour_error_tables, measure_contour_error_tables,
        "studies/contour_error_tables.yaml"});
   register_table({"feedrate",
-                  "seed 002's application: contour-error constrained feedrate vs the "
-                  "unconstrained plan, the uniform slowdown and the best constant feed "
-                  "(simulated machine)",
-                  print_feedrate_tables, measure_feedrate_tables, "studies/feedrate_tables.yaml"});
+                  "seed 002's application on any path: the contour-error constrained feedrate "
+                  "with the planning predictor and calibrated margins on many declared sections "
+                  "of two paths, vs the uniform slowdown and the oracle (simulated machine)",
+                  print_feedrate_sections_tables, measure_feedrate_sections_tables,
+                  "studies/feedrate_tables.yaml"});
+  register_table({"feedrate-example",
+                  "seed 002's application on one section chosen by its outcome: contour-error "
+                  "constrained feedrate vs the unconstrained plan, the uniform slowdown and the "
+                  "best constant feed (simulated machine)",
+                  print_feedrate_example_tables, measure_feedrate_example_tables,
+                  "studies/feedrate_example_tables.yaml"});
 }
 
 }  // namespace cnclab
