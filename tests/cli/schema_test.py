@@ -93,7 +93,8 @@ for path in sorted((SOURCE / "experiments").rglob("*.yaml")):
         checked += 1
     if raw.get("kind", "train") == "train" and train_example is None:
         example = resolved(rel, "")
-        if example is not None and example["model"]["type"] == "mlp":
+        # A job may include another (kind comes from the included file).
+        if example is not None and example.get("model", {}).get("type") == "mlp":
             train_example = example
 
 assert checked > 40, f"only {checked} documents checked"
