@@ -278,7 +278,19 @@ FeedrateOptimisationResult optimise_feedrate_caps(const PlanarPath& path,
   std::vector<double> s_knots;
   for (int it = 0; it < options.max_iterations; ++it) {
     const auto t0 = std::chrono::steady_clock::now();
-    res.profile = plan_feedrate(path, planner);
+    try {
+      res.profile = plan_feedrate(path, planner);
+    } catch (const Error& e) {
+      if (it == 0) throw;  // the unconstrained plan: the path or the limits, not the caps
+      // No feasible plan under the lowered caps (Ipopt: a cap too low over
+      // too short a span for the jerk limit): the loop ends with what it
+      // has, as when a cap falls below min_speed.
+      if (have_best) break;
+      res.status = OptimisationStatus::infeasible;
+      res.reason =
+          "no plan under the lowered caps after " + std::to_string(it) + " plan(s): " + e.what();
+      return res;
+    }
     res.reference = interpolate(path, res.profile, 1e-3);
     res.predicted = optimisation_model(error_model, res.reference);
     if (it == 0) {
