@@ -3,8 +3,8 @@
 // path (200 lines x 100 CC points, R = 5 mm, K = 20; a third argument
 // LINESxPOINTS, e.g. 800x400, for a longer path). Each timing is the whole
 // path of an experiment: reading the `dataset` section (YAML surface file, or
-// STEP file through OCCT: parse, NURBS conversion, the check that the path
-// stays on the face) and generating the dataset. The STEP files are written
+// STEP file through OCCT: parse, NURBS conversion, the path planned on the
+// face) and generating the dataset. The STEP files are written
 // from configs/surfaces/*.yaml into a temporary folder first. Times are CPU
 // seconds of this process and its children (the STEP reader's forked probe,
 // cad/occt_shape_io.cpp), so a loaded machine does not skew the ratio.
@@ -14,15 +14,14 @@
 //
 // Where the STEP side's extra time goes: the read (fork, OCCT's STEP session
 // set-up, parse and transfer in the child, the BRep handover; about 50 ms
-// whatever the path's length) and the path-on-face check (about 10 ms at
-// 200 x 100, once per dataset). And an effect of this long-lived process
-// that `cnclab run` does not have: glibc raises its mmap threshold when the
-// first dataset (11.5 MB) is freed, so later datasets reuse warm heap pages;
-// the STEP read's fork write-protects them, and the next dataset pays a
-// page fault per 4 KiB page (with the fork itself about 80 ms here, on a
-// shared VM: a fork doing nothing before each YAML run costs as much). A fresh
-// process maps each dataset new on both sides. GLIBC_TUNABLES=
-// glibc.malloc.mmap_threshold=131072 (a fixed threshold) measures that case.
+// whatever the path's length) and the path's on-face classification (once
+// per dataset; a YAML surface has no trims to classify against). And an effect of this long-lived
+// process that `cnclab run` does not have: glibc raises its mmap threshold when the first dataset
+// (11.5 MB) is freed, so later datasets reuse warm heap pages; the STEP read's fork write-protects
+// them, and the next dataset pays a page fault per 4 KiB page (with the fork itself about 80 ms
+// here, on a shared VM: a fork doing nothing before each YAML run costs as much). A fresh process
+// maps each dataset new on both sides. GLIBC_TUNABLES= glibc.malloc.mmap_threshold=131072 (a fixed
+// threshold) measures that case.
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -40,6 +39,7 @@
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/geometry/surface_config.hpp"
+#include "cnclab/geometry/tool_path.hpp"
 
 namespace {
 
@@ -118,10 +118,11 @@ int main(int argc, char** argv) {
         median_seconds(repeats, [&] { generate("{file: " + step.string() + ", face: 1}", path); });
     CadSurface cad;
     const double t_read = median_seconds(repeats, [&] { cad = read_cad_surface(step, 1); });
-    const double t_check = median_seconds(repeats, [&] { check_tool_path_on_face(cad, path); });
+    const double t_plan =
+        median_seconds(repeats, [&] { plan_tool_path(cad.surface, path, cad.context); });
     worst = std::max(worst, t_step / t_yaml);
-    std::printf("%-9s %12.3f %12.3f %7.2fx   (STEP read %.3f, path-on-face check %.3f)\n", name,
-                t_yaml, t_step, t_step / t_yaml, t_read, t_check);
+    std::printf("%-9s %12.3f %12.3f %7.2fx   (STEP read %.3f, path planning on the face %.3f)\n",
+                name, t_yaml, t_step, t_step / t_yaml, t_read, t_plan);
   }
   std::printf("largest ratio STEP / YAML: %.2fx (target <= 2x)\n", worst);
   fs::remove_all(dir);

@@ -6,7 +6,12 @@
 //       series-parallel (open-loop) iteration on the same training half;
 //       target ratio <= 3;
 //   (2) the real-time contour predictor per 1 ms tick (both axes + the Taylor
-//       estimate) against the 5 us target and the 1 ms tick budget.
+//       estimate) against the 5 us target and the 1 ms tick budget;
+//   (3) the same predictor as `cnclab export --format c` writes it, compiled
+//       with this build's C compiler and flags, on the same ticks: its time
+//       against (2)'s (target ratio <= 1.5), its agreement with (2), and the
+//       heap allocations of both tick loops (counted: exported_predictor.hpp)
+//       and the exported code's imports (nm: no allocator among them).
 // Data: the motion pipeline, as scripts/bench_motion: an epitrochoid path
 // (analytic_paths.hpp, 33 turns: ~87 s) planned with Ipopt, interpolated at
 // 1 ms and run on the simulated biaxial router; the x/y reference velocities
@@ -37,11 +42,13 @@
 #include "cnclab/motion/feedrate_planner.hpp"
 #include "cnclab/motion/interpolator.hpp"
 #include "cnclab/motion/machine.hpp"
+#include "cnclab/studies/contour_error/contour_deployment.hpp"
 #include "cnclab/studies/contour_error/contour_predictor.hpp"
 #include "cnclab/train/lm.hpp"
 #include "cnclab/train/narx_training.hpp"
 #include "cnclab/train/normal_equations.hpp"
 #include "cnclab/train/trainbr.hpp"
+#include "exported_predictor.hpp"
 
 namespace {
 using namespace cnclab;
@@ -240,17 +247,21 @@ int main(int argc, char** argv) {
   }
   std::vector<double> per_tick, per_axis_step, per_taylor;
   double checksum = 0;
-  long failed = 0;
+  long failed = 0, internal_allocations = 0;
   for (int r = 0; r < std::max(repeats, 3); ++r) {
     predictor.reset();
     ContourPrediction out;
+    const long allocations_before = bench::allocation_count();
     double t0 = cpu_seconds();
     for (Eigen::Index t = 0; t < n; ++t) {
       const auto k = static_cast<std::size_t>(t);
       if (predictor.step(velocity[k], data.reference[k], out) != PredictorStatus::ok) ++failed;
       checksum += out.contour_error;
     }
-    per_tick.push_back((cpu_seconds() - t0) / static_cast<double>(n));
+    const double seconds = cpu_seconds() - t0;
+    internal_allocations =
+        std::max(internal_allocations, bench::allocation_count() - allocations_before);
+    per_tick.push_back(seconds / static_cast<double>(n));
     // Breakdown: one axis network alone, the Taylor estimate alone.
     NarxPredictor& x = predictor.axis(0);
     x.reset();
@@ -280,5 +291,31 @@ int main(int argc, char** argv) {
   std::printf("  Taylor estimate (Eqs. 3-6)   %9.3f us\n", median(per_taylor) * 1e6);
   if (failed > 0) std::printf("  %ld ticks returned a non-ok status\n", failed);
   std::printf("  (checksum %.6g)\n", checksum);
+
+  // (3) The exported C predictor on the same ticks.
+  register_contour_deployment();
+  const bench::ExportedTiming c =
+      bench::time_exported_predictor(models, velocity, data.reference, repeats);
+  const double c_us = c.tick_seconds * 1e6;
+  std::printf("\nexported C predictor (cnclab export --format c; %s)\n", c.compile.c_str());
+  std::printf(
+      "  both axes + Taylor estimate  %9.3f us   internal %.3f us: ratio %.2f "
+      "(target <= 1.5)\n",
+      c_us, tick_us, c_us / tick_us);
+  std::printf("  agreement with (2)           max |e| diff %.3g um, max contour diff %.3g um\n",
+              c.max_error_diff, c.max_contour_diff);
+  if (bench::allocation_count() < 0) {
+    std::printf("  heap allocations             not counted (a sanitizer owns malloc)\n");
+  } else {
+    std::printf("  heap allocations per pass    exported %ld, internal %ld (target 0)\n",
+                c.allocations, internal_allocations);
+  }
+  std::printf("  imports (nm -D -u)          ");
+  bool allocator = false;
+  for (const auto& symbol : c.imports) {
+    std::printf(" %s", symbol.c_str());
+    allocator = allocator || symbol.find("alloc") != std::string::npos || symbol == "free";
+  }
+  std::printf("\n  allocator among the imports  %s\n", allocator ? "YES" : "none");
   return 0;
 }

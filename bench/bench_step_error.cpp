@@ -78,15 +78,10 @@ int main(int argc, char** argv) {
                 d.num_samples(), generate_s, generate_s < 2.0 ? "PASS" : "FAIL");
 
     // The step-error computations alone, on precomputed tool-path lines.
-    std::vector<ToolPathLine> lines;
-    for (std::size_t l = 0; l < o.tool_path.lines; ++l) {
-      lines.push_back(plan_line(o.surface, o.tool_path, l));
-    }
+    const ToolPath path = plan_tool_path(o.surface, o.tool_path);
     std::vector<StepErrorSegment> segments;
-    for (const auto& line : lines) {
-      for (std::size_t i = 0; i + 1 < line.u.size(); ++i) {
-        segments.push_back(line.segment(i));
-      }
+    for (const PathSample& sample : path.samples) {
+      segments.push_back(path.lines[sample.line].segment(sample.point));
     }
     const auto n = static_cast<double>(segments.size());
     std::vector<double> exact(segments.size());

@@ -102,10 +102,14 @@ Report evaluate(const NurbsSurface& s, bool with_curvature = false) {
   // C'' points to the tool side; the ball fits (no gouging along the feed)
   // while it stays above R.
   r.min_concave_radius = INFINITY;
+  // The tool's side, once for the surface (they face +z throughout): the
+  // side of S_u x S_v at the middle that points up.
+  const SurfaceDerivatives middle = surface_derivatives(s, 0.5, 0.5);
+  const double side = middle.du.cross(middle.dv).z() >= 0 ? 1.0 : -1.0;
   for (int a = 0; with_curvature && a <= 200; ++a) {
     for (int b = 0; b <= 1000; ++b) {
       const SurfaceDerivatives sd = surface_derivatives(s, b / 1000.0, a / 200.0);
-      if (sd.duu.dot(oriented_unit_normal(sd, kToolAxis)) <= 0) continue;
+      if (sd.duu.dot(side * sd.du.cross(sd.dv)) <= 0) continue;
       r.min_concave_radius =
           std::min(r.min_concave_radius, std::pow(sd.du.norm(), 3) / sd.du.cross(sd.duu).norm());
     }

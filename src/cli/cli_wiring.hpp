@@ -23,6 +23,11 @@ void add_sweep_commands(CLI::App& app, CommandAction& action);
 void add_tool_commands(CLI::App& app, CommandAction& action);
 // surface show/export/example-part (surface_command.cpp).
 void add_surface_commands(CLI::App& app, CommandAction& action);
+// predict, export (wire_deploy_commands.cpp).
+void add_deploy_commands(CLI::App& app, CommandAction& action);
+
+// runs, gc, report (wire_runs_commands.cpp).
+void add_runs_commands(CLI::App& app, CommandAction& action);
 
 // Shared by the wiring files (cli_wiring.cpp).
 extern const char* const kProfileHelp;

@@ -7,6 +7,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/share_paths.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/profiles.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/io/atomic_file.hpp"
@@ -19,8 +20,19 @@
 namespace cnclab {
 namespace fs = std::filesystem;
 std::string metrics_line(const std::map<std::string, double>& metrics) {
+  // Grouped by split, in metric_splits() order, then names without one:
+  // "train: mse 0.1, rmse 0.3; validation: ...; test: ...".
+  std::vector<std::string> groups = metric_splits();
+  groups.emplace_back("");
   std::string s;
-  for (const auto& [k, v] : metrics) s += (s.empty() ? "" : "  ") + k + " " + format_metric(v);
+  for (const auto& split : groups) {
+    std::string part;
+    for (const auto& [k, v] : metrics) {
+      if (metric_split(k) != split) continue;
+      part += (part.empty() ? "" : ", ") + metric_base(k) + " " + format_metric(v);
+    }
+    if (!part.empty()) s += (s.empty() ? "" : "; ") + (split.empty() ? "" : split + ": ") + part;
+  }
   return s;
 }
 
@@ -69,6 +81,7 @@ void print_config_text(const std::string& resolved, const CommandOptions& option
 int run_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                 std::optional<std::uint64_t> seed, const CommandOptions& options, std::ostream& out,
                 std::ostream& log) {
+  check_profile(experiment, options.profile);
   if (const auto job = job_of(experiment, overrides, seed, options, &log)) {
     clean_stale_partials({options.results_dir, options.datasets_dir}, log);
     const JobReport report = job->first.run(experiment, job->second);
@@ -96,6 +109,7 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
   if (!options.quiet) out << loaded.spec.name << ": " << metrics_line(outcome.metrics) << "\n";
   for (const auto& w : outcome.warnings)
     log << "warning: " << loaded.spec.name << ": " << w << "\n";
+  for (const auto& n : outcome.notes) log << "note: " << loaded.spec.name << ": " << n << "\n";
   out << outcome.result_file.string() << "\n";
   return 0;
 }
@@ -103,6 +117,7 @@ int run_command(const fs::path& experiment, const std::vector<std::string>& over
 int validate_command(const fs::path& experiment, const std::vector<std::string>& overrides,
                      std::optional<std::uint64_t> seed, const CommandOptions& options,
                      std::ostream& out) {
+  check_profile(experiment, options.profile);
   if (const auto job = job_of(experiment, overrides, seed, options, nullptr)) {
     // Resolved before anything is printed: an invalid file prints no "valid".
     const std::string resolved = job->first.resolved_yaml(experiment, job->second);

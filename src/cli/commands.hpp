@@ -38,10 +38,14 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
 struct ReproduceInputs {
   std::vector<std::filesystem::path> files;
   std::vector<std::pair<std::filesystem::path, JobKind>> jobs;
+  // The files found under `paths` that do not define the profile (they run
+  // with their own settings; experiment/profiles.hpp): one line, or "".
+  std::string profile_note;
 };
 // The experiment files under `paths` split into training experiments and
 // `kind:` jobs; the training experiments a job reads (JobKind::upstream,
-// loaded with `profile`) are added to the training files once.
+// loaded with `profile`) are added to the training files once. ConfigError
+// when no file found defines `profile` (the set rule of profiles.hpp).
 ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths, const std::string& profile);
 
 int version_command(std::ostream& out);
@@ -55,7 +59,8 @@ int gcode_command(const std::string& toolpath, const std::filesystem::path& conf
 // unless quiet).
 struct RunOptions;
 RunOptions run_options(const CommandOptions& options, std::ostream& log);
-// "mse 1.2  rmse 1.1 ...": a result's metrics on one line.
+// A result's metrics on one line, grouped by split: "train: mse 1.2, rmse
+// 1.1; validation: ...; test: ..." (names without a split last, whole).
 std::string metrics_line(const std::map<std::string, double>& metrics);
 
 // Experiment YAML files under `paths` (files as given, folders recursively),

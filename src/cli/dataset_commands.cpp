@@ -7,6 +7,7 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/rng.hpp"
+#include "cnclab/data/constant_targets.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/data/dataset_file.hpp"
 #include "cnclab/experiment/spec.hpp"
@@ -34,7 +35,11 @@ int dataset_generate_command(const fs::path& config, const std::vector<std::stri
 
   const auto start = std::chrono::steady_clock::now();
   StagedProgress staged("dataset " + spec.generator->name(), err, {progress, 5.0, 0.1});
-  Dataset d = select_targets(generate_dataset(spec, seed, staged.callback()), spec.targets);
+  const Dataset all = generate_dataset(spec, seed, staged.callback());
+  Dataset d = select_targets(all, spec.targets);
+  for (const auto& t : selected_constant_targets(all, d, *spec.generator)) {
+    err << "warning: " << constant_target_text(t) << "\n";
+  }
   d.generator_config = dataset_config_text(*spec.generator, seed);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

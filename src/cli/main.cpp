@@ -1,5 +1,12 @@
 // cnclab command line: CLI11 wiring only (cli_wiring.hpp); the work is in
-// the library. Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.
+// the library. Exit codes (the README's table): 0 done; 1 a run, a trial or a
+// target failed, a result it needs is not made yet, or a file could not be
+// read or written (cnclab::Error); 2 usage, configuration or a missing input
+// file or folder (cnclab::ConfigError, CLI11's errors: Existing* checks).
+//
+// `cnclab --parse-only COMMAND ...` (hidden) parses the command line and
+// exits 0 without running the command, or 2 as any usage error: how the
+// README's command lines are checked (tests/cli/readme_commands_test.py).
 #include <CLI/CLI.hpp>
 #include <iostream>
 
@@ -23,12 +30,19 @@ int main(int argc, char** argv) {
       "Example: cnclab run experiments/friedman/friedman1_mlp.yaml trainer.epochs=50"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Show help for every subcommand");
-  app.footer("Exit codes: 0 ok, 1 run failed, 2 bad usage or configuration.");
+  app.footer(
+      "Exit codes: 0 done; 1 a run, trial or target failed, a result it needs is not made yet, "
+      "or a file could not be read or written; 2 usage, configuration or a missing input file "
+      "or folder.");
+  bool parse_only = false;
+  app.add_flag("--parse-only", parse_only)->group("");  // hidden
   cnclab::CommandAction action;
   cnclab::add_experiment_commands(app, action);
   cnclab::add_sweep_commands(app, action);
   cnclab::add_tool_commands(app, action);
   cnclab::add_surface_commands(app, action);
+  cnclab::add_deploy_commands(app, action);
+  cnclab::add_runs_commands(app, action);
   cnclab::add_init_command(app, action);
 
   try {
@@ -41,6 +55,7 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
   if (!action) return kExitUsage;
+  if (parse_only) return 0;
   try {
     return action();
   } catch (const cnclab::ConfigError& e) {

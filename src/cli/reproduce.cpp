@@ -20,6 +20,7 @@
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/profiles.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/experiment/runner.hpp"
@@ -357,6 +358,10 @@ ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths,
   const auto found = find_experiments(paths);
   if (found.empty()) throw ConfigError("reproduce: no experiment files found");
   ReproduceInputs inputs;
+  inputs.profile_note = undeclared_profile_note(
+      check_profile_in_set(found, profile,
+                           "the " + std::to_string(found.size()) + " experiment file(s) given"),
+      profile);
   for (const auto& file : found) {
     std::optional<JobKind> kind;
     try {
@@ -390,6 +395,7 @@ ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths,
 int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
                       std::ostream& out, std::ostream& log) {
   const ReproduceInputs inputs = reproduce_inputs(paths, options.profile);
+  if (!inputs.profile_note.empty()) log << "note: " << inputs.profile_note << "\n";
   const std::vector<fs::path>& files = inputs.files;
   const std::vector<std::pair<fs::path, JobKind>>& jobs = inputs.jobs;
   const std::vector<GraphNode> graph = load_graph(files, options.profile);
@@ -437,7 +443,10 @@ int reproduce_command(const std::vector<std::string>& paths, const CommandOption
   tables.results_dir = options.results_dir;
   tables.profile = options.profile;
   tables.check = options.check;
-  const int tables_code = print_available_tables(tables, out);
+  // The tables of the studies whose files ran here, no note about the others.
+  std::vector<fs::path> ran = files;
+  for (const auto& [file, kind] : jobs) ran.push_back(file);
+  const int tables_code = print_available_tables(tables, out, &ran);
   return tables_code == 2 ? 2 : std::max(exit_code, tables_code);
 }
 

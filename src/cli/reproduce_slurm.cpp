@@ -326,6 +326,7 @@ int reproduce_slurm_command(const std::vector<std::string>& paths, const Command
     }
   }
   const ReproduceInputs inputs = reproduce_inputs(paths, options.profile);
+  if (!inputs.profile_note.empty()) log << "note: " << inputs.profile_note << "\n";
   const std::vector<GraphNode> graph = load_graph(inputs.files, options.profile);
   if (slurm.dry_run) out << "# dry run: nothing written or submitted\n";
   GraphSubmitter submitter(options, slurm, out, log);

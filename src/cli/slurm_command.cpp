@@ -9,6 +9,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/io/lock_file.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/sweep/slurm_fields.hpp"
 #include "cnclab/sweep/slurm_queue.hpp"
@@ -367,6 +368,11 @@ int slurm_sweep_command(const fs::path& experiment, const std::vector<std::strin
     throw ConfigError("--jobs with --slurm: a task runs --cpus-per-task trials at once");
   }
   if (!o.trial_ids.empty()) throw ConfigError("--trial-ids with --slurm: the tasks set it");
+  if (o.rerun) {
+    throw ConfigError(
+        "--rerun with --slurm: an array gets only the trials without a result; train them "
+        "again with `cnclab sweep ... --rerun` (one job, or --shard K/N per job)");
+  }
   if (!slurm.dry_run) check_slurm_clients();
   const SweepSlurmResult r = submit_sweep_slurm(experiment, words, seed, o, slurm, {}, out, log);
   return r.final_rejected ? 1 : 0;
@@ -374,10 +380,7 @@ int slurm_sweep_command(const fs::path& experiment, const std::vector<std::strin
 
 int status_command(const fs::path& dir, std::ostream& out) {
   std::error_code ec;
-  if (!fs::exists(dir / "sweep.yaml", ec) &&
-      fs::exists(reproduce_slurm_dir(dir) / "jobs.yaml", ec)) {
-    return reproduce_status_command(dir, out);
-  }
+  if (!fs::exists(dir / "sweep.yaml", ec)) return results_status_command(dir, out);
   const SweepPlan plan = load_plan(dir);
   const auto outcomes = read_trial_outcomes(dir, plan);
   const SlurmQueueView view = slurm_queue_view(dir, false);
@@ -391,6 +394,8 @@ int status_command(const fs::path& dir, std::ostream& out) {
       ++failed;
     } else if (const auto phase = trial_phase(plan.trials[i].id, view, placements)) {
       ++(*phase == SlurmPhase::running ? running : pending);
+    } else if (LockFile::held(trial_lock_path(dir, plan.trials[i].id))) {
+      ++running;  // a process (a local sweep, a shard) runs it now
     } else {
       ++(r.status == TrialOutcome::Status::error ? errors : unqueued);
     }
@@ -423,7 +428,7 @@ int status_command(const fs::path& dir, std::ostream& out) {
   } else {
     out << "best so far: none (no trial complete)\n";
   }
-  if (unqueued + errors > 0) {
+  if (unqueued + errors > 0 && !view.submissions.empty()) {
     out << "resubmit the trials not queued: the same `cnclab sweep ... --slurm` command\n";
   }
   return 0;

@@ -75,9 +75,15 @@ SweepSlurmResult submit_sweep_slurm(const std::filesystem::path& experiment,
                                     const SweepSlurmRequest& request, std::ostream& out,
                                     std::ostream& log);
 
-// Trials complete / failed / running / pending / not queued, the array
-// tasks' states (squeue; sacct when accounting is on), the best trial so far.
+// A sweep folder: trials complete / failed / running (a Slurm task, or a
+// process holding the trial's lock) / pending / not queued, the array tasks'
+// states (squeue; sacct when accounting is on), the best trial so far.
+// Another folder: results_status_command.
 int status_command(const std::filesystem::path& dir, std::ostream& out);
+// A results folder (status_command.cpp): the jobs `reproduce --slurm`
+// submitted into it, and every sweep folder below it, one line each.
+// ConfigError when it has neither.
+int results_status_command(const std::filesystem::path& dir, std::ostream& out);
 
 // --slurm, --dry-run, --partition, ... and --trial-ids on `cnclab sweep`
 // (wire_sweep_commands.cpp).

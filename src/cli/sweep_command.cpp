@@ -7,6 +7,7 @@
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/experiment_graph.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/profiles.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/nn/metrics.hpp"
@@ -34,6 +35,7 @@ struct SweepTarget {
 
 SweepTarget sweep_target(const fs::path& file, const SweepArguments& args,
                          const SweepCommandOptions& o) {
+  check_profile(file, o.common.profile);
   SweepTarget t;
   if (experiment_kind(file) == "sweep") {
     const SweepJob job = load_sweep_job(file, {}, o.common.profile);
@@ -86,6 +88,7 @@ PreparedSweep prepare_sweep(const fs::path& experiment, const std::vector<std::s
   exec.jobs = o.jobs != 0 ? o.jobs : target.jobs;
   exec.trial_timeout = o.trial_timeout;
   exec.retry_failed = o.retry_failed;
+  exec.rerun = o.rerun;
   exec.trial_ids = o.trial_ids;
   if (!o.shard.empty()) std::tie(exec.shard, exec.shards) = parse_shard(o.shard);
   SweepPlan plan = plan_sweep(target.experiment, target.overrides, seed, spec, o.common.profile);

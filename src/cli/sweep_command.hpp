@@ -23,6 +23,7 @@ struct SweepCommandOptions {
   bool regenerate = false;    // regenerate the datasets the trials need once
   double trial_timeout = 0;   // seconds; a trial running longer is killed, failed "timeout"
   bool retry_failed = false;  // run failed trials (failed status, timeout) again
+  bool rerun = false;         // run every trial again, also those with a result (or a stored one)
   // Command-line settings of the sweep block (override the YAML's).
   std::optional<std::size_t> repeats, trials;
   std::optional<std::string> method, objective;

@@ -85,7 +85,9 @@ void add_show(CLI::App& app, CommandAction& action) {
   auto* show = app.add_subcommand(
       "show",
       "Print a result file (config, provenance, metrics, training) or a sweep's summary.h5");
-  show->add_option("result", *paths, "Result HDF5 file(s) or a sweep's summary.h5")->required();
+  show->add_option("result", *paths, "Result HDF5 file(s) or a sweep's summary.h5")
+      ->required()
+      ->check(CLI::ExistingFile);
   show->add_flag("--full", options->full, kFullHelp);
   show->footer(
       "Examples:\n  cnclab show results/friedman1_mlp/friedman1_mlp-seed42-*.h5\n"
@@ -160,36 +162,45 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
 struct CompareArgs {
   std::vector<std::string> runs;
   std::string format = "table";
-  GroupCompareOptions groups;  // --group-by, --alpha
+  GroupCompareOptions groups;  // --group-by, --alpha, --pool, --full
 };
 
 void add_compare(CLI::App& app, CommandAction& action) {
   auto a = std::make_shared<CompareArgs>();
   auto* compare = app.add_subcommand(
       "compare", "Runs side by side: the config keys that differ and the metrics with deltas");
-  compare->add_option("runs", a->runs, "Result files, run folders or sweep folders")->required();
+  compare->add_option("runs", a->runs, "Result files, run folders or sweep folders")
+      ->required()
+      ->check(CLI::ExistingPath);
   compare->add_option("--format", a->format, "table, md, csv or json")->capture_default_str();
-  compare->add_option("--group-by", a->groups.group_by,
-                      "Group the runs by this config key (trainer.type), or 'repeats' (configs "
-                      "equal apart from seed); each metric as mean with its confidence interval, "
-                      "each group against the first by Welch's t-test and a bootstrap interval");
-  auto* alpha = compare
-                    ->add_option("--alpha", a->groups.alpha,
-                                 "With --group-by: significance level; intervals at 1 - alpha")
-                    ->capture_default_str();
+  compare->add_flag("--full", a->groups.full, kFullHelp);
+  auto* group_by = compare->add_option(
+      "--group-by", a->groups.group_by,
+      "Group the runs by this config key (trainer.type), or 'repeats' (configs equal apart from "
+      "seed); each metric as mean with its confidence interval (clipped to the metric's range), "
+      "each group against the first by Welch's t-test, a bootstrap interval and, for runs "
+      "paired by seed, the paired t-test and Wilcoxon signed-rank test; within each combination "
+      "of the other keys that vary inside the groups");
+  compare
+      ->add_option("--alpha", a->groups.alpha,
+                   "With --group-by: significance level; intervals at 1 - alpha")
+      ->capture_default_str()
+      ->needs(group_by);
+  compare
+      ->add_flag("--pool", a->groups.pool,
+                 "With --group-by: compare across the other keys that vary inside the groups "
+                 "(named in the output) instead of within each combination of them")
+      ->needs(group_by);
   compare->footer(
       "Examples:\n  cnclab compare results/friedman1_mlp/a.h5 results/friedman1_mlp/b.h5\n"
       "  cnclab compare results/friedman1_mlp/sweep-1a2b3c4d --format md\n"
       "  cnclab compare results/narx/sweep-1a2b3c4d --group-by trainer.type --alpha 0.01");
-  compare->callback([a, alpha, &action] {
-    if (alpha->count() > 0 && a->groups.group_by.empty()) {
-      throw CLI::ValidationError("--alpha needs --group-by (it is the level of the group tests)");
-    }
+  compare->callback([a, &action] {
     action = [a] {
       if (!a->groups.group_by.empty()) {
         return compare_groups_command(a->runs, a->format, a->groups, std::cout);
       }
-      return compare_command(a->runs, a->format, std::cout);
+      return compare_command(a->runs, a->format, a->groups.full, std::cout);
     };
   });
 }

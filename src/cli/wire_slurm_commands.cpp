@@ -77,9 +77,9 @@ void add_status_command(CLI::App& app, CommandAction& action) {
   auto dir = std::make_shared<std::filesystem::path>();
   auto* status = app.add_subcommand(
       "status",
-      "Trials of a sweep folder: complete, failed, running, pending (Slurm), best so far; "
-      "or the jobs `reproduce --slurm` submitted into a results folder");
-  status->add_option("dir", *dir, "Sweep folder, or a results folder (reproduce --slurm)")
+      "A sweep folder's trials (complete, failed, running, pending, best so far), or a results "
+      "folder's sweeps and `reproduce --slurm` jobs");
+  status->add_option("dir", *dir, "Sweep folder, or a results folder")
       ->required()
       ->check(CLI::ExistingDirectory);
   status->footer(

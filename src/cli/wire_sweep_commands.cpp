@@ -42,6 +42,10 @@ void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
       ->check(CLI::PositiveNumber);
   sweep.add_flag("--retry-failed", o.retry_failed,
                  "Run the failed trials (failed results, timeouts) again");
+  sweep.add_flag("--rerun", o.rerun,
+                 "Train every trial again, also those with a result in the sweep folder or the "
+                 "result store, whose file stays (a trial another process trains meanwhile is "
+                 "left to it)");
   sweep.add_option("--shard", o.shard,
                    "K/N: run only shard K of N (trials K, K+N, ...), e.g. one per Slurm task");
   sweep.add_option("--dir", o.dir, "Sweep folder (default: <out>/<name>/sweep-<plan hash>)");
@@ -51,7 +55,9 @@ void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
       ->check(count_validator());
   sweep.add_option("--method", o.method, "grid or random");
   sweep.add_option("--objective", o.objective,
-                   "METRIC[:min|max] to rank trials by (default: first metric)");
+                   "METRIC[:min|max] to rank trials by, e.g. validation.rmse (a name without "
+                   "split: its validation value; default: the validation value of the first "
+                   "metric; test.* warns: it selects on test data)");
   sweep
       .add_option("--sweep-seed", a.sweep_seed_text,
                   "Seed of the random search (default: the experiment seed)")
@@ -70,7 +76,8 @@ void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
       "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
       "model.dropout.keep_probability=0.8,0.9,1.0 trainer.epochs=50 --repeats 3\n"
       "  cnclab sweep experiments/friedman/friedman1_mlp.yaml "
-      "'trainer.learning_rate=log_uniform(1e-4,1e-1)' --trials 20 --objective rmse:min\n"
+      "'trainer.learning_rate=log_uniform(1e-4,1e-1)' --trials 20 --objective "
+      "validation.rmse:min\n"
       "  cnclab sweep experiments/contour_error/architecture.yaml --shard 1/2   # a kind: sweep "
       "file\n"
       "Re-running the same command resumes: trials with a result are skipped.\n"

@@ -51,7 +51,7 @@ void add_dataset(CLI::App& app, CommandAction& action) {
   auto file = std::make_shared<std::string>();
   auto* show = dataset->add_subcommand(
       "show", "Print a dataset file: counts, ranges with units, histogram, convex/concave split");
-  show->add_option("file", *file, "Dataset HDF5 file")->required();
+  show->add_option("file", *file, "Dataset HDF5 file")->required()->check(CLI::ExistingFile);
   show->footer("Example:\n  cnclab dataset show datasets/step_error_surface1.h5");
   show->callback(
       [file, &action] { action = [file] { return dataset_show_command(*file, std::cout); }; });
@@ -92,13 +92,21 @@ void add_tables(CLI::App& app, CommandAction& action) {
   auto* tables = app.add_subcommand(
       "tables", "Print a paper's tables from result files beside the paper's numbers");
   tables->add_option("table", a->table, "Table name (none: list the tables)");
-  tables->add_option("--results", a->options.results_dir, kResultsRootHelp)->capture_default_str();
-  tables->add_option("--experiments", a->options.experiments_dir,
-                     "Experiments folder (default: ./experiments, else the installed ones)");
-  tables->add_option("--reference", a->options.reference_dir,
-                     "Paper numbers folder (default: ./results/reference, else the installed)");
-  tables->add_option("--configs", a->options.configs_dir,
-                     "Configs folder, study manifests (default: ./configs, else the installed)");
+  tables->add_option("--results", a->options.results_dir, kResultsRootHelp)
+      ->capture_default_str()
+      ->check(CLI::ExistingDirectory);
+  tables
+      ->add_option("--experiments", a->options.experiments_dir,
+                   "Experiments folder (default: ./experiments, else the installed ones)")
+      ->check(CLI::ExistingDirectory);
+  tables
+      ->add_option("--reference", a->options.reference_dir,
+                   "Paper numbers folder (default: ./results/reference, else the installed)")
+      ->check(CLI::ExistingDirectory);
+  tables
+      ->add_option("--configs", a->options.configs_dir,
+                   "Configs folder, study manifests (default: ./configs, else the installed)")
+      ->check(CLI::ExistingDirectory);
   tables
       ->add_option("--format", a->format,
                    "Output: text (aligned), md, latex for people; csv, json numbers only "

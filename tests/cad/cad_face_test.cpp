@@ -1,6 +1,7 @@
 // CAD faces written by OCCT itself (not through our NURBS code): an analytic
-// cylinder gives the closed-form step error, units convert to mm, and bad
-// files, faces and trimmed faces are clear ConfigErrors (issue 19 item 4).
+// cylinder gives the closed-form step error, units convert to mm, trims and
+// whole periods clip and convert, and bad files and faces are clear
+// ConfigErrors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,6 +28,7 @@
 #include <gp_Circ.hxx>
 #include <gp_Cylinder.hxx>
 #include <gp_Pln.hxx>
+#include <gp_Torus.hxx>
 #endif
 
 namespace cnclab {
@@ -35,8 +37,8 @@ namespace {
 namespace fs = std::filesystem;
 using testing::TempDir;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kClosedFormTolUm = 1e-6;  // step error [µm] against the closed form
+using testing::kClosedFormTolUm;
+using testing::kDeg;
 
 std::string read_error(const fs::path& file, int face) {
   return testing::error_message<ConfigError>([&] { read_cad_surface(file, face); });
@@ -85,7 +87,7 @@ void expect_closed_form(const Dataset& d, const CylinderCase& c) {
     const double expected_um = cl_radius * (1.0 - std::cos(theta / 2)) * 1000.0;
     ASSERT_NEAR(d.targets(0, s), expected_um, kClosedFormTolUm)
         << "rho " << c.rho << " R " << c.tool_radius << " sample " << s;
-    ASSERT_EQ(d.metadata(5, s), c.convex ? 1.0 : 0.0) << "sample " << s;
+    ASSERT_EQ(d.metadata(d.metadata_row("convex"), s), c.convex ? 1.0 : 0.0) << "sample " << s;
   }
 }
 
@@ -141,21 +143,145 @@ TEST(CadCylinderFace, InchFileReadsInMillimetres) {
   expect_closed_form(cylinder_dataset(dir / "inch.igs", c), c);
 }
 
-// A disk's parameter rectangle is its bounding square: the tool path's
-// corner points lie off the face.
-TEST(CadFaceErrors, PathLeavingATrimmedFaceNamesTheFace) {
+// A disk's parameter rectangle is its bounding square: the path is clipped
+// to the circle. A pair of neighbouring CC points is a sample exactly when
+// both and their middle lie within the radius (closed form: the plane keeps
+// its parameters, so the grid is a square grid on it).
+TEST(CadTrims, DiskIsClippedToItsCircle) {
   TempDir dir;
-  const gp_Circ circle(gp_Ax2(gp_Pnt(0, 0, 5), gp_Dir(0, 0, 1)), 10.0);
+  const double r = 10.0;
+  const gp_Circ circle(gp_Ax2(gp_Pnt(0, 0, 5), gp_Dir(0, 0, 1)), r);
   const TopoDS_Wire wire = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(circle).Edge()).Wire();
   write_step(BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 5), gp_Dir(0, 0, 1)), wire).Face(),
              dir / "disk.step");
-  const std::string config = testing::step_error_config(testing::cad_face(dir / "disk.step"));
-  const std::string message =
-      testing::error_message<ConfigError>([&] { testing::step_error_generator(config); });
-  EXPECT_NE(message.find("face 1 of " + (dir / "disk.step").string()), std::string::npos)
-      << message;
-  EXPECT_NE(message.find("(plane) is trimmed and the tool path leaves it"), std::string::npos)
-      << message;
+  const CadSurface cad = read_cad_surface(dir / "disk.step", 1);
+  EXPECT_TRUE(cad.trimmed);
+  EXPECT_EQ(cad.holes, 0);
+  const std::size_t lines = 9, points = 13;
+  const Dataset d = testing::step_error_dataset(
+      testing::step_error_config(testing::cad_face(dir / "disk.step"), lines, points));
+  const auto inside = [&](double x, double y) { return std::hypot(x, y) <= r + 1e-9; };
+  std::size_t expected = 0;
+  Eigen::Index s = 0;
+  for (std::size_t l = 0; l < lines; ++l) {
+    const double y = -r + 2 * r * static_cast<double>(l) / (lines - 1);
+    for (std::size_t k = 0; k + 1 < points; ++k) {
+      const double xa = -r + 2 * r * static_cast<double>(k) / (points - 1);
+      const double xb = -r + 2 * r * static_cast<double>(k + 1) / (points - 1);
+      if (!(inside(xa, y) && inside(xb, y) && inside(0.5 * (xa + xb), y))) continue;
+      ++expected;
+      ASSERT_LT(s, static_cast<Eigen::Index>(d.num_samples()));
+      EXPECT_NEAR(d.inputs(9, s), xa, 1e-9);  // CC_i
+      EXPECT_NEAR(d.inputs(10, s), y, 1e-9);
+      EXPECT_NEAR(d.targets(0, s), 0.0, 1e-9);  // a plane
+      ++s;
+    }
+  }
+  EXPECT_EQ(d.num_samples(), expected);
+}
+
+// A whole cylinder written over [-4e-13, 2 pi] (a period plus rounding, as
+// CAD systems write them) converts, and its path, clipped to the reachable
+// upper half, gives the closed form.
+TEST(CadTrims, FullPeriodCylinderConvertsAndClipsToItsUpperHalf) {
+  TempDir dir;
+  const double rho = 20, radius = 5;
+  const gp_Cylinder c(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, -1, 0), gp_Dir(1, 0, 0)), rho);
+  write_step(BRepBuilderAPI_MakeFace(c, -4e-13, 2 * std::numbers::pi, 0.0, 40.0).Face(),
+             dir / "tube.step");
+  EXPECT_EQ(read_cad_surface(dir / "tube.step", 1).surface_type, "cylinder");
+  const std::string config =
+      testing::step_error_config(testing::cad_face(dir / "tube.step"), 3, 60) +
+      "    unreachable: clip\n";
+  const Dataset d = testing::step_error_dataset(config);
+  ASSERT_GT(d.num_samples(), 0u);
+  for (Eigen::Index s = 0; s < static_cast<Eigen::Index>(d.num_samples()); ++s) {
+    const double a0 = std::atan2(d.inputs(11, s), d.inputs(9, s));
+    const double a1 = std::atan2(d.inputs(14, s), d.inputs(12, s));
+    EXPECT_GE(a0, 5 * kDeg - 1e-9);  // reachable: the normal within 85 deg of +z
+    EXPECT_LE(a0, 175 * kDeg + 1e-9);
+    EXPECT_NEAR(d.targets(0, s), (rho + radius) * (1 - std::cos((a1 - a0) / 2)) * 1000.0,
+                kClosedFormTolUm);
+  }
+}
+
+// A whole torus (both directions periodic) converts, and its NURBS form is
+// the torus: every point lies the tube radius away from the circle of
+// radius 30 in the x-y plane.
+TEST(CadTrims, WholeTorusConverts) {
+  TempDir dir;
+  const double major = 30, minor = 8;
+  const gp_Torus torus(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), major, minor);
+  write_step(
+      BRepBuilderAPI_MakeFace(torus, 0, 2 * std::numbers::pi, 0, 2 * std::numbers::pi).Face(),
+      dir / "torus.step");
+  const CadSurface cad = read_cad_surface(dir / "torus.step", 1);
+  EXPECT_EQ(cad.surface_type, "torus");
+  EXPECT_FALSE(cad.trimmed);
+  for (int i = 0; i <= 10; ++i) {
+    for (int j = 0; j <= 10; ++j) {
+      const double u = cad.surface.knots_u.front() +
+                       (cad.surface.knots_u.back() - cad.surface.knots_u.front()) * i / 10.0;
+      const double v = cad.surface.knots_v.front() +
+                       (cad.surface.knots_v.back() - cad.surface.knots_v.front()) * j / 10.0;
+      const Eigen::Vector3d p = surface_point(cad.surface, u, v);
+      EXPECT_NEAR(std::hypot(std::hypot(p.x(), p.y()) - major, p.z()), minor, 1e-9);
+    }
+  }
+}
+
+// OCCT 7.6 keeps AP242's tessellated entities untranslated: a file holding
+// only a mesh says so (a minimal AP242 file: one TRIANGULATED_FACE, ISO
+// 10303-42, written here by hand).
+TEST(CadFaceErrors, MeshOnlyFileSaysSo) {
+  TempDir dir;
+  testing::write_file(dir / "mesh.step", R"(ISO-10303-21;
+HEADER;
+FILE_DESCRIPTION((''),'2;1');
+FILE_NAME('mesh','2024-01-01T00:00:00',(''),(''),'','','');
+FILE_SCHEMA(('AP242_MANAGED_MODEL_BASED_3D_ENGINEERING_MIM_LF { 1 0 10303 442 1 1 4 }'));
+ENDSEC;
+DATA;
+#1=APPLICATION_CONTEXT('managed model based 3d engineering');
+#2=PRODUCT_CONTEXT('',#1,'mechanical');
+#3=PRODUCT('mesh','mesh','',(#2));
+#4=PRODUCT_DEFINITION_CONTEXT('part definition',#1,'design');
+#5=PRODUCT_DEFINITION_FORMATION('','',#3);
+#6=PRODUCT_DEFINITION('design','',#5,#4);
+#7=PRODUCT_DEFINITION_SHAPE('','',#6);
+#8=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));
+#9=(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.));
+#10=(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT());
+#11=(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNIT_ASSIGNED_CONTEXT((#8,#9,#10))REPRESENTATION_CONTEXT('',''));
+#12=COORDINATES_LIST('',4,((0.,0.,0.),(10.,0.,0.),(10.,10.,0.),(0.,10.,0.)));
+#13=TRIANGULATED_FACE('',#12,4,((0.,0.,1.)),$,(1,2,3,4),((1,2,3),(1,3,4)));
+#14=TESSELLATED_SHAPE_REPRESENTATION('',(#13),#11);
+#15=SHAPE_DEFINITION_REPRESENTATION(#7,#14);
+ENDSEC;
+END-ISO-10303-21;
+)");
+  const std::string m = read_error(dir / "mesh.step", 1);
+  EXPECT_NE(m.find("holds only a mesh"), std::string::npos) << m;
+  EXPECT_NE(m.find("TRIANGULATED_FACE"), std::string::npos) << m;
+}
+
+// A read that takes longer than read_timeout stops with that, naming the option.
+TEST(CadFaceErrors, ReadTimeoutNamesTheOption) {
+  TempDir dir;
+  write_step(cylinder_face(20, 30 * kDeg, 150 * kDeg), dir / "one.step");
+  CadReadOptions o;
+  o.read_timeout = 0.001;  // the fork and OCCT's start alone take longer
+  const std::string m =
+      testing::error_message<ConfigError>([&] { read_cad_surface(dir / "one.step", 1, o); });
+  EXPECT_NE(m.find("one.step: timed out after 0.001 s reading it"), std::string::npos) << m;
+  EXPECT_NE(m.find("read_timeout"), std::string::npos) << m;
+  o.read_timeout = 0.0001;
+  EXPECT_NE(testing::error_message<OptionError>([&] {
+              o.validate();
+            }).find("read_timeout = 0.0001: must be 0 (by the file's size) or seconds"),
+            std::string::npos);
+  EXPECT_EQ(default_read_timeout(0), 60.0);
+  EXPECT_EQ(default_read_timeout(50'000'000), 560.0);
 }
 
 TEST(CadFaceErrors, FileWithoutFacesAndFaceOutOfRange) {

@@ -3,6 +3,7 @@
 // the generator registry (the path an experiment takes).
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 
 #include "cnclab/core/config.hpp"
@@ -11,6 +12,9 @@
 #include "cnclab/data/generator.hpp"
 
 namespace cnclab::testing {
+
+inline constexpr double kDeg = std::numbers::pi / 180.0;  // one degree in radians
+inline constexpr double kClosedFormTolUm = 1e-6;          // step error [µm] against a closed form
 
 // A small tool path: `lines` x `points` CC points, R = `radius`, K = 3.
 inline std::string step_error_config(const std::string& surface, std::size_t lines = 5,

@@ -124,7 +124,7 @@ def contour_error_results(results, root, rng, steps=10000):
     meta = contour_error.read_metadata(trial["dataset"], path, results)
     _, rms = contour_error.validation_series(trial, meta)
     with h5py.File(path, "r+") as h:
-        h["metrics"].attrs["contour_rms"] = rms
+        h["metrics"].attrs["validation.contour_rms"] = rms
 
 
 EXPECTED = {

@@ -13,7 +13,9 @@ neither the source nor the build tree:
 - `cnclab reproduce --quick` in the project runs every starter: exit 0, one
   result per training starter (its config read back with h5py names the
   project, not the repository) and the G-code job's program, whose point
-  table matches the paper's Table 3 file beside it in the share folder.
+  table matches the paper's Table 3 file beside it in the share folder, and
+  no note about a paper table it did not print (the starters are not the
+  studies).
 
 Usage: /usr/bin/python3 install_test.py BUILD_DIR SOURCE_DIR
 """
@@ -138,6 +140,9 @@ def main():
         nc = glob.glob(os.path.join(results, "starter_trochoid_groove", "*.nc"))
         check(len(nc) == 1, f"G-code program: {nc}")
         check("Table 3" in rep.stdout, "the G-code report compares no Table 3:\n" + rep.stdout)
+        # The starters are none of the paper studies' files: no table, and no
+        # note about a table not printed.
+        check("not printed" not in rep.stdout, "notes about studies not here:\n" + rep.stdout)
         check(outside_repository(proj), "project inside the repository")
     finally:
         shutil.rmtree(top, ignore_errors=True)

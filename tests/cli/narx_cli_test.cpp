@@ -107,8 +107,12 @@ TEST(NarxCli, CompareShowsDifferingKeysAndMetricDeltasAndShowPrintsOne) {
   EXPECT_EQ(metric_rows, ra.metrics.size());
   const Result show = sh(dir.path(), kCnclab + " show " + fa);
   ASSERT_EQ(show.code, 0) << show.err;
-  for (const char* needle : {"model        narx", "open_loop trainbr 2 epochs", "contour_rms",
-                             "closed_loop_rms_x", "mode: sequential_halves"}) {
+  for (const char* needle :
+       {"model        narx", "open_loop trainbr 2 epochs", "  validation.contour_rms ",
+        "  validation.closed_loop_rms_x ", "mode: sequential_halves",
+        "no test split (sequential halves)",
+        "validation   no training stage stops on the validation half (trainbr has no validation "
+        "stop, as MATLAB's trainbr)"}) {
     EXPECT_NE(show.out.find(needle), std::string::npos) << needle << "\n" << show.out;
   }
 }
@@ -159,7 +163,10 @@ TEST(NarxCli, FeedrateJobAloneTrainsItsPredictorAndNamesWhatItCannotPlan) {
   std::ofstream(dir.path() / "other.yaml")
       << "kind: feedrate_optimisation\nname: other\npredictor: " CNCLAB_SOURCE_DIR
          "/experiments/friedman/friedman1_mlp.yaml\n";
-  const Result other = sh(dir.path(), kCnclab + " reproduce other.yaml" + common);
+  // Without --quick: neither file declares a quick profile (that is exit 2
+  // of its own, experiment/profiles.hpp).
+  const Result other =
+      sh(dir.path(), kCnclab + " reproduce other.yaml --out results --data-dir data -j1");
   EXPECT_EQ(other.code, 2) << other.out << other.err;
   EXPECT_NE(other.out.find("friedman1_mlp.yaml: needs a narx experiment on the following_error"),
             std::string::npos)

@@ -1,13 +1,18 @@
 #!/usr/bin/env python3
 """`cnclab schema` checked by an independent validator (python3-jsonschema,
-Draft 2020-12; issue 16 item 7).
+Draft 2020-12).
 
-The schema describes one experiment file as the reader sees it after
-`include:` is merged (src/cnclab/experiment/experiment_schema.hpp). So every
-file under experiments/ is validated in its resolved form (`cnclab validate
-FILE`, with and without --profile quick: the config a result stores), and as
-written when it is self-contained (no `include:`). Misspelt keys, at the top
-and in nested sections, must fail.
+The schema describes one experiment file as written and as the reader sees
+it after `include:` is merged (src/cnclab/experiment/experiment_schema.hpp).
+So every file under experiments/ is validated as written (what an editor
+checks; the keys an include may supply are required only of a file without
+`include:`) and in its resolved form (`cnclab validate FILE`, and with
+--profile quick where the file, its includes or a sweep's experiment define
+it (read here from the YAML): the config a result stores), each against the
+whole schema and against its kind's (`cnclab schema --kind K`). A file that
+does not define quick must refuse it (exit 2, "unknown profile"). Misspelt
+keys, at the top and in nested sections, must fail, also in a file with
+`include:`.
 
 usage: schema_test.py CNCLAB SOURCE_DIR
 """
@@ -77,28 +82,100 @@ def resolved(path, profile):
     return load(r.stdout)
 
 
+def config_path(naming, name):
+    """An include or experiment name: beside the naming file, else from the
+    source root (configs/...)."""
+    beside = naming.parent / name
+    return beside if beside.is_file() else SOURCE / name
+
+
+def declared_profiles(path):
+    """The profile names a file defines: its `profiles:`, its includes', and
+    for a `kind: sweep` file its experiment's (whose trials load with it)."""
+    raw = load(path.read_text()) or {}
+    names = set(raw.get("profiles") or {})
+    includes = raw.get("include") or []
+    for name in [includes] if isinstance(includes, str) else includes:
+        names |= declared_profiles(config_path(path, name))
+    if raw.get("kind") == "sweep" and "experiment" in raw:
+        names |= declared_profiles(config_path(path, raw["experiment"]))
+    return names
+
+
+def refuses_profile(path, profile):
+    r = run("validate", str(path), "--profile", profile)
+    if r.returncode != 2 or f"unknown profile '{profile}'" not in r.stderr:
+        failures.append(f"{path} defines no profile {profile}, yet validate --profile {profile}: "
+                        f"exit {r.returncode}, {r.stderr.strip()}")
+
+
 validator = schema_of()
+kind_validators = {}
 checked = 0
+refused = 0
+kinds = set()
 train_example = None
 for path in sorted((SOURCE / "experiments").rglob("*.yaml")):
     rel = path.relative_to(SOURCE)
     raw = load(path.read_text())
+    kind = raw.get("kind", "train")
+    kinds.add(kind)
+    if kind not in kind_validators:
+        kind_validators[kind] = schema_of("--kind", kind)
+    docs = [(raw, "as written")]
     for profile in ("", "quick"):
+        if profile and profile not in declared_profiles(path):
+            refuses_profile(rel, profile)
+            refused += 1
+            continue
         doc = resolved(rel, profile)
         if doc is not None:
-            check(validator, doc, f"{rel} resolved{' --profile ' + profile if profile else ''}")
-            checked += 1
-    if "include" not in raw:
-        check(validator, raw, f"{rel} as written")
+            docs.append((doc, f"resolved{' --profile ' + profile if profile else ''}"))
+    for doc, what in docs:
+        check(validator, doc, f"{rel} {what}")
+        check(kind_validators[kind], doc, f"{rel} {what}, against --kind {kind}")
         checked += 1
-    if raw.get("kind", "train") == "train" and train_example is None:
+    if kind == "train" and train_example is None:
         example = resolved(rel, "")
         # A job may include another (kind comes from the included file).
         if example is not None and example.get("model", {}).get("type") == "mlp":
             train_example = example
 
-assert checked > 40, f"only {checked} documents checked"
+assert checked > 150, f"only {checked} documents checked"
+assert refused < checked / 4, f"{refused} files refuse --profile quick"
+assert {"train", "sweep", "gcode"} <= kinds, kinds
 assert train_example is not None
+
+# A file with include: may leave out what its includes supply; one without
+# may not. A misspelt key fails in both, wherever it is (sections whose type
+# or generator the include sets included).
+included = {"include": "base.yaml", "name": "x"}
+check(validator, included, "a file with include: and a name only")
+if not errors(validator, {"name": "x"}):
+    failures.append("a file without include: and without dataset, model, trainer passes")
+if not errors(validator, {"include": "x.yaml", "kind": "sweep", "name": "x", "job": 2}):
+    failures.append("a misspelt key in a kind: sweep file with include: passes")
+for path, where, mutate in [
+    ("experiments/step_error/cad_example.yaml", "top level",
+     lambda d: d.__setitem__("descripton", "x")),
+    ("experiments/step_error/cad_example.yaml", "dataset.options without a generator",
+     lambda d: d["dataset"]["options"].__setitem__("surfac", {"face": 1})),
+    ("experiments/step_error/cad_example.yaml", "dataset without a generator",
+     lambda d: d["dataset"].__setitem__("option", {})),
+    ("experiments/friedman/friedman1_finetune.yaml", "trainer without a type",
+     lambda d: d["trainer"].__setitem__("learning_rte", 0.1)),
+    ("experiments/step_error/table2_keep_0.6.yaml", "model without a type",
+     lambda d: d["model"].__setitem__("hiden", [3])),
+    ("experiments/step_error/surface2_ft15_keep.yaml", "init_from",
+     lambda d: d["init_from"].__setitem__("normalser", "keep")),
+]:
+    raw = load((SOURCE / path).read_text())
+    assert "include" in raw, path
+    check(validator, raw, f"{path} as written")
+    bad = copy.deepcopy(raw)
+    mutate(bad)
+    if not errors(validator, bad):
+        failures.append(f"a misspelt key in {where} passes the schema in {path} (with include:)")
 
 # Misspelt keys fail, wherever they are.
 for where, mutate in [
@@ -213,10 +290,12 @@ if run("schema", "--kind", "trian").returncode != 2:
 # agree: every key it lists is declared, every declared top-level key and
 # section key is listed.
 def properties(schema):
-    """The properties of a schema, with those of its if/then alternatives."""
+    """The properties of a schema, with those its if/then alternatives add
+    (a key's own schema first: a then may repeat it with requirements only)."""
     props = dict(schema.get("properties", {}))
     for case in schema.get("allOf", []):
-        props.update(case.get("then", {}).get("properties", {}))
+        for key, sub in case.get("then", {}).get("properties", {}).items():
+            props.setdefault(key, sub)
     return props
 
 

@@ -90,7 +90,9 @@ def main():
         for failure in check_machine_tables(texts["csv"], texts["json"]):
             check(False, f"machine-readable tables: {failure}")
         check_csv(csv_tables(texts["csv"]))
+        check_table2_choice(csv_tables(texts["csv"]), texts["text"])
         check_seed_spread(csv_tables(texts["csv"]), tables_results)
+        check_table2_over_seeds(csv_tables(texts["csv"]), tables_results)
         check_trivial_predictor(cnclab, tables_results, source)
         check_targets(cnclab, source, common, tmp)
         run(["bash", os.path.join(source, "scripts/figures/run"), tables_results], source)
@@ -111,15 +113,15 @@ def check_sources(text, source):
     (except the normaliser table, which has none), then result files that
     exist."""
     lines = [l[len("sources: "):] for l in text.splitlines() if l.startswith("sources: ")]
-    # Tables 2, 3, surface-1 text, 4, 6, 5, 7, normaliser, seed spread, 8.
-    check(len(lines) == 10, f"one sources line per table: {len(lines)}")
+    # Tables 2, 2 over seeds, 3, surface-1 text, 4, 6, 5, 7, normaliser, seed spread, 8.
+    check(len(lines) == 11, f"one sources line per table: {len(lines)}")
     for line in lines:
         files = line.split(", ")
         for f in files:
             check(os.path.isfile(os.path.join(source, f)), f"sources: {f} exists")
         check(sum(f.endswith("seed000_step_error.yaml") for f in files) <= 1, f"reference once: {line}")
         check(any(f.endswith(".h5") for f in files), f"sources name result files: {line}")
-    check(sum(l.startswith("results/reference/seed000_step_error.yaml") for l in lines) == 9,
+    check(sum(l.startswith("results/reference/seed000_step_error.yaml") for l in lines) == 10,
           "the paper's numbers are named where they are used")
 
 
@@ -134,9 +136,11 @@ def check_csv(tables):
         width = len(rows[0])
         check(all(len(r) == width for r in rows), f"{title}: every row as wide as the header")
 
-    t2 = find(tables, "Seed 000 Table 2")
+    t2 = find(tables, "Seed 000 Table 2:")
     check(t2[0][2:] == [f"p_0.{k}" for k in range(3, 10)], f"Table 2 header {t2[0]}")
-    check((len(t2) - 2) % 2 == 0 and len(t2) >= 4, "Table 2: paper row + 2 rows per variant")
+    check((len(t2) - 2) % 4 == 0 and len(t2) >= 6,
+          "Table 2: paper row + 4 rows per variant (validation MSE, test MSE deterministic and "
+          "MC dropout, training loss)")
 
     # Tables 4 and 5: the test sizes, ours equal to the paper's.
     for prefix in ("Seed 000 Table 4", "Seed 000 Table 5"):
@@ -184,6 +188,30 @@ def check_csv(tables):
     check(len(norm) == 5, "normaliser table: keep/refit x surfaces 2, 3")
 
 
+def check_table2_choice(tables, text):
+    """Table 2 chooses p on validation: each variant's note names the p of
+    the lowest value of its validation row (not of its test row), and the
+    test choice beside it is the lowest of the test row."""
+    t2 = find(tables, "Seed 000 Table 2:")
+    ps = [h[len("p_"):] for h in t2[0][2:]]
+    rows = {(r[0], r[1]): r[2:] for r in t2[1:]}
+    for source in sorted({r[0] for r in t2[1:] if r[0] != "paper"}):
+        lowest = {}
+        for quantity in ("validation_mse", "test_mse"):
+            values = [float(v) if v not in ("", "-") else float("inf")
+                      for v in rows.get((source, quantity), [])]
+            check(len(values) == len(ps), f"Table 2 {source}: a {quantity} row")
+            if values and min(values) < float("inf"):
+                lowest[quantity] = ps[values.index(min(values))]
+        label = source.replace("ours_", "ours, ")
+        if "validation_mse" in lowest:
+            want = f"{label}: chosen on validation, p = {lowest['validation_mse']} "
+            check(want in text, f"Table 2 note '{want}'")
+        if "test_mse" in lowest:
+            check(f"shown beside, not used): p = {lowest['test_mse']}" in text,
+                  f"Table 2 {source}: the test choice p = {lowest['test_mse']} beside it")
+
+
 def trial_figures(results, sweep, group_key):
     """Per value of `group_key` (a function of the resolved config), the mean
     |e| and the share of |e| < 0.5 µm of each trial of the seed sweep
@@ -201,7 +229,7 @@ def trial_figures(results, sweep, group_key):
 
 
 def check_seed_spread(tables, results):
-    """The seed-spread table (issue 20 item 3): its mean and std columns
+    """The seed-spread table: its mean and std columns
     against numpy's mean and std (ddof=1) of the figures computed here from
     each trial's stored predictions, grouped by the trial's own config; the
     seed count against the quick profile's 2 repeats."""
@@ -211,9 +239,12 @@ def check_seed_spread(tables, results):
           f"seed spread header {header}")
     table = {(r[0], r[1]): dict(zip(header, r)) for r in rows[1:]}
     expected = {}
-    s1 = trial_figures(results, "step_error_tuned_seeds_surface1",
-                       lambda c: float(c["model"]["dropout"]["keep_probability"]))
-    check(sorted(s1) == [0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0], f"surface-1 sweep points {sorted(s1)}")
+    keep = lambda c: float(c["model"]["dropout"]["keep_probability"])
+    table2 = trial_figures(results, "step_error_tuned_seeds_table2", keep)
+    check(sorted(table2) == [0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0],
+          f"Table 2 sweep points {sorted(table2)}")
+    s1 = trial_figures(results, "step_error_tuned_seeds_surface1", keep)
+    check(sorted(s1) == [1.0], f"surface-1 sweep points {sorted(s1)}")
     expected["surface1"] = s1.get(1.0, [])
     for surface in (2, 3):
         g = trial_figures(results, f"step_error_tuned_seeds_surface{surface}_ft15",
@@ -233,6 +264,49 @@ def check_seed_spread(tables, results):
                 check(abs(float(got[column]) - want) <= 1e-9 * max(1.0, abs(want)),
                       f"seed spread {row} {quantity} {column}: {got[column]} != {want}")
             check(got["seeds"] == str(len(runs)), f"seed spread {row}: seeds {got['seeds']}")
+
+
+def check_table2_over_seeds(tables, results):
+    """Table 2 over seeds under both dropout evaluations: each trial's z-score
+    test MSE computed here from its stored predictions (/test/predictions:
+    deterministic; /other_inference/test_predictions: MC dropout), targets
+    and target scaling, and its validation MSE as stored per evaluation
+    (/metrics and /other_inference attributes validation.normalised_mse),
+    grouped by the trial's keep probability, against the table's mean and
+    std columns; no dropout (1.0) has one evaluation."""
+    rows = find(tables, "Seed 000 Table 2 over seeds")
+    header = rows[0]
+    columns = [f"{split}_mse_{name}" for name in ("deterministic", "mc")
+               for split in ("validation", "test")]
+    check(header == ["p", "paper_mse"] + [f"{c}_{s}" for c in columns for s in ("mean", "std")]
+          + ["complete", "planned"], f"Table 2 over seeds header {header}")
+    groups = {}
+    pattern = os.path.join(results, "step_error_tuned_seeds_table2", "sweep-*", "trials", "*.h5")
+    for path in glob.glob(pattern):
+        with h5py.File(path, "r") as f:
+            text = f["config"][()]
+            config = yaml.safe_load(text.decode() if isinstance(text, bytes) else text)
+            mean = f["model/target_scaling/mean"][()]
+            std = f["model/target_scaling/std"][()]
+            target = (f["test/targets"][()] - mean) / std
+            validation = [float(f["metrics"].attrs["validation.normalised_mse"])]
+            mse = [float(np.mean(((f["test/predictions"][()] - mean) / std - target) ** 2))]
+            if "other_inference" in f:
+                mc = (f["other_inference/test_predictions"][()] - mean) / std
+                mse.append(float(np.mean((mc - target) ** 2)))
+                validation.append(float(f["other_inference"].attrs["validation.normalised_mse"]))
+        p = float(config["model"]["dropout"]["keep_probability"])
+        check(len(mse) == (1 if p == 1.0 else 2), f"{path}: MC evaluation stored iff dropout")
+        groups.setdefault(p, []).append((validation[0], mse[0], validation[-1], mse[-1]))
+    table = {float(r[0]): dict(zip(header, r)) for r in rows[1:]}
+    check(sorted(table) == sorted(groups), f"Table 2 over seeds rows {sorted(table)}")
+    for p, runs in groups.items():
+        values = np.array(runs)
+        for k, column in enumerate(columns):
+            for stat, want in (("mean", values[:, k].mean()), ("std", values[:, k].std(ddof=1))):
+                got = table.get(p, {}).get(f"{column}_{stat}", "nan")
+                check(abs(float(got) - want) <= 1e-9 * max(1.0, abs(want)),
+                      f"Table 2 over seeds p = {p} {column}_{stat}: {got} != {want}")
 
 
 def run_code(args, cwd):
@@ -302,7 +376,7 @@ def own_result(cnclab, source, results, experiment):
     """The result of the experiment file itself: the one whose stored config is
     the file's resolved config (`cnclab validate --full`). The seed sweeps
     store their trials of the same experiment (other seeds, other dropout)
-    beside it (issue 20 item 3)."""
+    beside it."""
     resolved = yaml.safe_load(run([cnclab, "validate", "--full", "--profile", "quick", experiment],
                                   source))
     name = resolved["name"]
@@ -328,19 +402,24 @@ def check_trivial_predictor(cnclab, results, source):
             dataset = f["dataset"].attrs["file"]
             dataset = dataset.decode() if isinstance(dataset, bytes) else dataset
             pred, y = np.ravel(f["test/predictions"][:]), np.ravel(f["test/targets"][:])
-            # README's h5py example: /metrics holds numbers only, units apart
-            # (issue 22 item 5); recompute mse from the stored arrays.
+            # README's h5py example: /metrics holds numbers only, units apart;
+            # recompute the test split's mse from the stored arrays.
             metrics = {k: float(v) for k, v in f["metrics"].attrs.items()}
             units = {k: (v.decode() if isinstance(v, bytes) else v)
                      for k, v in f["metrics/units"].attrs.items()}
         check(set(units) == set(metrics), f"{name}: a unit per metric ({units})")
-        expected = {"mse": "µm²", "rmse": "µm", "mae": "µm", "max_abs_error": "µm", "r2": "1"}
+        expected = {"mse": "µm²", "rmse": "µm", "mae": "µm", "max_abs_error": "µm", "r2": "1",
+                    "normalised_mse": "scaled²"}
         for metric, unit in units.items():
-            if metric in expected:
-                check(unit == expected[metric], f"{name}: {metric} in {unit!r}")
-        if "mse" in metrics:
-            check(abs(metrics["mse"] - np.mean((pred - y) ** 2)) <= 1e-9 * max(1.0, metrics["mse"]),
-                  f"{name}: stored mse {metrics['mse']} against the stored predictions")
+            split, _, base = metric.partition(".")
+            check(split in ("train", "validation", "test") and base in expected,
+                  f"{name}: metric {metric} is <split>.<metric>")
+            if base in expected:
+                check(unit == expected[base], f"{name}: {metric} in {unit!r}")
+        if "test.mse" in metrics:
+            check(abs(metrics["test.mse"] - np.mean((pred - y) ** 2))
+                  <= 1e-9 * max(1.0, metrics["test.mse"]),
+                  f"{name}: stored test.mse {metrics['test.mse']} against the stored predictions")
         if not os.path.isabs(dataset):
             dataset = os.path.join(source, dataset)
         with h5py.File(dataset, "r") as d:

@@ -1,6 +1,6 @@
 // `cnclab surface` and CAD surfaces in `cnclab dataset generate`, end to end:
-// exit codes, one-line errors and nothing written on bad files (issue 19
-// item 4). Skipped where the build has no OCCT (`cnclab surface show` then
+// exit codes, one-line errors and nothing written on bad files or faces
+// that cannot be machined. Skipped where the build has no OCCT (`cnclab surface show` then
 // fails with the package to install, checked here too).
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -73,10 +73,51 @@ TEST_F(SurfaceCli, ExportShowAndGenerate) {
   for (const char* type : {"bspline", "cylinder", "plane", "sphere"}) {
     EXPECT_NE(r.out.find(type), std::string::npos) << r.out;
   }
+  for (const char* part :
+       {"4 faces; unit millimetre; written by Open CASCADE 7.6", "trimmed", "holes", "n·axis",
+        "min radius [mm]", "usable", "40 convex", "60 convex"}) {
+    EXPECT_NE(r.out.find(part), std::string::npos) << part << "\n" << r.out;
+  }
   write_config("part.stp", 2);
   r = cnclab("dataset generate d.yaml --out d.h5 -q");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir_ / "d.h5"));
+  // A face of a CAD file exported alone reads back as one face of its type's NURBS form.
+  r = cnclab("surface export part.stp --face 4 --out cap.igs");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("face 4 of part.stp: a sphere as a NURBS face"), std::string::npos) << r.err;
+  r = cnclab("surface show cap.igs");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("1 face; unit mm"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("60 convex"), std::string::npos) << r.out;  // the sphere's radius
+}
+
+// Where a face cannot be machined as the options say, `dataset generate`
+// exits 2 with one line naming the file, the face, the line and the reason,
+// and writes nothing; the read time limit names its option.
+TEST_F(SurfaceCli, RefusedFacesNameFileFaceAndLine) {
+  if (!occt_) GTEST_SKIP() << "built without Open CASCADE";
+  const std::string sphere = CNCLAB_SOURCE_DIR "/tests/cad/data/revolved_sphere.step";
+  write_config(sphere, 1);
+  expect_one_line_error(cnclab("dataset generate d.yaml --out d.h5 -q"),
+                        "face 1 of " + sphere + ": line 0 (v = -1.5708), CC point 0");
+  auto r = cnclab(
+      "dataset generate d.yaml --out d.h5 -q dataset.options.unreachable=clip "
+      "dataset.options.lines=20 dataset.options.points_per_line=20");
+  EXPECT_EQ(r.code, 0) << r.err;
+  write("t.yaml", "dataset:\n  generator: step_error\n  options:\n    surface: {file: " + sphere +
+                      ", face: 1, read_timeout: 0.001}\n");
+  expect_one_line_error(cnclab("dataset generate t.yaml --out t.h5 -q"),
+                        "timed out after 0.001 s reading it");
+  expect_one_line_error(cnclab("surface show " + sphere + " --read-timeout 0.001"),
+                        "read_timeout (seconds) in the dataset's surface");
+  expect_one_line_error(cnclab("surface export " + sphere + " --out x.step"), "--face N");
+  EXPECT_FALSE(fs::exists(dir_ / "t.h5"));
+  EXPECT_FALSE(fs::exists(dir_ / "x.step"));
+  r = cnclab("surface show " + sphere + " --why");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("no: degenerate"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("S_u x S_v vanishes there"), std::string::npos) << r.out;
 }
 
 TEST_F(SurfaceCli, BadFilesAreUsageErrorsAndWriteNothing) {

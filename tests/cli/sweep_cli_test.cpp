@@ -473,8 +473,9 @@ TEST(SweepCli, BadSweepSpecsAreUsageErrorsAndRunNothing) {
       "a grid cannot enumerate a continuous distribution");
   expect_usage_error(sh(dir.path(), base + "'trainer.learning_rate=uniform(0.1,0.2)'"),
                      "random search needs a number of trials");
-  expect_usage_error(sh(dir.path(), base + "trainer.momentum=0.1,0.2 --objective accuracy"),
-                     "objective metric 'accuracy' is not among the experiment's metrics");
+  expect_usage_error(
+      sh(dir.path(), base + "trainer.momentum=0.1,0.2 --objective accuracy"),
+      "objective metric 'validation.accuracy' is not among the experiment's metrics");
   expect_usage_error(sh(dir.path(), base + "trainer.momentum=0.1,1.5"), "must be in [0, 1)");
   expect_usage_error(sh(dir.path(), base + "trainer.epochs=3"), "no parameters to vary");
   EXPECT_FALSE(fs::exists(dir / "s"));
@@ -497,13 +498,15 @@ sweep:
   const Result r = sh(dir.path(), kCnclab + " sweep exp.yaml --jobs 2 --dir s");
   ASSERT_EQ(r.code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("8 trials (4 points x 2 repeats, random)"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("rmse (min)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("validation.rmse [1] (min)"), std::string::npos)
+      << r.out;                                              // rmse: validation
   EXPECT_NE(r.out.find(" ± "), std::string::npos) << r.out;  // mean ± std over repeats
-  // `compare --group-by repeats`: the 4 points, 2 seeds each (issue 20 item 2).
+  // `compare --group-by repeats`: the 4 points, 2 seeds each.
   const Result g = sh(dir.path(), kCnclab + " compare s --group-by repeats --format csv");
   ASSERT_EQ(g.code, 0) << g.err << g.out;
   EXPECT_EQ(g.out.substr(0, g.out.find('\n')),
-            "metric,group,n,mean,std,ci_low,ci_high,diff,welch_t,df,p_value,boot_low,boot_high,"
+            "metric,stratum,group,n,mean,std,ci_low,ci_high,ci_clipped,diff,welch_t,welch_df,"
+            "welch_p,boot_low,boot_high,pairs,paired_t,paired_p,wilcoxon_w,wilcoxon_p,test,"
             "significant");
   const Result j = sh(dir.path(), kCnclab + " compare s --group-by repeats --format json");
   ASSERT_EQ(j.code, 0) << j.err;
@@ -512,7 +515,7 @@ sweep:
     for (auto at = j.out.find(word); at != std::string::npos; at = j.out.find(word, at + 1)) ++n;
     return n;
   };
-  EXPECT_EQ(count("\"label\":"), 4u) << j.out;                   // the 4 points
+  EXPECT_EQ(count("\"label\":"), 9u) << j.out;  // the 4 points; 1 stratum and its 4 groups
   EXPECT_EQ(count("\"n\": 2,"), count("\"metric\":")) << j.out;  // 2 repeats each
   const Result h = sh(dir.path(), kCnclab + " compare s --group-by model.hidden --format json");
   ASSERT_EQ(h.code, 0) << h.err;
@@ -609,7 +612,13 @@ TEST(CompareCli, RunsOfDifferentExperimentsShowMissingKeys) {
   ASSERT_EQ(sh(dir.path(), kCnclab + " reproduce down.yaml --quiet").code, 0);
   const Result r = sh(dir.path(), kCnclab + " compare results/up results/down");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("init_from.experiment  —"), std::string::npos) << r.out;
+  // The key [1] does not have shows as "—" (the columns are as wide as the
+  // longest metric name).
+  const auto row = r.out.find("init_from.experiment ");
+  ASSERT_NE(row, std::string::npos) << r.out;
+  const std::string line = r.out.substr(row, r.out.find('\n', row) - row);
+  EXPECT_NE(line.find(" — "), std::string::npos) << line;
+  EXPECT_NE(line.find("up.yaml"), std::string::npos) << line;
   EXPECT_NE(r.out.find("name "), std::string::npos) << r.out;
 }
 

@@ -72,15 +72,18 @@ TEST(StepErrorGenerator, SamplesAreTheSurfaceGeometryThroughTheRegistry) {
   EXPECT_EQ(d.input_names.back(), "R");
   EXPECT_EQ(d.input_units, std::vector<std::string>(shape.inputs, "mm"));
   EXPECT_EQ(d.target_units, std::vector<std::string>{"µm"});
-  EXPECT_EQ(d.metadata_names,
-            (std::vector<std::string>{"line", "point", "u_i", "u_i+1", "v", "convex"}));
+  EXPECT_EQ(d.metadata_names, (std::vector<std::string>{"line", "segment", "point", "u_i", "v_i",
+                                                        "u_i+1", "v_i+1", "convex", "gouge"}));
 
   const NurbsSurface s = surface1();
   const double r = 4.5;
   std::size_t convex = 0;
   for (Eigen::Index j = 0; j < d.inputs.cols(); ++j) {
-    const double line = d.metadata(0, j), point = d.metadata(1, j);
-    const double u0 = d.metadata(2, j), u1 = d.metadata(3, j), v = d.metadata(4, j);
+    const double line = d.metadata(0, j), point = d.metadata(2, j);
+    const double u0 = d.metadata(3, j), u1 = d.metadata(5, j), v = d.metadata(4, j);
+    EXPECT_EQ(d.metadata(1, j), 0.0);  // one segment per line: nothing is cut
+    EXPECT_EQ(d.metadata(6, j), v);
+    EXPECT_EQ(d.metadata(8, j), 0.0);  // no gouge
     EXPECT_DOUBLE_EQ(v, line / 3.0);
     EXPECT_NEAR(u0, point / 5.0, 1e-15);
     EXPECT_NEAR(u1, (point + 1) / 5.0, 1e-15);
@@ -101,7 +104,7 @@ TEST(StepErrorGenerator, SamplesAreTheSurfaceGeometryThroughTheRegistry) {
     EXPECT_EQ(x(21), r);
     // Scan of L (seed 000 Eq. 1) over the segment.
     const Eigen::Vector3d axis = (cl1 - cl0).normalized();
-    const bool is_convex = d.metadata(5, j) == 1.0;
+    const bool is_convex = d.metadata(7, j) == 1.0;
     convex += is_convex;
     double extreme = is_convex ? INFINITY : -INFINITY;
     for (int k = 0; k <= 20'000; ++k) {
@@ -165,6 +168,7 @@ TEST(StepErrorGenerator, TheThreeSurfacesMatchThePapersBoxesAndRanges) {
     o.surface = read_nurbs_surface(doc.root());
     o.curve_points = 1;  // inputs do not matter here
     const Dataset d = generate_step_error_dataset(o);
+    // Reachable from +z, no pole, no gouge at R = 5 mm: the whole grid.
     EXPECT_EQ(d.num_samples(), 19'800u);
     const Eigen::Vector3d size = sampled_bounding_box(o.surface, 401).size();
     for (int a = 0; a < 3; ++a) EXPECT_NEAR(size(a), p.box[a], 0.005 * p.box[a]) << p.file;
@@ -214,6 +218,70 @@ TEST(StepErrorGenerator, BadOptionsAreLocatedConfigErrors) {
   const std::string km = config_error(bad_knots);
   EXPECT_NE(km.find("bad.yaml:"), std::string::npos) << km;
   EXPECT_NE(km.find("non-decreasing"), std::string::npos) << km;
+}
+
+// The last line of defence: a step error not below R (here a 120 deg step
+// inside a 1 mm cylinder with R = 0.1 mm: the arc's middle lies
+// L = rho - (rho - R) cos 60 deg = 0.55 mm from the CL line, so
+// e = L - R = 0.45 mm) is refused naming the surface, the line and the CC
+// points; steps of theta below 20 deg give e = (rho - R)(1 - cos(theta/2)).
+TEST(StepErrorGenerator, StepErrorNotBelowTheToolRadiusIsRefused) {
+  const std::string cylinder =
+      "{degree_u: 2, degree_v: 1, knots_u: [0, 0, 0, 1, 1, 1], knots_v: [0, 0, 1, 1], "
+      "control_points: [[[-0.866025403784439, 0, -0.5], [-0.866025403784439, 10, -0.5]], "
+      "[[0, 0, -2], [0, 10, -2]], [[0.866025403784439, 0, -0.5], [0.866025403784439, 10, -0.5]]], "
+      "weights: [[1, 1], [0.5, 0.5], [1, 1]]}";
+  std::string text = small_config(cylinder);
+  text.replace(text.find("points_per_line: 6"), 18, "points_per_line: 2");
+  text.replace(text.find("tool_radius: 4.5"), 16, "tool_radius: 0.1");
+  TempDir dir;
+  const Loaded coarse = load(write(dir, "coarse.yaml", text));
+  Rng unused(0);
+  const std::string m =
+      testing::error_message<ConfigError>([&] { coarse.generator->generate(unused); });
+  EXPECT_NE(m.find("the inline surface: line 0 (v = 0), CC points 0 and 1: the step error 0.45 mm "
+                   "is not below the tool radius R = 0.1 mm"),
+            std::string::npos)
+      << m;
+  text.replace(text.find("points_per_line: 2"), 18, "points_per_line: 9");
+  const Loaded fine = load(write(dir, "fine.yaml", text));
+  const Dataset d = fine.generator->generate(unused);
+  ASSERT_EQ(d.num_samples(), 4u * 8u);
+  for (Eigen::Index j = 0; j < d.targets.cols(); ++j) {
+    const auto x = d.inputs.col(j);  // CC_i at 9..11, CC_i+1 at 12..14 (K = 3)
+    const double theta = std::abs(std::atan2(x(14), x(12)) - std::atan2(x(11), x(9)));
+    EXPECT_NEAR(d.targets(0, j), 900 * (1 - std::cos(theta / 2)), 1e-6);
+  }
+}
+
+// Options given as keys of dataset.options, read back in options_yaml().
+TEST(StepErrorGenerator, MachiningOptionsAreDeclaredKeys) {
+  TempDir dir;
+  const Loaded l = load(write(dir, "d.yaml",
+                              small_config(kSurface1,
+                                           "    feed: v\n    tool_axis: [0, 0, 2]\n"
+                                           "    max_normal_angle: 89\n"
+                                           "    unreachable: clip\n    gouge: allow\n"
+                                           "    tool_side: front\n")));
+  const std::string yaml = l.generator->options_yaml();
+  for (const char* key : {"feed: v", "tool_axis: [0, 0, 2]", "max_normal_angle: 89",
+                          "unreachable: clip", "gouge: allow", "tool_side: front"}) {
+    EXPECT_NE(yaml.find(key), std::string::npos) << key << "\n" << yaml;
+  }
+  // Feed along v: lines at constant u (4 of them), 6 CC points each along v.
+  Rng unused(0);
+  const Dataset d = l.generator->generate(unused);
+  EXPECT_EQ(d.num_samples(), 4u * 5u);
+  for (Eigen::Index j = 0; j < d.inputs.cols(); ++j) {
+    EXPECT_EQ(d.metadata(3, j), d.metadata(5, j));  // u fixed along the line
+    EXPECT_NEAR(d.metadata(3, j), d.metadata(0, j) / 3.0, 1e-15);
+    EXPECT_LT(d.metadata(4, j), d.metadata(6, j));
+  }
+  EXPECT_NE(config_error(small_config(kSurface1, "    feed: w\n")).find("feed = w"),
+            std::string::npos);
+  EXPECT_NE(config_error(small_config(kSurface1, "    unreachable: skip\n")).find("refuse, clip"),
+            std::string::npos)
+      << config_error(small_config(kSurface1, "    unreachable: skip\n"));
 }
 
 }  // namespace

@@ -133,7 +133,10 @@ TEST(FieldIdentity, StepErrorGeneratorOptions) {
       "trainer: {type: sgdm}\n";
   expect_every_key_in_identity(
       base, "dataset.options.", step_error_fields().info(),
-      {{"dataset.options.surface", CNCLAB_SOURCE_DIR "/configs/surfaces/surface2.yaml"}});
+      {{"dataset.options.surface", CNCLAB_SOURCE_DIR "/configs/surfaces/surface2.yaml"},
+       // (values surface 1 can still be machined with: the planner refuses others)
+       {"dataset.options.tool_axis", "[0, 0, 2]"},
+       {"dataset.options.max_normal_angle", "89"}});
 }
 
 TEST(FieldIdentity, FollowingErrorGeneratorOptions) {
@@ -189,6 +192,7 @@ const std::vector<std::string>& identity_test_sequence_metrics() {
         {"field_identity_test",
          mine,
          [](const SequencePrediction&) { return std::map<std::string, double>{}; },
+         {},
          {}});
     return mine;
   }();

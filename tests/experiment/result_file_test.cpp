@@ -79,10 +79,10 @@ TEST_F(ResultFile, MetricsRecomputedFromRawDatasetsMatchStoredOnes) {
     max_abs = std::max(max_abs, std::abs(e));
   }
   const double n = static_cast<double>(pred.size());
-  EXPECT_DOUBLE_EQ(read_attr(file, "/metrics", "mse"), sse / n);
-  EXPECT_DOUBLE_EQ(read_attr(file, "/metrics", "rmse"), std::sqrt(sse / n));
-  EXPECT_DOUBLE_EQ(read_attr(file, "/metrics", "mae"), sae / n);
-  EXPECT_DOUBLE_EQ(read_attr(file, "/metrics", "max_abs_error"), max_abs);
+  EXPECT_DOUBLE_EQ(read_attr(file, "/metrics", "test.mse"), sse / n);
+  EXPECT_DOUBLE_EQ(read_attr(file, "/metrics", "test.rmse"), std::sqrt(sse / n));
+  EXPECT_DOUBLE_EQ(read_attr(file, "/metrics", "test.mae"), sae / n);
+  EXPECT_DOUBLE_EQ(read_attr(file, "/metrics", "test.max_abs_error"), max_abs);
   EXPECT_EQ(read_attr(file, "/", "complete"), 1.0);
   H5Fclose(file);
 }
@@ -126,7 +126,7 @@ TEST_F(ResultFile, TruncatedAndForeignFilesAreIoErrors) {
   EXPECT_THROW(read_result(dataset.path()), IoError);
 }
 
-// Issue 22 item 5: /metrics holds numbers only (h5py's
+// /metrics holds numbers only (h5py's
 // {k: float(v) for k, v in f["metrics"].attrs.items()} works), each metric's
 // unit in /metrics/units; read through the raw C API.
 TEST_F(ResultFile, MetricsAttributesAreNumbersAndUnitsSitApart) {
@@ -154,8 +154,8 @@ TEST_F(ResultFile, MetricsAttributesAreNumbersAndUnitsSitApart) {
   H5Fclose(file);
   // friedman1's target is dimensionless: every unit is "1".
   const RunRecord r = read_result(outcome_.result_file);
-  EXPECT_EQ(r.metric_units.at("mse"), "1");
-  EXPECT_EQ(r.metric_units.at("r2"), "1");
+  EXPECT_EQ(r.metric_units.at("test.mse"), "1");
+  EXPECT_EQ(r.metric_units.at("train.r2"), "1");
 }
 
 // Files written before /metrics/units kept a `units` text among the metrics:
@@ -177,11 +177,11 @@ TEST_F(ResultFile, OlderMetricsLayoutStillReads) {
   H5Fclose(f);
   const RunRecord r = read_result(older);
   EXPECT_EQ(r.metrics, outcome_.metrics);
-  EXPECT_EQ(r.metric_units.at("rmse"), "1");
+  EXPECT_EQ(r.metric_units.at("test.rmse"), "1");
   EXPECT_TRUE(r.warnings.empty());
 }
 
-// Issue 22 item 4: a network that provably predicts a constant (no training
+// A network that provably predicts a constant (no training
 // step, every weight 0: each output is its bias, whatever the input) is a
 // complete result with the warning; an ordinary one has none (and no
 // `warnings` attribute, like files written before warnings existed).

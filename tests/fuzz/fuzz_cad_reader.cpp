@@ -34,7 +34,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         }
       }
     };
-    check([&] { cnclab::list_cad_faces(path); });
+    check([&] { cnclab::summarise_cad_part(path); });
     check([&] { cnclab::read_cad_surface(path, 1); });
     std::filesystem::remove(path);
   }

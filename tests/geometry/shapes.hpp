@@ -8,6 +8,14 @@
 
 namespace cnclab::testing {
 
+inline constexpr double kDeg = std::numbers::pi / 180.0;  // one degree in radians
+inline constexpr double kClosedFormTol = 1e-9;            // mm: a closed form against the code
+
+// The angle of p in the x-z plane, from +x towards +z.
+inline double angle_xz(const Eigen::Vector3d& p) {
+  return std::atan2(p.z(), p.x());
+}
+
 // A circular arc of radius rho about the origin in the plane spanned by the
 // unit vectors e1, e2, from angle a0 to a1 (a1 - a0 < pi): degree 2, 3
 // control points, middle weight cos((a1 - a0)/2).

@@ -16,12 +16,9 @@
 namespace cnclab {
 namespace {
 
-constexpr double kClosedFormTol = 1e-9;  // mm
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-double angle_xz(const Eigen::Vector3d& p) {
-  return std::atan2(p.z(), p.x());
-}
+using testing::angle_xz;
+using testing::kClosedFormTol;
+using testing::kDeg;
 
 struct CylinderCase {
   double rho, tool_radius;
@@ -41,9 +38,8 @@ void check_cylinder(const CylinderCase& c) {
   o.lines = 3;
   o.points_per_line = 41;
   o.tool_radius = c.tool_radius;
-  for (std::size_t line = 0; line < o.lines; ++line) {
-    const ToolPathLine path = plan_line(s, o, line);
-    for (std::size_t i = 0; i + 1 < path.u.size(); ++i) {
+  for (const ToolPathLine& path : plan_tool_path(s, o).lines) {
+    for (std::size_t i = 0; i + 1 < path.t.size(); ++i) {
       const double expected_cl_radius = c.convex ? c.rho + c.tool_radius : c.rho - c.tool_radius;
       EXPECT_NEAR(std::hypot(path.cl[i].x(), path.cl[i].z()), expected_cl_radius, 1e-12);
       const double theta = std::abs(angle_xz(path.cc[i + 1]) - angle_xz(path.cc[i]));
@@ -92,8 +88,9 @@ TEST(StepError, AgreesWithBruteForceScanOnTheTestSurfaces) {
   ToolPathOptions o;  // the paper's 200 x 100, R = 5 mm
   for (const char* name : {"surface1", "surface2", "surface3"}) {
     const NurbsSurface s = load_surface(name);
+    const ToolPath planned = plan_tool_path(s, o);
     for (int trial = 0; trial < 4; ++trial) {
-      const ToolPathLine path = plan_line(s, o, rng.below(o.lines));
+      const ToolPathLine& path = planned.lines[rng.below(o.lines)];
       for (int k = 0; k < 3; ++k) {
         const std::size_t i = rng.below(o.points_per_line - 1);
         const StepErrorSegment seg = path.segment(i);

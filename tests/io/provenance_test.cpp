@@ -82,5 +82,59 @@ TEST(Provenance, LibraryVersionsAreTheCompiledOnes) {
   EXPECT_TRUE(std::regex_match(libs.at("CLI11"), dotted)) << libs.at("CLI11");
 }
 
+TEST(Provenance, HowARunWasMadeRoundTrips) {
+  TempDir dir;
+  Provenance p = make_provenance(1);
+  p.overrides = {"trainer.epochs=3", "model.hidden=[4, 2]"};
+  p.profile = "quick";
+  p.project_dir = "/home/me/project";
+  p.project_commit = std::string(40, 'a');
+  p.project_dirty = "yes";
+  p.cpu_seconds = 2.5;
+  {
+    H5File f = H5File::create(dir / "p.h5");
+    write_provenance(f, "/provenance", p);
+    f.close();
+  }
+  const Provenance r = read_provenance(H5File::open_read(dir / "p.h5"), "/provenance");
+  EXPECT_EQ(r.command_line, p.command_line);
+  EXPECT_EQ(r.overrides, p.overrides);
+  EXPECT_EQ(r.profile, "quick");
+  EXPECT_EQ(r.project_dir, p.project_dir);
+  EXPECT_EQ(r.project_commit, p.project_commit);
+  EXPECT_EQ(r.project_dirty, "yes");
+  EXPECT_EQ(r.cpu_seconds, 2.5);
+  // This test binary's argv[0] is the first word of the command line.
+  EXPECT_NE(p.command_line.find("io_tests"), std::string::npos) << p.command_line;
+}
+
+TEST(Provenance, FilesWrittenBeforeTheRunDetailsStillRead) {
+  TempDir dir;
+  {
+    // The attributes a result had before the command line, overrides,
+    // profile, project and CPU time were stored.
+    H5File f = H5File::create(dir / "old.h5");
+    f.create_group("/provenance");
+    for (const char* name : {"cnclab_version", "git_commit", "host", "start_utc", "end_utc",
+                             "status", "failure_reason"})
+      f.set_attribute("/provenance", name, std::string("x"));
+    f.set_attribute("/provenance", "master_seed", std::string("5"));
+    f.set_attribute("/provenance", "wall_seconds", 1.0);
+    f.create_group("/provenance/seeds");
+    f.create_group("/provenance/libraries");
+    f.close();
+  }
+  const Provenance r = read_provenance(H5File::open_read(dir / "old.h5"), "/provenance");
+  EXPECT_EQ(r.master_seed, 5u);
+  EXPECT_TRUE(r.command_line.empty() && r.overrides.empty() && r.profile.empty());
+  EXPECT_TRUE(r.project_commit.empty() && r.project_dirty.empty());
+  EXPECT_EQ(r.cpu_seconds, -1);
+  // show prints no line for what is unknown.
+  for (const auto& [label, text] : provenance_lines(r)) {
+    EXPECT_NE(label, "command");
+    EXPECT_NE(label, "project");
+  }
+}
+
 }  // namespace
 }  // namespace cnclab

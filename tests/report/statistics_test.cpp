@@ -2,8 +2,11 @@
 // the numbers below are the output of
 //   /usr/bin/python3 tests/report/welch_reference.py
 // (scipy.stats.ttest_ind(b, a, equal_var=False), t.interval, t.ppf, t.cdf
-// on the same fixed data; one tail quantile also to 40 digits with mpmath).
-// The bootstrap is checked by its properties.
+// on the same fixed data; one tail quantile also to 40 digits with mpmath),
+// and of
+//   /usr/bin/python3 tests/report/paired_reference.py
+// (scipy.stats.ttest_rel and scipy.stats.wilcoxon). The bootstrap is checked
+// by its properties, the Wilcoxon distribution also by enumeration.
 #include "cnclab/report/statistics.hpp"
 
 #include <gtest/gtest.h>
@@ -20,7 +23,7 @@
 namespace cnclab {
 namespace {
 
-constexpr double kScipyTol = 1e-9;  // issue 20: match scipy to 1e-9
+constexpr double kScipyTol = 1e-9;  // scipy's numbers to 1e-9
 
 struct Case {
   std::string name;
@@ -165,6 +168,132 @@ TEST(Statistics, BootstrapOptionsAreValidated) {
   o = {};
   o.level = 1.0;
   EXPECT_THROW(o.validate(), OptionError);
+}
+
+// paired_reference.py's 60 pairs (numpy seed 7, rounded to 6 digits).
+const std::vector<double> kPairsA = {
+    1.000123, 1.029875, 0.972586, 0.910941, 0.954533, 0.900835, 1.006014, 1.134022, 0.950779,
+    0.937953, 1.048984, 1.035689, 1.010541, 0.906953, 0.997075, 1.06953,  0.865579, 0.954238,
+    0.809878, 0.871046, 0.815826, 0.976491, 0.873255, 1.027126, 1.015675, 0.981307, 0.748324,
+    0.946131, 0.99515,  1.011331, 0.846986, 0.952225, 0.902148, 0.919116, 1.10609,  0.919247,
+    0.996748, 1.088439, 0.94164,  0.98883,  1.011046, 1.006378, 0.877494, 1.007614, 1.135882,
+    0.845286, 1.085938, 1.011935, 0.935853, 1.200042, 1.076226, 0.880071, 1.007452, 1.057669,
+    0.981122, 1.068291, 0.993348, 1.066725, 1.143852, 0.932434};
+const std::vector<double> kPairsB = {
+    1.03028,  1.02671,  0.998949, 0.871581, 0.945568, 0.911025, 1.070952, 1.211283, 0.904603,
+    0.918221, 1.101329, 0.956068, 1.007383, 0.922089, 1.079926, 1.124,    0.869218, 0.955809,
+    0.817368, 0.967222, 0.814425, 0.981307, 0.910884, 1.041087, 1.025811, 0.945604, 0.767748,
+    0.943952, 1.073456, 1.063985, 0.865779, 1.005644, 0.905155, 0.991722, 1.12582,  0.968416,
+    0.952203, 1.125773, 0.87723,  0.907064, 1.015822, 0.981382, 0.905697, 1.139852, 1.114296,
+    0.834089, 1.116208, 1.056586, 0.947033, 1.209745, 1.131349, 0.926066, 0.975768, 1.07371,
+    1.002886, 1.035567, 1.02634,  1.043827, 1.212455, 0.962071};
+
+struct ScipyPaired {
+  std::string name;
+  std::vector<double> a, b;
+  double t, df, p, w, w_p;
+  bool exact;  // the Wilcoxon p from the exact distribution
+};
+
+// paired_reference.py's output (scipy 1.10.1): ttest_rel(b, a), wilcoxon(b,
+// a) (with ties: method "approx"; with zeros: over the non-zero pairs).
+const std::vector<ScipyPaired> kScipyPaired = {
+    {"exact5",
+     {0.81, 0.92, 0.77, 0.88, 0.95},
+     {0.71, 0.95, 0.70, 0.74, 0.66},
+     -2.1834433352480631,
+     4,
+     0.094380638895085911,
+     1,
+     0.125,
+     true},
+    {"exact8",
+     {5.1, 4.8, 6.0, 5.5, 5.9, 4.7, 5.3, 6.2},
+     {5.6, 5.0, 6.15, 6.35, 5.8, 5.4, 5.95, 7.15},
+     3.7257691732316682,
+     7,
+     0.0073997465896591891,
+     1,
+     0.015625,
+     true},
+    {"ties",
+     {1.0, 2.0, 3.0, 4.0, 5.0, 6.0},
+     {1.5, 2.5, 2.5, 4.25, 5.75, 6.5},
+     1.8650096164806276,
+     5,
+     0.12118808449938513,
+     3.5,
+     0.13113050286965086,
+     false},
+    {"zeros",
+     {1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0},
+     {1.0, 2.3, 2.6, 4.0, 5.9, 6.8, 8.1},
+     1.82867074599221,
+     6,
+     0.11720380648475485,
+     2,
+     0.1875,
+     true},
+    {"n60", kPairsA, kPairsB, 2.904036732533644, 59, 0.0051761912005264584, 530,
+     0.0045938103773031456, false},
+};
+
+TEST(Statistics, PairedTestsMatchScipy) {
+  for (const auto& s : kScipyPaired) {
+    const PairedTTest t = paired_t_test(s.a, s.b);
+    EXPECT_EQ(t.pairs, s.a.size()) << s.name;
+    EXPECT_NEAR(t.t, s.t, kScipyTol) << s.name;
+    EXPECT_EQ(t.df, s.df) << s.name;
+    EXPECT_NEAR(t.p_value, s.p, kScipyTol) << s.name;
+    const WilcoxonTest w = wilcoxon_signed_rank(s.a, s.b);
+    EXPECT_EQ(w.w, s.w) << s.name;
+    EXPECT_NEAR(w.p_value, s.w_p, kScipyTol) << s.name;
+    EXPECT_EQ(w.exact, s.exact) << s.name;
+  }
+  EXPECT_EQ(wilcoxon_signed_rank(kScipyPaired[3].a, kScipyPaired[3].b).n, 5u);  // 2 zeros dropped
+}
+
+// The exact distribution against enumeration of all 2^n sign patterns: the
+// p of every possible W+ at n = 6 (64 patterns).
+TEST(Statistics, WilcoxonExactPIsTheShareOfSignPatterns) {
+  constexpr int n = 6;
+  std::vector<int> count(n * (n + 1) / 2 + 1, 0);
+  for (int signs = 0; signs < (1 << n); ++signs) {
+    int w = 0;
+    for (int k = 0; k < n; ++k) w += (signs >> k & 1) ? k + 1 : 0;
+    ++count[static_cast<std::size_t>(w)];
+  }
+  for (int plus_mask = 0; plus_mask < (1 << n); ++plus_mask) {
+    // Differences ±(k+1): ranks 1..n, positive where the mask says.
+    std::vector<double> a(n, 0.0), b(n);
+    int w = 0;
+    for (int k = 0; k < n; ++k) {
+      const bool plus = plus_mask >> k & 1;
+      b[static_cast<std::size_t>(k)] = plus ? k + 1 : -(k + 1);
+      w += plus ? k + 1 : 0;
+    }
+    double below = 0, above = 0;
+    for (int v = 0; v <= w; ++v) below += count[static_cast<std::size_t>(v)];
+    for (int v = w; v < static_cast<int>(count.size()); ++v)
+      above += count[static_cast<std::size_t>(v)];
+    const double expected =
+        2 * w == n * (n + 1) / 2 ? 1.0 : std::min(1.0, 2 * std::min(below, above) / (1 << n));
+    const WilcoxonTest t = wilcoxon_signed_rank(a, b);
+    ASSERT_TRUE(t.exact);
+    EXPECT_NEAR(t.p_value, expected, 1e-15) << "W+ = " << w;
+    EXPECT_EQ(t.w, std::min(w, n * (n + 1) / 2 - w));
+  }
+}
+
+TEST(Statistics, PairedUndefinedCasesAreNaN) {
+  EXPECT_TRUE(std::isnan(paired_t_test({1.0}, {2.0}).p_value));
+  const PairedTTest same_shift = paired_t_test({1.0, 2.0, 3.0}, {1.5, 2.5, 3.5});  // s_d = 0
+  EXPECT_TRUE(std::isnan(same_shift.p_value));
+  EXPECT_EQ(same_shift.difference, 0.5);
+  const WilcoxonTest equal = wilcoxon_signed_rank({1.0, 2.0}, {1.0, 2.0});
+  EXPECT_EQ(equal.n, 0u);
+  EXPECT_TRUE(std::isnan(equal.p_value));
+  EXPECT_THROW(paired_t_test({1.0}, {1.0, 2.0}), std::invalid_argument);
 }
 
 }  // namespace

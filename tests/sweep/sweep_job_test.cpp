@@ -88,7 +88,7 @@ TEST_F(SweepJobTest, SelectsTheTrialWithTheLeastValidationMse) {
   for (const auto& entry : fs::directory_iterator(s.dir / "trials")) {
     if (entry.path().extension() != ".h5") continue;
     const RunRecord rec = read_result(entry.path());
-    const double v = rec.metrics.at("normalised_validation_mse");
+    const double v = rec.metrics.at("validation.normalised_mse");
     ASSERT_TRUE(std::isfinite(v));
     EXPECT_EQ(rec.trainer, "sgdm");
     if (v < best) best = v, best_id = entry.path().stem().string();
@@ -100,7 +100,7 @@ TEST_F(SweepJobTest, SelectsTheTrialWithTheLeastValidationMse) {
   // From summary.h5, read directly.
   const H5File f = H5File::open_read(s.dir / "summary.h5");
   const auto ids = f.read_strings("/trials/id");
-  const auto vals = f.read_vector("/trials/metrics/normalised_validation_mse");
+  const auto vals = f.read_vector("/trials/metrics/validation.normalised_mse");
   ASSERT_EQ(ids.size(), 5u);
   std::size_t argmin = 0;
   for (std::size_t i = 1; i < vals.size(); ++i) {
@@ -112,7 +112,7 @@ TEST_F(SweepJobTest, SelectsTheTrialWithTheLeastValidationMse) {
   // selection.yaml names the same trial, its parameters and metrics.
   const YAML::Node sel = YAML::LoadFile((dir_ / "results/tiny_search/selection.yaml").string());
   EXPECT_EQ(sel["selected"]["trial"].as<std::string>(), best_id);
-  EXPECT_EQ(sel["selected"]["metrics"]["normalised_validation_mse"].as<double>(), best);
+  EXPECT_EQ(sel["selected"]["metrics"]["validation.normalised_mse"].as<double>(), best);
   const RunRecord chosen = read_result(s.selected_result());
   EXPECT_EQ(
       sel["selected"]["parameters"]["trainer.learning_rate"].as<double>(),
@@ -129,7 +129,7 @@ TEST_F(SweepJobTest, SelectsTheTrialWithTheLeastValidationMse) {
   EXPECT_EQ(stored.file, r.result_file);
   EXPECT_EQ(stored.record.kind, "sweep");
   EXPECT_EQ(stored.record.facts.at("selected_trial"), best_id);
-  EXPECT_EQ(stored.record.metrics.at("normalised_validation_mse"), best);
+  EXPECT_EQ(stored.record.metrics.at("validation.normalised_mse"), best);
   EXPECT_EQ(stored.record.metrics.at("sweep.complete"), 5.0);
   EXPECT_EQ(output_path(stored.record, stored.file, "selected_trial"), s.selected_result());
 }

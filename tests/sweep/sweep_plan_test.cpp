@@ -222,7 +222,7 @@ TEST(SweepPlan, BadSpecsAreConfigErrors) {
   objective.objective = Objective{"accuracy", true};
   EXPECT_NE(config_error([&] {
               plan_sweep(kExperiment, kFast, std::nullopt, objective);
-            }).find("'accuracy' is not among"),
+            }).find("'validation.accuracy' is not among"),
             std::string::npos);
 }
 

@@ -1,6 +1,8 @@
 // cad_surface_text and cad_example_part_text with OCCT (cad_export.hpp).
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
 #include <Precision.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Face.hxx>
@@ -11,6 +13,7 @@
 
 #include "cnclab/cad/cad_export.hpp"
 #include "cnclab/cad/occt_nurbs.hpp"
+#include "cnclab/cad/occt_part.hpp"
 #include "cnclab/cad/occt_shape_io.hpp"
 #include "cnclab/core/error.hpp"
 
@@ -27,6 +30,22 @@ TopoDS_Face nurbs_face(const NurbsSurface& surface) {
 
 std::string cad_surface_text(const NurbsSurface& surface, CadFormat format) {
   return occt::cad_shape_text(nurbs_face(surface), format);
+}
+
+std::string cad_face_text(const CadPart& part, int face, CadFormat format) {
+  const TopoDS_Face& f = occt::part_face(part, face);
+  const std::string label = "face " + std::to_string(face) + " of " + part.file_name;
+  if (BRep_Tool::Surface(f).IsNull()) throw ConfigError(label + ": has no surface (a mesh face)");
+  TopoDS_Shape nurbs;
+  try {
+    BRepBuilderAPI_NurbsConvert convert(f, true);
+    if (!convert.IsDone()) throw Error("not done");
+    nurbs = convert.Shape();
+  } catch (...) {
+    throw ConfigError(label + ": OCCT could not convert it to NURBS (" + occt::occt_failure_text() +
+                      ")");
+  }
+  return occt::cad_shape_text(nurbs, format);
 }
 
 std::string cad_example_part_text(const NurbsSurface& freeform, CadFormat format) {

@@ -1,6 +1,7 @@
 #include "cnclab/cad/cad_surface.hpp"
 
-#include <vector>
+#include <algorithm>
+#include <cmath>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
@@ -11,28 +12,22 @@ std::string CadSurface::label() const {
   return "face " + std::to_string(face) + " of " + file_name;
 }
 
-void check_tool_path_on_face(const CadSurface& cad, const ToolPathOptions& o) {
-  if (!cad.boundary) throw Error(cad.label() + ": no face boundary to check the tool path against");
-  // The u of the CC points, the same on every line (geometry/tool_path.hpp).
-  std::vector<double> us(o.points_per_line);
-  for (std::size_t k = 0; k < us.size(); ++k) us[k] = tool_path_u(cad.surface, o, k);
-  for (std::size_t line = 0; line < o.lines; ++line) {
-    const double v = tool_path_v(cad.surface, o, line);
-    for (std::size_t k = 0; k < us.size(); ++k) {
-      const double u = us[k];
-      if (!cad.boundary->contains(cad.surface, u, v)) {
-        const Eigen::Vector3d p = surface_point(cad.surface, u, v);
-        throw ConfigError(cad.label() + " (" + cad.surface_type +
-                          ") is trimmed and the tool path "
-                          "leaves it: line " +
-                          std::to_string(line) + ", CC point " + std::to_string(k) + " at (" +
-                          shortest_double(p.x()) + ", " + shortest_double(p.y()) + ", " +
-                          shortest_double(p.z()) +
-                          ") mm lies outside the face's boundary; choose a face whose "
-                          "boundary is its parameter rectangle");
-      }
-    }
+void CadReadOptions::validate() const {
+  if (read_timeout != 0 && !(read_timeout >= 0.001 && read_timeout <= 86'400)) {
+    throw OptionError("read_timeout", shortest_double(read_timeout),
+                      "must be 0 (by the file's size) or seconds in [0.001, 86400]");
   }
+}
+
+double default_read_timeout(std::uintmax_t bytes) {
+  constexpr double kBaseSeconds = 60.0, kSecondsPerMb = 10.0;
+  const double seconds = kBaseSeconds + kSecondsPerMb * static_cast<double>(bytes) / 1e6;
+  return std::min(std::ceil(seconds), 86'400.0);
+}
+
+CadSurface read_cad_surface(const std::filesystem::path& file, int face,
+                            const CadReadOptions& options) {
+  return read_cad_part(file, options).face(face);
 }
 
 }  // namespace cnclab

@@ -10,6 +10,7 @@
 #include <TColStd_Array1OfReal.hxx>
 #include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -110,9 +111,41 @@ NurbsSurface from_occt(const Geom_BSplineSurface& in) {
   return s;
 }
 
-UvBounds face_bounds(const TopoDS_Face& face) {
+UvBounds raw_face_bounds(const TopoDS_Face& face) {
   UvBounds b;
   BRepTools::UVBounds(face, b.u0, b.u1, b.v0, b.v1);
+  return b;
+}
+
+namespace {
+
+// [lo, hi] kept inside the surface's [first, last] in a bounded direction.
+// In a periodic one: ends within rounding (1e-9 of the period) of a whole
+// period snapped to it, and a span of a period plus or minus rounding made
+// exactly one period: OCCT 7.6's GeomConvert fails on a cylinder over
+// [-4e-13, 2 pi] (NCollection_Array2::Allocate), converts [0, 2 pi].
+void clamp_range(double& lo, double& hi, double first, double last, bool periodic, double period) {
+  if (periodic) {
+    const double rounding = 1e-9 * period;
+    const double whole = period * std::round(lo / period);
+    if (std::abs(lo - whole) <= rounding) lo = whole;
+    if (hi - lo >= period - rounding) hi = lo + period;
+    return;
+  }
+  lo = std::max(lo, first);
+  hi = std::min(hi, last);
+}
+
+}  // namespace
+
+UvBounds face_bounds(const TopoDS_Face& face) {
+  UvBounds b = raw_face_bounds(face);
+  const Handle(Geom_Surface) base = untrimmed(BRep_Tool::Surface(face));
+  if (base.IsNull()) return b;
+  double u0, u1, v0, v1;
+  base->Bounds(u0, u1, v0, v1);
+  clamp_range(b.u0, b.u1, u0, u1, base->IsUPeriodic(), base->IsUPeriodic() ? base->UPeriod() : 0.0);
+  clamp_range(b.v0, b.v1, v0, v1, base->IsVPeriodic(), base->IsVPeriodic() ? base->VPeriod() : 0.0);
   return b;
 }
 

@@ -16,11 +16,15 @@ Handle(Geom_BSplineSurface) to_occt(const NurbsSurface& surface);
 // Periodic or unclamped surfaces are first made non-periodic (clamped).
 NurbsSurface from_occt(const Geom_BSplineSurface& surface);
 
-// The face's parameter rectangle (BRepTools::UVBounds).
+// The face's parameter rectangle: BRepTools::UVBounds (the box of its
+// pcurves) clamped to its surface's domain (CAD systems write pcurves up to
+// 1e-3 past it, which GeomConvert rejects), a periodic direction to one period.
 struct UvBounds {
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
 };
 UvBounds face_bounds(const TopoDS_Face& face);
+// BRepTools::UVBounds as it is.
+UvBounds raw_face_bounds(const TopoDS_Face& face);
 
 // The face's surface (with its location) over `bounds` as a B-spline: the
 // B-spline itself when the bounds are its whole knot range, else

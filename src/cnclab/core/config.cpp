@@ -266,6 +266,7 @@ void ConfigDocument::take_profiles(const std::string& profile) {
   for (auto it = profiles.begin(); it != profiles.end(); ++it) {
     const std::string name = it->first.as<std::string>();
     const std::string key = "profiles." + name;
+    profiles_.push_back(name);
     if (it->second.IsNull()) continue;
     if (!it->second.IsMap()) fail(key, "must be a map of `dotted.key: value` overrides");
     for (auto e = it->second.begin(); e != it->second.end(); ++e) {

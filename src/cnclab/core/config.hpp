@@ -62,8 +62,11 @@ class ConfigDocument {
   // entries win key by key), so it is never part of the resolved
   // configuration, then apply the entries of `profile` as overrides (before
   // any command-line override). A profile the file does not define leaves it
-  // unchanged; "" selects none. ConfigError when `profiles` is not a map of
-  // maps or an entry is not a valid `key: value` override.
+  // unchanged here ("" selects none): whether an unknown name is an error is
+  // the command's rule (a file of a set may lack a profile others define;
+  // experiment/profiles.hpp), so the names defined are kept (profiles()).
+  // ConfigError when `profiles` is not a map of maps or an entry is not a
+  // valid `key: value` override.
   static ConfigDocument load(const std::filesystem::path& file, const std::string& profile = {},
                              const ConfigSearch& search = ConfigSearch::from_environment());
   // A document from YAML text (tests, fuzzing); `origin` names it in messages.
@@ -78,6 +81,9 @@ class ConfigDocument {
   // The resolved tree as YAML text (what `validate` prints and results store).
   std::string to_yaml() const;
   const std::string& origin() const { return origin_; }
+  // The profile names the file and its includes define (`profiles:` keys,
+  // in file order), whichever profile was applied.
+  const std::vector<std::string>& profiles() const { return profiles_; }
 
   // Location of a dotted key, or of its nearest located ancestor.
   SourceLocation location(const std::string& dotted_key) const;
@@ -94,6 +100,7 @@ class ConfigDocument {
 
   YAML::Node tree_;
   std::string origin_;
+  std::vector<std::string> profiles_;
   std::shared_ptr<State> state_ = std::make_shared<State>();
 };
 

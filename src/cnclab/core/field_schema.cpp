@@ -167,6 +167,7 @@ json tagged_schema(const std::string& tag, const std::string& default_tag,
                    const std::vector<TaggedVariant>& variants, const std::string& doc) {
   json names = json::array();
   json cases = json::array();
+  json any_key = json::object();  // per key: the schemas the variants give it
   for (const auto& v : variants) {
     names.push_back(v.name);
     json then = v.schema;
@@ -176,13 +177,102 @@ json tagged_schema(const std::string& tag, const std::string& default_tag,
     json cond = {{"properties", {{tag, {{"const", v.name}}}}}};
     if (v.name != default_tag) cond["required"] = {tag};
     cases.push_back({{"if", cond}, {"then", then}});
+    if (default_tag.empty() && then.contains("properties")) {
+      for (const auto& [key, schema] : then["properties"].items()) {
+        any_key[key]["anyOf"].push_back(schema);
+      }
+    }
   }
   json tag_schema = {{"type", "string"}, {"enum", names}};
   if (!default_tag.empty()) tag_schema["default"] = default_tag;
   json s = {{"type", "object"}, {"properties", {{tag, tag_schema}}}, {"allOf", cases}};
-  if (default_tag.empty()) s["required"] = {tag};
+  if (default_tag.empty()) {
+    s["required"] = {tag};
+    // No tag (a file whose include sets it): each key valid in some variant.
+    for (auto& [key, schema] : any_key.items()) {
+      if (schema["anyOf"].size() == 1) schema = schema["anyOf"][0];
+    }
+    any_key[tag] = json::object();
+    s["allOf"].push_back({{"if", {{"not", {{"required", {tag}}}}}},
+                          {"then", {{"properties", any_key}, {"additionalProperties", false}}}});
+  }
   if (!doc.empty()) s["description"] = doc;
   return s;
+}
+
+namespace {
+
+// The keywords whose values are subschemas (or maps or lists of them) that
+// the transforms below walk; "if" and "not" hold conditions and are left as
+// they are.
+const char* const kSchemaMaps[] = {"properties", "$defs"};
+const char* const kSchemaLists[] = {"allOf", "anyOf", "oneOf"};
+const char* const kSchemas[] = {"items", "additionalProperties", "then", "else"};
+
+}  // namespace
+
+json partial_schema(const json& strict) {
+  if (!strict.is_object()) return strict;
+  json s = strict;
+  s.erase("required");
+  for (const char* k : kSchemaMaps) {
+    if (!s.contains(k)) continue;
+    for (auto& [name, sub] : s[k].items()) sub = partial_schema(sub);
+  }
+  for (const char* k : kSchemaLists) {
+    if (!s.contains(k)) continue;
+    for (auto& sub : s[k]) sub = partial_schema(sub);
+  }
+  for (const char* k : kSchemas) {
+    if (s.contains(k)) s[k] = partial_schema(s[k]);
+  }
+  return s;
+}
+
+json strict_rules(const json& strict) {
+  if (!strict.is_object()) return json::object();
+  json out = json::object();
+  if (strict.contains("required")) out["required"] = strict["required"];
+  for (const char* k : kSchemaMaps) {
+    if (!strict.contains(k)) continue;
+    for (const auto& [name, sub] : strict[k].items()) {
+      json r = strict_rules(sub);
+      if (!r.empty()) out[k][name] = std::move(r);
+    }
+  }
+  for (const char* k : {"allOf"}) {
+    if (!strict.contains(k)) continue;
+    for (const auto& sub : strict[k]) {
+      json r = strict_rules(sub);
+      if (!r.empty()) out[k].push_back(std::move(r));
+    }
+  }
+  // A choice between alternatives holds as a whole (one alternative's
+  // requirement cannot be split off): kept as it is when it has any.
+  for (const char* k : {"anyOf", "oneOf"}) {
+    if (!strict.contains(k)) continue;
+    for (const auto& sub : strict[k]) {
+      if (!strict_rules(sub).empty()) {
+        out[k] = strict[k];
+        break;
+      }
+    }
+  }
+  for (const char* k : {"items", "additionalProperties"}) {
+    if (!strict.contains(k)) continue;
+    json r = strict_rules(strict[k]);
+    if (!r.empty()) out[k] = std::move(r);
+  }
+  if (strict.contains("if")) {
+    json then = strict.contains("then") ? strict_rules(strict["then"]) : json::object();
+    json otherwise = strict.contains("else") ? strict_rules(strict["else"]) : json::object();
+    if (!then.empty() || !otherwise.empty()) {
+      out["if"] = strict["if"];
+      if (!then.empty()) out["then"] = std::move(then);
+      if (!otherwise.empty()) out["else"] = std::move(otherwise);
+    }
+  }
+  return out;
 }
 
 json open_schema(const std::string& doc) {

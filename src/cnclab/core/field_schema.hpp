@@ -31,10 +31,23 @@ struct TaggedVariant {
 
 // {"properties": {tag: {"enum": names}}, "allOf": [{"if": tag == name,
 // "then": variant schema}, ...]}: each variant is checked strictly by its own
-// schema. default_tag: the variant an absent tag means ("" = tag required).
+// schema. default_tag: the variant an absent tag means ("" = tag required,
+// and when it is absent, as in a file whose include sets it, every key must
+// be one of some variant's and valid there: "anyOf" of their schemas for it,
+// so that misspelt keys are still found).
 nlohmann::json tagged_schema(const std::string& tag, const std::string& default_tag,
                              const std::vector<TaggedVariant>& variants,
                              const std::string& doc = "");
+
+// The schema of a file that is only part of a config (its include: supplies
+// the rest): `strict` with every "required" list dropped (one inside an "if"
+// or a "not" is a condition and stays).
+nlohmann::json partial_schema(const nlohmann::json& strict);
+
+// What partial_schema dropped from `strict`, at the same places: its
+// "required" lists (with the conditions around them).
+// partial_schema(s) and strict_rules(s) together accept what s accepts.
+nlohmann::json strict_rules(const nlohmann::json& strict);
 
 // {"type": "object", "description": doc}: any keys (a section whose fields
 // are not declared, said so in doc).

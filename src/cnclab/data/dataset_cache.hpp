@@ -38,12 +38,12 @@ std::filesystem::path dataset_cache_file(const DatasetSpec& spec, std::uint64_t 
 //
 // Concurrent callers (parallel sweep trials, shards, Slurm jobs on several
 // nodes sharing the cache folder, several `cnclab run`s) produce a dataset
-// once: whoever misses the cache creates the lock file
-// <dir>/.<generator>-<hash>.lock exclusively (O_EXCL, which holds on NFS
-// where flock(2) may not; it names the holder's host and pid), checks the
-// cache again, and only then generates; the others wait and read the file it
-// wrote. The lock file is removed when done; one left by a process killed on
-// this host is removed by the next caller. The dataset file itself is written
+// once: whoever misses the cache takes the lock file
+// <dir>/.<generator>-<hash>.lock (io/lock_file.hpp: O_EXCL, which holds on
+// NFS where flock(2) may not; it names the holder's host and pid), checks
+// the cache again, and only then generates; the others wait and read the
+// file it wrote. The lock file is removed when done; one left by a process
+// killed on this host is removed by the next caller. The dataset file itself is written
 // atomically (temporary + rename), so a reader never sees a torn dataset.
 // `progress` (optional) hears of the generation's stages when it generates.
 CachedDataset obtain_dataset(const DatasetSpec& spec, std::uint64_t seed,

@@ -10,8 +10,9 @@ namespace cnclab {
 
 // The declared keys read over Options' defaults, then Generator(options),
 // whose constructor runs Options::validate(), failing at the options
-// section's position. Validated once: a step_error face's path-on-face check
-// costs as much as a tenth of the dataset (cad/cad_surface.hpp).
+// section's position. Constructed once: a step_error generator plans its
+// tool path there, on a CAD face as much as a tenth of the dataset's cost
+// (geometry/tool_path.hpp).
 template <class Generator, class Options>
 std::shared_ptr<const DatasetGenerator> read_declared_generator(const ConfigReader& r,
                                                                 const FieldList<Options>& fields) {

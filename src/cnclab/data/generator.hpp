@@ -51,6 +51,10 @@ class DatasetGenerator {
   // False for a deterministic generator: its seed is then left out of the
   // dataset cache key, so runs with other seeds share one cached file.
   virtual bool uses_seed() const { return true; }
+  // Per target, in the target's unit: the spread below which the values are
+  // numerical noise of the computation, not data (constant_targets.hpp).
+  // Empty (the default): no such floor is known.
+  virtual std::vector<double> target_resolution() const { return {}; }
 };
 
 // Reads a generator's options from its config section; strict (unknown keys

@@ -1,5 +1,7 @@
 #include "cnclab/data/step_error.hpp"
 
+#include <cstdio>
+
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/resources.hpp"
@@ -10,57 +12,93 @@
 
 namespace cnclab {
 
-namespace {
-// Micrometres per millimetre: targets are reported in µm (DESIGN.md "Units").
-}  // namespace
-
 void StepErrorDatasetOptions::validate() const {
   surface.validate();
   tool_path.validate();
   exact.validate();
-  if (cad) check_tool_path_on_face(*cad, tool_path);
   if (curve_points < 1 || curve_points > 10'000) {
     throw OptionError("curve_points", std::to_string(curve_points), "must be in [1, 10000]");
   }
 }
 
-void step_error_inputs(const ToolPathLine& path, std::size_t i, std::size_t k,
+FaceContext StepErrorDatasetOptions::face() const {
+  if (cad) return cad->context;
+  FaceContext f;
+  f.label = surface_name;
+  return f;
+}
+
+void step_error_inputs(const ToolPathLine& line, std::size_t i, std::size_t k,
                        Eigen::Ref<Eigen::VectorXd> x) {
-  const double du = (path.u[i + 1] - path.u[i]) / static_cast<double>(k + 1);
+  const double dt = (line.t[i + 1] - line.t[i]) / static_cast<double>(k + 1);
   for (std::size_t j = 0; j < k; ++j) {
     x.segment<3>(static_cast<Eigen::Index>(3 * j)) =
-        curve_point(path.curve, path.u[i] + du * static_cast<double>(j + 1));
+        curve_point(line.curve, line.t[i] + dt * static_cast<double>(j + 1));
   }
   const auto base = static_cast<Eigen::Index>(3 * k);
-  x.segment<3>(base) = path.cc[i];
-  x.segment<3>(base + 3) = path.cc[i + 1];
-  x.segment<3>(base + 6) = path.cl[i];
-  x.segment<3>(base + 9) = path.cl[i + 1];
-  x(base + 12) = path.tool_radius;
+  x.segment<3>(base) = line.cc[i];
+  x.segment<3>(base + 3) = line.cc[i + 1];
+  x.segment<3>(base + 6) = line.cl[i];
+  x.segment<3>(base + 9) = line.cl[i + 1];
+  x(base + 12) = line.tool_radius;
 }
 
 namespace {
 
-// The dataset of options already validated.
-Dataset step_error_dataset_of_valid(const StepErrorDatasetOptions& o) {
-  const std::size_t n = o.num_samples(), k = o.curve_points;
-  check_memory(static_cast<double>(n) * static_cast<double>(o.num_inputs() + 7) * 8.0,
-               "step_error dataset (" + std::to_string(n) + " samples x " +
-                   std::to_string(o.num_inputs() + 7) + " values)");
+// The step error of pair i of `line`: ConfigError naming the face, the line
+// and the pair where it is undefined (coinciding CL points: R equal to a
+// concave radius) or not below R (the last line of defence: e = |R - L|
+// reaches R only where the CC curve touches the CL line, L = 0, or lies
+// more than 2R from it; either way the tool's envelope no longer models the
+// cut, whatever let the segment through).
+StepError checked_step_error(const StepErrorDatasetOptions& o, const ToolPathLine& line,
+                             std::size_t i) {
+  const std::string where = (o.cad ? o.cad->label() : o.surface_name) + ": " + line.label() +
+                            ", CC points " + std::to_string(i) + " and " + std::to_string(i + 1);
+  StepError e;
+  try {
+    e = exact_step_error(line.segment(i), o.exact);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const Error& error) {
+    throw ConfigError(where + ": " + error.what());
+  }
+  if (!(e.error < line.tool_radius)) {
+    char error[32];
+    std::snprintf(error, sizeof error, "%.6g", e.error);
+    throw ConfigError(where + ": the step error " + std::string(error) +
+                      " mm is not below the tool radius R = " + shortest_double(line.tool_radius) +
+                      " mm: the CL line leaves the tool's reach (the CC points are too far apart "
+                      "for the surface's curvature there); use more points_per_line");
+  }
+  return e;
+}
+
+// The dataset of validated options on their planned path.
+Dataset step_error_dataset_of_valid(const StepErrorDatasetOptions& o, const ToolPath& path) {
+  const std::size_t n = path.samples.size(), k = o.curve_points;
+  const std::vector<std::string> metadata = {"line",  "segment", "point",  "u_i",  "v_i",
+                                             "u_i+1", "v_i+1",   "convex", "gouge"};
+  check_memory(
+      static_cast<double>(n) * static_cast<double>(o.num_inputs() + metadata.size() + 1) * 8.0,
+      "step_error dataset (" + std::to_string(n) + " samples x " +
+          std::to_string(o.num_inputs() + metadata.size() + 1) + " values)");
   Dataset d;
   d.inputs.resize(static_cast<Eigen::Index>(o.num_inputs()), static_cast<Eigen::Index>(n));
   d.targets.resize(1, static_cast<Eigen::Index>(n));
-  d.metadata.resize(6, static_cast<Eigen::Index>(n));
-  Eigen::Index col = 0;
-  for (std::size_t line = 0; line < o.tool_path.lines; ++line) {
-    const ToolPathLine path = plan_line(o.surface, o.tool_path, line);
-    for (std::size_t i = 0; i + 1 < path.u.size(); ++i, ++col) {
-      const StepError e = exact_step_error(path.segment(i), o.exact);
-      step_error_inputs(path, i, k, d.inputs.col(col));
-      d.targets(0, col) = e.error * kUmPerMm;
-      d.metadata.col(col) << static_cast<double>(line), static_cast<double>(i), path.u[i],
-          path.u[i + 1], path.v, e.convex ? 1.0 : 0.0;
-    }
+  d.metadata.resize(static_cast<Eigen::Index>(metadata.size()), static_cast<Eigen::Index>(n));
+  for (std::size_t s = 0; s < n; ++s) {
+    const PathSample& sample = path.samples[s];
+    const ToolPathLine& line = path.lines[sample.line];
+    const std::size_t i = sample.point;
+    const StepError e = checked_step_error(o, line, i);
+    const auto col = static_cast<Eigen::Index>(s);
+    step_error_inputs(line, i, k, d.inputs.col(col));
+    d.targets(0, col) = e.error * kUmPerMm;
+    const Eigen::Vector2d a = line.uv(line.t[i]), b = line.uv(line.t[i + 1]);
+    d.metadata.col(col) << static_cast<double>(sample.line), static_cast<double>(sample.run),
+        static_cast<double>(i), a.x(), a.y(), b.x(), b.y(), e.convex ? 1.0 : 0.0,
+        static_cast<double>(line.gouge[i]);
   }
   const auto xyz = [&](const std::string& point) {
     for (const char* axis : {"_x", "_y", "_z"}) d.input_names.push_back(point + axis);
@@ -75,7 +113,7 @@ Dataset step_error_dataset_of_valid(const StepErrorDatasetOptions& o) {
   d.input_units.assign(d.input_names.size(), "mm");
   d.target_names = {"step_error"};
   d.target_units = {"µm"};
-  d.metadata_names = {"line", "point", "u_i", "u_i+1", "v", "convex"};
+  d.metadata_names = metadata;
   d.metadata_units.assign(d.metadata_names.size(), "1");
   d.generator = "step_error";
   return d;
@@ -85,31 +123,37 @@ Dataset step_error_dataset_of_valid(const StepErrorDatasetOptions& o) {
 
 Dataset generate_step_error_dataset(const StepErrorDatasetOptions& o) {
   o.validate();
-  return step_error_dataset_of_valid(o);
+  return step_error_dataset_of_valid(o, plan_tool_path(o.surface, o.tool_path, o.face()));
 }
 
 StepErrorGenerator::StepErrorGenerator(StepErrorDatasetOptions options)
     : options_(std::move(options)) {
   options_.validate();
+  path_ = std::make_shared<const ToolPath>(
+      plan_tool_path(options_.surface, options_.tool_path, options_.face()));
 }
 
 Dataset StepErrorGenerator::generate(Rng&) const {
-  return step_error_dataset_of_valid(options_);
+  return step_error_dataset_of_valid(options_, *path_);
 }
 
 namespace {
 
-// `surface: {file: part.step, face: 3}`: a face of a CAD file (the file
-// resolved like include:).
+// `surface: {file: part.step, face: 3, read_timeout: 600}`: a face of a CAD
+// file (the file resolved like include:).
 void read_cad_face(const ConfigReader& r, StepErrorDatasetOptions& o) {
   const ConfigReader s = r.section("surface");
   const std::filesystem::path file = named_config_file(s, "file");
   const auto face = s.require<std::int64_t>("face");
   s.check(face >= 1 && face <= 1'000'000, "face",
           "must be a face number >= 1 (faces count from 1)");
+  CadReadOptions read;
+  read.read_timeout = s.get<double>("read_timeout", read.read_timeout);
+  s.validate([&] { read.validate(); });
   try {
-    auto cad = std::make_shared<CadSurface>(read_cad_surface(file, static_cast<int>(face)));
+    auto cad = std::make_shared<CadSurface>(read_cad_surface(file, static_cast<int>(face), read));
     o.surface = cad->surface;
+    o.surface_name = cad->label();
     o.cad = std::move(cad);
   } catch (const ConfigError& e) {
     s.fail("file", e.what());
@@ -126,6 +170,7 @@ void read_surface(const ConfigReader& r, StepErrorDatasetOptions& o) {
   if (node.IsMap() && node["file"]) return read_cad_face(r, o);
   if (node.IsMap()) {
     o.surface = read_nurbs_surface(r.section("surface"));
+    o.surface_name = "the inline surface";
     return;
   }
   const std::filesystem::path file = named_config_file(r, "surface");
@@ -136,6 +181,7 @@ void read_surface(const ConfigReader& r, StepErrorDatasetOptions& o) {
     r.fail("surface", e.what());
   }
   o.surface = read_nurbs_surface(doc.root());
+  o.surface_name = "surface " + file.string();
   doc.check_all_consumed();
 }
 
@@ -163,13 +209,35 @@ const FieldList<StepErrorDatasetOptions>& step_error_fields() {
                  "M, CC points per line along u (seed 000: 100, so 99 segments)",
                  Rule::in(2, true, 1e6, true))
           .field("tool_radius", &T::tool_radius, "R, ball-end cutter radius [mm] (seed 000: 5)",
-                 Rule::positive());
+                 Rule::positive())
+          .choice("feed", &T::feed, {{"u", FeedDirection::u}, {"v", FeedDirection::v}},
+                  "the parameter the CC points run along; lines at constant other (seed 000: u)")
+          .field("tool_axis", &T::tool_axis,
+                 "[x, y, z]: the tool's axis, machining from its + side (default +z)")
+          .field("max_normal_angle", &T::max_normal_angle,
+                 "largest angle [deg] between the normal on the tool side and the tool axis; "
+                 "steeper is unreachable",
+                 Rule::in(0, false, 90, true))
+          .choice("unreachable", &T::unreachable,
+                  {{"refuse", UnreachablePolicy::refuse}, {"clip", UnreachablePolicy::clip}},
+                  "unreachable or degenerate CC points (poles): refuse (exit 2 naming the face, "
+                  "line and point) or clip (cut from the path like trims)")
+          .choice("gouge", &T::gouge,
+                  {{"refuse", GougePolicy::refuse}, {"allow", GougePolicy::allow}},
+                  "tool radius above a concave radius of curvature: refuse, or allow (flagged "
+                  "in the `gouge` metadata column)")
+          .choice(
+              "tool_side", &T::tool_side,
+              {{"auto", ToolSide::automatic}, {"front", ToolSide::front}, {"back", ToolSide::back}},
+              "the face's side the tool works from: auto (a solid's face from outside, "
+              "else the side facing the tool axis), front (its normal), back");
   static const auto fields =
       FieldList<O>()
           .custom(custom_info("surface",
                               "the machined NURBS surface (required): a configs/surfaces/*.yaml "
                               "path, an inline map, or {file: part.step|.stp|.iges|.igs, face: N} "
-                              "(N from 1; `cnclab surface show` lists the faces)"),
+                              "(N from 1; `cnclab surface show` lists the faces; optional "
+                              "read_timeout: seconds, default 60 + 10 per MB)"),
                   read_surface, surface_node)
           .flatten(&O::tool_path, tool_path)
           .field("curve_points", &O::curve_points,

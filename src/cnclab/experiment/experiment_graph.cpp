@@ -111,6 +111,8 @@ CurrentResult current_result(const LoadedExperiment& exp,
     }
     if (!why.empty()) return {std::nullopt, why};
     return {std::move(stored->record), ""};
+  } catch (const OutdatedResult& e) {
+    return {std::nullopt, std::string("older result (") + e.what() + ")"};
   } catch (const IoError& e) {
     return {std::nullopt, std::string("result unreadable (") + e.what() + ")"};
   }

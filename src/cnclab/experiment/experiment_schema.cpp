@@ -38,6 +38,11 @@ json trainer_schema(const std::string& doc) {
                           {"trainbr", object_schema(trainbr_fields().info(TrainbrOptions{}))}},
                          doc);
   s.erase("required");
+  // Without a type (stages, or a type from an include) the keys of every
+  // type are checked: stages is one of them.
+  for (auto& c : s["allOf"]) {
+    if (c["if"].contains("not")) c["then"]["properties"]["stages"] = json::object();
+  }
   s["properties"]["stages"] = {
       {"description",
        "model.type narx: the training stages, run in order (narx_spec.hpp), e.g. [{mode: "
@@ -73,13 +78,17 @@ void add_model_rules(json& s) {
         {"normalisation",
          {{"properties", {{"inputs", none}, {"targets", none}}},
           {"required", {"inputs", "targets"}}}},
-        {"metrics", metrics_schema(sequence_metric_names())}}},
+        {"metrics",
+         metrics_schema(metric_selection_names(sequence_metric_names(), {"validation"}))}}},
       {"required", {"split", "normalisation"}}};
   s["else"] = {
       {"properties",
-       {{"trainer", {{"required", {"type"}}}}, {"metrics", metrics_schema(known_metrics())}}}};
-  std::vector<std::string> all = known_metrics();
-  for (const auto& m : sequence_metric_names()) all.push_back(m);
+       {{"trainer", {{"required", {"type"}}}},
+        {"metrics", metrics_schema(metric_selection_names(base_metrics(), metric_splits()))}}}};
+  std::vector<std::string> all = metric_selection_names(base_metrics(), metric_splits());
+  for (const auto& m : metric_selection_names(sequence_metric_names(), {"validation"})) {
+    all.push_back(m);
+  }
   s["properties"]["metrics"]["items"]["enum"] = all;
 }
 
@@ -101,9 +110,7 @@ json dataset_schema(const std::vector<FieldInfo>& dataset_info, const std::strin
         f.kind = FieldKind::section;
         f.children = g.options();
       } else {
-        f.doc +=
-            "; not declared yet (issue 16 item 6): any keys pass here, `cnclab validate` "
-            "checks them";
+        f.doc += "; not declared yet: any keys pass here, `cnclab validate` checks them";
       }
     }
     variants.push_back({g.name, object_schema(fields)});
@@ -125,6 +132,16 @@ void add_loader_keys(json& s) {
        "never part of the resolved config"},
       {"type", "object"},
       {"additionalProperties", {{"type", "object"}}}};
+}
+
+// A file with include: gets any key from its includes, so nothing is
+// required of it (partial_schema: its keys are still checked, misspelt ones
+// fail); a file without include: gets all of `strict` (strict_rules).
+json with_include_rule(const json& strict) {
+  json s = partial_schema(strict);
+  s["allOf"].push_back(
+      {{"if", {{"not", {{"required", {"include"}}}}}}, {"then", strict_rules(strict)}});
+  return s;
 }
 
 json with_header(json s, const std::string& title) {
@@ -162,13 +179,17 @@ json train_file_schema(const std::vector<FieldInfo>& sweep_block,
 
 json experiment_file_schema(const std::string& kind, const std::vector<FieldInfo>& sweep_block,
                             const std::vector<FieldInfo>& slurm_block) {
-  std::vector<TaggedVariant> variants = {{"train", train_file_schema(sweep_block, slurm_block)}};
+  std::vector<TaggedVariant> variants = {
+      {"train", with_include_rule(train_file_schema(sweep_block, slurm_block))}};
   for (const auto& k : registered_job_kinds()) {
     json s = k.schema ? k.schema()
                       : open_schema("kind " + k.kind + " (" + k.summary +
-                                    "): its keys are not declared yet (issue 16 item 6); any "
-                                    "keys pass here, `cnclab validate FILE` checks them");
-    if (s.contains("properties")) add_loader_keys(s);
+                                    "): its keys are not declared yet; any keys pass here, "
+                                    "`cnclab validate FILE` checks them");
+    if (s.contains("properties")) {
+      add_loader_keys(s);
+      s = with_include_rule(s);
+    }
     variants.push_back({k.kind, s});
   }
   if (!kind.empty()) {

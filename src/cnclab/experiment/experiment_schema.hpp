@@ -4,10 +4,15 @@
 // the model types (model_spec.hpp), the trainers, the dataset generators
 // (data/generator.hpp) and the registered job kinds (job_kinds.hpp).
 //
-// It describes one file as the reader sees it after `include:` is merged:
-// a file whose required keys come from an include passes once resolved
-// (`cnclab validate FILE` prints that), a self-contained file passes as
-// written. Unknown keys fail where the reader is strict.
+// It describes one file as it is written and as the reader sees it after
+// `include:` is merged (`cnclab validate FILE` prints that). The keys a file
+// must have (dataset, model, trainer, a section's type, ...) are required
+// only of a file without `include:`, whose includes may supply them (JSON
+// Schema if/then); in either, unknown keys fail where the reader is strict.
+// A section whose type or generator comes from an include has each key
+// checked against every type's keys. An absent model.type means mlp in both:
+// a file whose include sets `model.type: narx` and that sets narx keys names
+// the type again.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -16,7 +21,8 @@
 
 namespace cnclab {
 
-// The schema of a `kind: train` file (the default kind). `sweep_block`,
+// The schema of a self-contained `kind: train` file (the default kind), as
+// `experiment_file_schema` holds a file without include: to it. `sweep_block`,
 // `slurm_block`: the declared keys of its `sweep:` and `slurm:` blocks
 // (sweep/sweep_fields.hpp, sweep/slurm_fields.hpp; the sweep module sits
 // above this one); empty: an open object.

@@ -81,6 +81,11 @@ struct JobKind {
   std::function<std::vector<std::filesystem::path>(const std::filesystem::path& file,
                                                    const std::string& profile)>
       upstream = {};
+  // The other files whose `profiles:` the job's --profile reaches (a `kind:
+  // sweep` file's experiment, whose trials load with the profile), for the
+  // profile check (profiles.hpp). Empty function: the file's own only.
+  std::function<std::vector<std::filesystem::path>(const std::filesystem::path& file)>
+      profile_sources = {};
 };
 
 // A kind whose files load into a `Job` by `load(file, overrides, profile)`

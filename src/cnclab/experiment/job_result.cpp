@@ -25,6 +25,7 @@ RunRecord make_job_record(const std::string& kind, const ResultKey& key) {
   r.config_hash = hash_hex(key.resolved_yaml);
   r.provenance = make_provenance(key.seed.value_or(0));
   r.provenance.status = "complete";
+  if (!key.source_file.empty()) set_project(r.provenance, key.source_file.parent_path());
   return r;
 }
 
@@ -86,10 +87,8 @@ void print_job_result(const RunRecord& r, std::ostream& out, const ShowOptions& 
   const Provenance& p = r.provenance;
   out << "experiment   " << r.experiment << " (kind: " << r.kind << ")\n"
       << "status       " << status_text(p.status, r.warnings)
-      << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n"
-      << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
-      << "run          " << p.start_utc << " -> " << p.end_utc << " ("
-      << format_metric(p.wall_seconds) << " s) on " << p.host << "\n";
+      << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n";
+  print_provenance(p, out);
   for (const auto& u : r.upstream) {
     out << "upstream     " << u.experiment << ": " << u.result_file << "\n";
   }

@@ -46,7 +46,21 @@ const FieldList<MlpOptions>& dropout_fields() {
           .choice("placement", &O::dropout_placement,
                   {{"between_hidden", DropoutPlacement::between_hidden},
                    {"after_every_hidden", DropoutPlacement::after_every_hidden}},
-                  "between_hidden (seed 000) or after_every_hidden");
+                  "between_hidden (seed 000) or after_every_hidden")
+          .choice(
+              "inference", &O::dropout_inference,
+              {{"deterministic", DropoutInference::deterministic}, {"mc", DropoutInference::mc}},
+              "how the reported predictions and metrics evaluate the network: deterministic "
+              "(one pass, r = 1) or mc (Monte-Carlo dropout: the mean of mc_samples passes "
+              "with new masks, from the run's own random stream mc_dropout); a network with "
+              "dropout is also evaluated the other way, stored beside (the per-epoch losses "
+              "and early stopping stay deterministic)")
+          .omit_default()
+          .field("mc_samples", &O::dropout_mc_samples,
+                 "passes averaged by Monte-Carlo dropout (inference mc, and the other-way "
+                 "evaluation of a deterministic run)",
+                 Rule::in(1, true, 1000000, true))
+          .omit_default();
   return fields;
 }
 
@@ -120,6 +134,7 @@ void validate_mlp_model(const ConfigReader& r, const MlpOptions& m) {
     } catch (const OptionError& e) {
       const std::string key = e.field() == "dropout_keep_probability" ? "dropout.keep_probability"
                               : e.field() == "dropout_placement"      ? "dropout.placement"
+                              : e.field() == "dropout_mc_samples"     ? "dropout.mc_samples"
                                                                       : e.field();
       throw OptionError(key, e.value(), e.rule());
     }

@@ -18,6 +18,7 @@
 #include "cnclab/experiment/sequence_metrics.hpp"
 #include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/provenance.hpp"
+#include "cnclab/nn/metrics.hpp"
 #include "cnclab/train/narx_training.hpp"
 
 namespace cnclab {
@@ -307,10 +308,16 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
       p.target_rows.push_back(rows[a]);
       p.predicted.push_back(narx_rec.predictions.row(static_cast<Eigen::Index>(a)).transpose());
     }
-    rec.metrics = sequence_metrics(p, spec.metrics);
+    // The registered metrics are of the validation half: stored as
+    // validation.<name> (spec.hpp, metric_splits_of).
+    std::vector<std::string> wanted;
+    for (const auto& name : stored_metrics(spec)) wanted.push_back(metric_base(name));
+    for (const auto& [name, value] : sequence_metrics(p, wanted)) {
+      rec.metrics[metric_name("validation", name)] = value;
+    }
   }
   rec.narx = std::move(narx_rec);
-  rec.provenance.end_utc = utc_now_iso8601();
+  finish_provenance(rec.provenance);
   rec.provenance.wall_seconds = seconds_since(wall_start);
   rec.provenance.status = ok ? "complete" : "failed";
   if (ok) rec.warnings = prediction_warnings(rec);
@@ -324,6 +331,7 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
   outcome.message = message;
   outcome.metrics = rec.metrics;
   outcome.warnings = rec.warnings;
+  outcome.notes = validation_notes(rec);
   return outcome;
 }
 

@@ -9,6 +9,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/job_result.hpp"
+#include "cnclab/experiment/result_inference.hpp"
 #include "cnclab/experiment/result_lm_history.hpp"
 #include "cnclab/experiment/result_narx.hpp"
 #include "cnclab/experiment/run_warnings.hpp"
@@ -74,6 +75,7 @@ void write_mlp_sections(H5File& f, const RunRecord& r) {
   f.set_attribute("/model", "output_activation", to_string(r.model.output_activation));
   f.set_attribute("/model", "dropout_keep_probability", r.model.dropout_keep_probability);
   f.set_attribute("/model", "dropout_placement", to_string(r.model.dropout_placement));
+  write_inference(f, r);
   f.set_attribute("/model", "parameter_layout",
                   "per layer: W (n_out x n_in, column-major) then b (n_out)");
   f.write_vector("/model/parameters", to_std(r.parameters), "1");
@@ -165,7 +167,15 @@ void print_metrics(const RunRecord& r, const std::string& note, std::ostream& ou
     value_width = std::max(value_width, format_metric(value).size() + 2);
   }
   out << "metrics" << (note.empty() ? "" : "      (" + note + ")") << "\n";
-  for (const auto& [name, value] : r.metrics) {
+  // Split by split (train, validation, test), then names without a split.
+  std::vector<std::pair<std::string, double>> ordered(r.metrics.begin(), r.metrics.end());
+  const auto rank = [](const std::string& name) {
+    const auto& splits = metric_splits();
+    return std::find(splits.begin(), splits.end(), metric_split(name)) - splits.begin();
+  };
+  std::stable_sort(ordered.begin(), ordered.end(),
+                   [&](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
+  for (const auto& [name, value] : ordered) {
     const auto it = r.metric_units.find(name);
     const std::string unit = it == r.metric_units.end() ? "" : it->second;
     std::string line = "  " + name + std::string(name_width - name.size(), ' ') +
@@ -235,7 +245,8 @@ std::map<std::string, std::string> read_metric_units(const H5File& f) {
 std::map<std::string, std::string> training_metric_units(const RunRecord& r) {
   std::map<std::string, std::string> units;
   for (const auto& [name, value] : r.metrics) {
-    units[name] = r.narx ? sequence_metric_unit(name) : metric_unit(name, r.target_units);
+    units[name] =
+        r.narx ? sequence_metric_unit(metric_base(name)) : metric_unit(name, r.target_units);
   }
   return units;
 }
@@ -247,6 +258,42 @@ std::map<std::string, double> read_metrics(const H5File& f) {
   }
   return metrics;
 }
+
+std::string format1_metric_name(const std::string& name) {
+  if (name == kOlderValidationMse) return metric_name("validation", "normalised_mse");
+  if (!metric_split(name).empty()) return name;
+  const auto& mlp = base_metrics();
+  const bool of_test = std::find(mlp.begin(), mlp.end(), name) != mlp.end();
+  return metric_name(of_test ? "test" : "validation", name);
+}
+
+namespace {
+bool is_training_result(const H5File& f) {
+  return !f.has_attribute("/", "kind") || f.attribute_string("/", "kind") == "train";
+}
+
+// Metrics (or their units) of file `f` of format `version` under today's
+// names: every name of a training result; of a job result only the training
+// metrics it carries (a sweep job's selected trial: base metrics, the older
+// validation name, registered sequence metrics), not the job's own names.
+template <class V>
+std::map<std::string, V> current_names(std::map<std::string, V> stored, const H5File& f,
+                                       int version) {
+  if (version >= 2) return stored;
+  const bool training = is_training_result(f);
+  const auto& mlp = base_metrics();
+  const auto sequence = sequence_metric_names();
+  const auto renamed = [&](const std::string& name) {
+    const bool of_training = training || name == kOlderValidationMse ||
+                             std::find(mlp.begin(), mlp.end(), name) != mlp.end() ||
+                             std::find(sequence.begin(), sequence.end(), name) != sequence.end();
+    return of_training ? format1_metric_name(name) : name;
+  };
+  std::map<std::string, V> out;
+  for (auto& [name, value] : stored) out[renamed(name)] = std::move(value);
+  return out;
+}
+}  // namespace
 
 std::vector<std::string> read_warnings(const H5File& f) {
   if (!f.has_attribute("/", "warnings")) return {};
@@ -274,11 +321,13 @@ RunRecord read_result_in_process(const std::filesystem::path& path);
 
 ResultStatus read_status_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
-  require_format(f, kResultFormat, kResultFormatVersion);
+  const int version =
+      require_format(f, kResultFormat, kResultOldestFormatVersion, kResultFormatVersion);
   ResultStatus s;
   s.status = f.attribute_string("/", "status");
   s.failure_reason = f.attribute_string("/provenance", "failure_reason");
-  s.metrics = read_metrics(f);
+  s.metrics = current_names(read_metrics(f), f, version);
+  s.metric_units = current_names(read_metric_units(f), f, version);
   s.warnings = read_warnings(f);
   s.upstream = read_upstream(f);
   return s;
@@ -314,6 +363,16 @@ void read_mlp_sections(const H5File& f, RunRecord& r) {
     bad(std::string("/model: ") + e.what());
   }
   r.model.dropout_keep_probability = f.attribute_double("/model", "dropout_keep_probability");
+  // Read back so that Mlp(r.model) has the run's dropout layers (MC dropout).
+  if (f.has_attribute("/model", "dropout_placement")) {
+    const std::string placement = f.attribute_string("/model", "dropout_placement");
+    if (placement == to_string(DropoutPlacement::after_every_hidden)) {
+      r.model.dropout_placement = DropoutPlacement::after_every_hidden;
+    } else if (placement != to_string(DropoutPlacement::between_hidden)) {
+      bad("/model: unknown dropout_placement '" + placement + "'");
+    }
+  }
+  read_inference(f, r);
   r.parameters = to_eigen(f.read_vector("/model/parameters"));
   r.input_scaling = read_scaling(f, "/model/input_scaling");
   r.target_scaling = read_scaling(f, "/model/target_scaling");
@@ -350,11 +409,17 @@ void read_mlp_sections(const H5File& f, RunRecord& r) {
 
 RunRecord read_result_in_process(const std::filesystem::path& path) {
   const H5File f = H5File::open_read(path);
-  require_format(f, kResultFormat, kResultFormatVersion);
-  if (f.has_attribute("/", "kind") && f.attribute_string("/", "kind") != "train") {
-    return read_job_result(f);
+  const int version =
+      require_format(f, kResultFormat, kResultOldestFormatVersion, kResultFormatVersion);
+  if (!is_training_result(f)) {
+    RunRecord job = read_job_result(f);
+    job.format_version = version;
+    job.metrics = current_names(std::move(job.metrics), f, version);
+    job.metric_units = current_names(std::move(job.metric_units), f, version);
+    return job;
   }
   RunRecord r;
+  r.format_version = version;
   r.experiment = f.attribute_string("/", "experiment");
   r.config_hash = f.attribute_string("/", "config_hash");
   r.resolved_yaml = f.read_string("/config");
@@ -374,88 +439,16 @@ RunRecord read_result_in_process(const std::filesystem::path& path) {
   } else {
     read_mlp_sections(f, r);
   }
-  r.metrics = read_metrics(f);
-  r.metric_units = read_metric_units(f);
+  r.metrics = current_names(read_metrics(f), f, version);
+  if (r.other_inference) {
+    r.other_inference->metrics = current_names(std::move(r.other_inference->metrics), f, version);
+  }
+  r.metric_units = current_names(read_metric_units(f), f, version);
   if (r.metric_units.empty()) r.metric_units = training_metric_units(r);  // older files
   r.warnings = read_warnings(f);
   r.upstream = read_upstream(f);
   return r;
 }
 }  // namespace
-
-namespace {
-void print_mlp_model(const RunRecord& r, std::ostream& out) {
-  out << "model        mlp " << r.model.inputs;
-  for (auto h : r.model.hidden) out << "-" << h;
-  out << "-" << r.model.outputs << " (" << to_string(r.model.hidden_activation) << ", keep p "
-      << format_metric(r.model.dropout_keep_probability) << ", " << r.parameters.size()
-      << " parameters)\n";
-  out << "training     " << r.trainer << ", " << to_string(r.training.termination) << ": "
-      << r.training.message << "\n";
-  if (!r.training.history.empty()) {
-    const auto& last = r.training.history.back();
-    out << "             final train loss " << format_metric(last.train_loss);
-    if (!r.test_loss.empty()) out << ", test loss " << format_metric(r.test_loss.back());
-    out << " (normalised MSE) after " << last.epoch << " epochs, "
-        << format_metric(last.wall_seconds) << " s\n";
-  }
-  if (!r.training.lm_history.empty()) {
-    const auto& lm = r.training.lm_history.back();
-    out << "             final SSE " << format_metric(lm.sse) << ", SSW " << format_metric(lm.ssw)
-        << ", mu " << format_metric(lm.mu) << ", gradient " << format_metric(lm.gradient) << "\n";
-    if (r.trainer == "trainbr") {
-      out << "             alpha " << format_metric(lm.alpha) << ", beta " << format_metric(lm.beta)
-          << ", gamma " << format_metric(lm.gamma) << " of " << r.parameters.size()
-          << " parameters effective";
-      if (r.training.beta_guard_count > 0) {
-        out << "; beta guard (N - gamma <= 0, previous beta kept) in "
-            << r.training.beta_guard_count << " epochs";
-      }
-      out << "\n";
-    }
-  }
-}
-
-}  // namespace
-
-void print_result(const RunRecord& r, std::ostream& out, const ShowOptions& options) {
-  if (r.kind != "train") {
-    print_job_result(r, out, options);
-    return;
-  }
-  const Provenance& p = r.provenance;
-  out << "experiment   " << r.experiment << "\n"
-      << "status       " << status_text(p.status, r.warnings)
-      << (p.failure_reason.empty() ? "" : ": " + p.failure_reason) << "\n"
-      << "cnclab       " << p.cnclab_version << " (git " << p.git_commit << ")\n"
-      << "run          " << p.start_utc << " -> " << p.end_utc << " ("
-      << format_metric(p.wall_seconds) << " s) on " << p.host << "\n"
-      << "seed         " << p.master_seed << " (";
-  bool first = true;
-  for (const auto& [name, seed] : p.derived_seeds) {
-    out << (first ? "" : ", ") << name << " " << seed;
-    first = false;
-  }
-  out << ")\n";
-  out << "dataset      " << r.dataset_file << " ("
-      << r.test_targets.cols() +
-             static_cast<Eigen::Index>(r.split.train.size() + r.split.validation.size())
-      << " samples, hash " << r.dataset_hash << ")\n"
-      << "split        train " << r.split.train.size() << ", validation "
-      << r.split.validation.size() << ", test " << r.split.test.size() << "\n";
-  if (r.narx) {
-    print_narx_model(r, out);
-  } else {
-    print_mlp_model(r, out);
-  }
-  bool normalised = false;
-  for (const auto& [name, value] : r.metrics)
-    normalised = normalised || name.starts_with("normalised_");
-  print_metrics(r,
-                std::string(r.narx ? "validation part, closed loop" : "test split") +
-                    (normalised ? "; scaled: the network's scaled target units" : ""),
-                out);
-  print_result_config(r.resolved_yaml, out, options);
-}
 
 }  // namespace cnclab

@@ -14,7 +14,21 @@
 namespace cnclab {
 
 inline constexpr const char* kResultFormat = "cnclab-result";
-inline constexpr int kResultFormatVersion = 1;
+// 2: training metrics per split ("test.rmse", nn/metrics.hpp). 1: the mlp's
+// metrics of the test split as "rmse" ..., normalised_mse (test) and
+// normalised_validation_mse, a narx run's of its validation half under their
+// registered names; read with format1_metric_name (job results: the
+// training metrics among theirs, a sweep job's selected trial's).
+inline constexpr int kResultFormatVersion = 2;
+inline constexpr int kResultOldestFormatVersion = 1;
+
+// Today's name of a training metric stored by result format 1 (and sweep
+// plans and summaries of then): normalised_validation_mse is
+// validation.normalised_mse; the mlp's metrics (base_metrics(), nn/metrics.hpp)
+// were of the test split: "rmse" is test.rmse; every other name was a
+// sequence metric of a narx run's validation half: validation.<name>. A name
+// with a split stays.
+std::string format1_metric_name(const std::string& name);
 
 void write_result(const std::filesystem::path& path, const RunRecord& record);
 
@@ -26,11 +40,12 @@ RunRecord read_result(const std::filesystem::path& path);
 // like read_result (safe read, format, version, completeness) but without
 // reading its arrays (several times faster).
 struct ResultStatus {
-  std::string status;          // "complete" | "failed"
-  std::string failure_reason;  // failed only
-  std::map<std::string, double> metrics;
-  std::vector<std::string> warnings;  // complete only (run_warnings.hpp)
-  std::vector<UpstreamRef> upstream;  // the upstream results it was made from
+  std::string status;                               // "complete" | "failed"
+  std::string failure_reason;                       // failed only
+  std::map<std::string, double> metrics;            // today's names (format1_metric_name)
+  std::map<std::string, std::string> metric_units;  // per metric; empty in the oldest files
+  std::vector<std::string> warnings;                // complete only (run_warnings.hpp)
+  std::vector<UpstreamRef> upstream;                // the upstream results it was made from
 };
 ResultStatus read_result_status(const std::filesystem::path& path);
 
@@ -66,6 +81,16 @@ void write_result_upstream(H5File& file, const std::vector<UpstreamRef>& upstrea
 std::map<std::string, double> read_metrics(const H5File& file);
 std::vector<UpstreamRef> read_upstream(const H5File& file);
 std::vector<std::string> read_warnings(const H5File& file);  // none when absent (older files)
+
+// How a training run used its validation part, for people (`run` and `show`
+// print it): trainbr has no validation stop (as MATLAB's trainbr), so its
+// validation split is held out of training and only scored; a narx run's
+// stages never stop on the validation half. Empty for the other trainers
+// (their validation stop, when configured, is in the training message).
+std::vector<std::string> validation_notes(const RunRecord& record);
+
+// provenance_lines (io/provenance.hpp) as `show` lines: label padded to 13.
+void print_provenance(const Provenance& provenance, std::ostream& out);
 
 // Human-readable summary for `cnclab show` (job results: print_job_result).
 void print_result(const RunRecord& record, std::ostream& out, const ShowOptions& options = {});

@@ -53,6 +53,14 @@ std::optional<StoredResult> ResultStore::existing(const ResultKey& key) const {
   std::error_code ec;
   if (!fs::exists(file, ec)) return std::nullopt;
   StoredResult r{file, read_result(file)};  // IoError unless complete and readable
+  // A training result of format 1 has the test split's metrics only, not the
+  // per-split ones selections need (result_file.hpp): made again, not reused.
+  if (r.record.kind == "train" && r.record.format_version < kResultFormatVersion) {
+    throw OutdatedResult(file.string() + ": result format " +
+                         std::to_string(r.record.format_version) +
+                         " (written before metrics per split; `cnclab show` still reads it): not "
+                         "reused, run it again");
+  }
   // The file name holds 8 hex digits of the identity; the file the full hash.
   if (r.record.config_hash != hash_hex(key.resolved_yaml)) {
     throw IoError(file.string() + ": config_hash " + r.record.config_hash +

@@ -8,6 +8,9 @@
 //   configuration: R/<name>/<name>[-seed<seed>]-<first 8 hex digits>.h5
 //   (path_of), and the file's own config_hash must equal the full hash. A
 //   result of another configuration is never taken, however recent.
+// - Current only: a training result of an older result format (its metrics
+//   are not per split; result_file.hpp) is not reused: `get` says there is
+//   none, `reproduce` and sweeps make it again.
 // - Complete only: a file that is not a complete result (no `complete`
 //   attribute, partial name, unreadable) is not a result; `get` then says
 //   there is none. A complete run whose training failed is returned only
@@ -29,6 +32,13 @@ namespace cnclab {
 
 // The result asked for does not exist (yet) or is not a complete result.
 class MissingResults : public IoError {
+ public:
+  using IoError::IoError;
+};
+
+// A readable result of the config asked for, but of an older result format
+// that is not reused (the rule "Current only" above).
+class OutdatedResult : public IoError {
  public:
   using IoError::IoError;
 };

@@ -30,6 +30,15 @@ struct OutputRef {
   std::string file;  // relative to the result file's folder
 };
 
+// A network with dropout evaluated the other way than its
+// model.dropout.inference (deterministic <-> mc, nn/mlp.hpp), so that one
+// training answers both (seed 000 Table 2 under both evaluations).
+struct OtherInference {
+  DropoutInference inference = DropoutInference::mc;
+  Eigen::MatrixXd test_predictions;       // physical units, as RunRecord's
+  std::map<std::string, double> metrics;  // the run's metrics, evaluated this way
+};
+
 // One trained network of a narx run (model.type narx): one target.
 struct NarxStageRecord {
   std::string mode;     // open_loop | closed_loop
@@ -64,6 +73,10 @@ struct RunRecord {
   // of a `kind: <job>` file (job_result.hpp), which has only the experiment
   // name, config, provenance, metrics, upstream, outputs and facts.
   std::string kind = "train";
+  // The result format the file was written in (kResultFormatVersion,
+  // result_file.hpp; a record made in memory: the current one). Files of an
+  // older format are read, their metrics under today's names.
+  int format_version = 2;
   std::string experiment;     // spec.name
   std::string resolved_yaml;  // the full resolved config
   std::string config_hash;    // identity of the run: hash of resolved_yaml
@@ -81,9 +94,14 @@ struct RunRecord {
   Summary training;
   std::vector<double> test_loss;  // per epoch, MSE in normalised units (NaN if no test set)
 
-  Eigen::MatrixXd test_predictions;  // physical units, one sample per column
+  // Under model.dropout.inference: physical units, one sample per column.
+  Eigen::MatrixXd test_predictions;
   Eigen::MatrixXd test_targets;
   std::map<std::string, double> metrics;
+  // The other evaluation of a network with dropout (/other_inference);
+  // absent without dropout (both ways are the same network) and in results
+  // written before it was stored.
+  std::optional<OtherInference> other_inference;
   // Each metric's unit ("µm²", "1"; "" unknown), stored apart from the values
   // (/metrics/units). Training records: training_metric_units (result_file.hpp)
   // when written; jobs: what the job sets.

@@ -2,6 +2,8 @@
 // Warnings a complete result carries: it is a result (status complete) but
 // not a useful one. Stored in the result file as the root attribute
 // `warnings` ("; "-separated, absent when none: older files read as none).
+// Besides the ones below, the runner adds "constant targets (NAME)" when the
+// dataset's targets have no spread to learn (data/constant_targets.hpp).
 #include <string>
 #include <vector>
 

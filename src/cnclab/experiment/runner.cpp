@@ -3,12 +3,14 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
 #include "cnclab/core/resources.hpp"
 #include "cnclab/core/rng.hpp"
+#include "cnclab/data/constant_targets.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/experiment/narx_runner.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -24,7 +26,8 @@ namespace {
 
 // Named random streams of a run; the names are part of the reproducibility
 // contract (stored in the result's provenance).
-constexpr const char* kStreams[] = {"generator", "split", "init", "dropout", "shuffle"};
+constexpr const char* kStreams[] = {"generator", "split",   "init",
+                                    "dropout",   "shuffle", "mc_dropout"};
 
 Eigen::MatrixXd columns(const Eigen::MatrixXd& m, const std::vector<std::size_t>& idx) {
   Eigen::MatrixXd out(m.rows(), static_cast<Eigen::Index>(idx.size()));
@@ -76,6 +79,9 @@ RunRecord start_run_record(const LoadedExperiment& experiment) {
   rec.resolved_yaml = experiment.resolved_yaml;
   rec.config_hash = hash_hex(experiment.resolved_yaml);
   rec.provenance = make_provenance(experiment.spec.seed);
+  rec.provenance.overrides = experiment.spec.overrides;
+  rec.provenance.profile = experiment.spec.profile;
+  set_project(rec.provenance, experiment.spec.source_file.parent_path());
   rec.provenance.derived_seeds["generator"] = generator_seed(experiment.spec);
   return rec;
 }
@@ -107,6 +113,8 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   const CachedDataset cached =
       obtain_run_dataset(spec, rec.provenance.derived_seeds["generator"], options);
   const Dataset data = select_targets(cached.dataset, spec.dataset.targets);
+  const std::string target_warning = constant_targets_warning(
+      selected_constant_targets(cached.dataset, data, *spec.dataset.generator));
   rec.dataset_file = cached.path.string();
   rec.dataset_hash = cached.content_hash;
   rec.input_names = data.input_names;
@@ -189,26 +197,53 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   rec.parameters = params;
   const bool ok = rec.training.termination != Termination::diverged;
 
-  // Evaluation in physical units and in the network's normalised units.
+  // Evaluation of every split in physical units and in the network's
+  // normalised units (nn/metrics.hpp), under model.dropout.inference; a
+  // network with dropout also the other way (RunRecord::other_inference): one
+  // training, both answers, each with metrics named "<split>.<base>".
   if (ok) {
-    EvaluationData eval;
-    eval.test_outputs = mlp.predict(params, xn_test);
-    eval.test_scaled_targets = yn_test;
-    eval.validation_outputs =
-        xn_val.cols() > 0 ? mlp.predict(params, xn_val) : Eigen::MatrixXd(yn_val.rows(), 0);
-    eval.validation_scaled_targets = yn_val;
-    rec.test_predictions = rec.target_scaling.inverse_transform(eval.test_outputs);
+    const auto evaluate = [&](DropoutInference inference) {
+      std::map<std::string, SplitData> splits;
+      const auto add = [&](const char* split, const Eigen::MatrixXd& xn, const Eigen::MatrixXd& yn,
+                           const Eigen::MatrixXd& y) {
+        // Monte-Carlo masks: one stream per split under "mc_dropout", so a
+        // split's masks depend on nothing else evaluated.
+        Rng rng(rec.provenance.derived_seeds.at("mc_dropout"), split);
+        SplitData& d = splits[split];
+        d.outputs =
+            xn.cols() > 0 ? mlp.infer(params, xn, inference, rng) : Eigen::MatrixXd(yn.rows(), 0);
+        d.scaled_targets = yn;
+        d.predictions = rec.target_scaling.inverse_transform(d.outputs);
+        d.targets = y;
+      };
+      add("train", xn_train, yn_train, y_train);
+      add("validation", xn_val, yn_val, y_val);
+      add("test", xn_test, yn_test, y_test);
+      return splits;
+    };
+    const std::vector<std::string> wanted = stored_metrics(spec);
+    const auto splits = evaluate(rec.model.dropout_inference);
+    rec.test_predictions = splits.at("test").predictions;
     rec.test_targets = y_test;
-    eval.test_predictions = rec.test_predictions;
-    eval.test_targets = rec.test_targets;
-    rec.metrics = evaluation_metrics(eval, spec.metrics);
+    rec.metrics = evaluation_metrics(splits, wanted);
+    if (mlp.has_any_dropout()) {
+      OtherInference other;
+      other.inference = rec.model.dropout_inference == DropoutInference::mc
+                            ? DropoutInference::deterministic
+                            : DropoutInference::mc;
+      const auto other_splits = evaluate(other.inference);
+      other.test_predictions = other_splits.at("test").predictions;
+      other.metrics = evaluation_metrics(other_splits, wanted);
+      rec.other_inference = std::move(other);
+    }
   }
 
-  rec.provenance.end_utc = utc_now_iso8601();
+  finish_provenance(rec.provenance);
   rec.provenance.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   rec.provenance.status = ok ? "complete" : "failed";
   if (ok) rec.warnings = prediction_warnings(rec);
+  if (ok && !target_warning.empty()) rec.warnings.push_back(target_warning);
   rec.provenance.failure_reason = ok ? "" : rec.training.message;
 
   RunOutcome outcome;
@@ -219,6 +254,7 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   outcome.message = rec.training.message;
   outcome.metrics = rec.metrics;
   outcome.warnings = rec.warnings;
+  outcome.notes = validation_notes(rec);
   return outcome;
 }
 

@@ -32,6 +32,7 @@ struct RunOutcome {
   std::string message;  // termination message
   std::map<std::string, double> metrics;
   std::vector<std::string> warnings;  // a complete result that is not a useful one
+  std::vector<std::string> notes;     // how the run used its validation part (validation_notes)
 };
 
 // Runs one experiment. Bad configuration or I/O problems throw; a run whose

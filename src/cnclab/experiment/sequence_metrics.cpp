@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "cnclab/nn/metrics.hpp"
+
 namespace cnclab {
 namespace {
 
@@ -35,6 +37,13 @@ std::string sequence_metric_unit(const std::string& name) {
     if (const auto it = g.units.find(name); it != g.units.end()) return it->second;
   }
   return "";
+}
+
+MetricRange sequence_metric_range(const std::string& name) {
+  for (const auto& g : sequence_metric_groups()) {
+    if (const auto it = g.ranges.find(metric_base(name)); it != g.ranges.end()) return it->second;
+  }
+  return {};
 }
 
 std::map<std::string, double> sequence_metrics(const SequencePrediction& prediction,

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cnclab/data/dataset.hpp"
+#include "cnclab/nn/metric_range.hpp"
 
 namespace cnclab {
 
@@ -38,7 +39,8 @@ struct SequenceMetricGroup {
   std::vector<std::string> metrics;  // the names it computes
   // Every name of `metrics` (NaN where it does not apply).
   std::function<std::map<std::string, double>(const SequencePrediction&)> compute;
-  std::map<std::string, std::string> units;  // per metric ("µm", "1"); absent: unknown
+  std::map<std::string, std::string> units;   // per metric ("µm", "1"); absent: unknown
+  std::map<std::string, MetricRange> ranges;  // per metric (a distance: >= 0); absent: unbounded
 };
 
 // std::logic_error when a name is registered twice.
@@ -47,6 +49,9 @@ void register_sequence_metrics(SequenceMetricGroup group);
 std::vector<std::string> sequence_metric_names();
 // The unit a group registered for `name`; "" when none did.
 std::string sequence_metric_unit(const std::string& name);
+// The range a group registered for `name` (or its base, "contour_rms" of
+// "validation.contour_rms"); unbounded when none did.
+MetricRange sequence_metric_range(const std::string& name);
 // The metrics `wanted` (registered names) of one prediction.
 std::map<std::string, double> sequence_metrics(const SequencePrediction& prediction,
                                                const std::vector<std::string>& wanted);

@@ -193,11 +193,16 @@ void check_experiment(const ConfigReader& root, const std::filesystem::path& bas
         "keep_probability", "must be 1 with trainer " + trainer_name(spec.trainer) +
                                 " (Levenberg-Marquardt needs a deterministic network)");
   }
+  const auto known = spec.narx ? metric_selection_names(sequence_metric_names(), {"validation"})
+                               : metric_selection_names(base_metrics(), metric_splits());
   for (const auto& m : spec.metrics) {
-    const auto known = spec.narx ? sequence_metric_names() : known_metrics();
     if (std::find(known.begin(), known.end(), m) == known.end()) {
-      root.fail("metrics",
-                "unknown metric '" + m + "'" + did_you_mean(m, known) + "; " + one_of(known));
+      const bool test_of_narx = spec.narx && metric_split(m) == "test";
+      root.fail("metrics", "unknown metric '" + m + "'" +
+                               (test_of_narx ? " (model.type narx has no test split: its metrics "
+                                               "are of the validation half)"
+                                             : did_you_mean(m, known)) +
+                               "; " + one_of(known));
     }
   }
   for (const auto& text : spec.needs) {
@@ -304,10 +309,13 @@ const FieldList<ExperimentSpec>& experiment_fields() {
                     return s.narx ? stages_to_node(s.stages) : trainer_to_node(s.trainer);
                   })
           .field("metrics", &E::metrics,
-                 "metrics of the test split (physical units) and normalised_mse / "
-                 "normalised_validation_mse (scaled units; metrics.hpp); model.type narx: the "
-                 "registered sequence metrics (sequence_metrics.hpp), all of them by default",
-                 Rule::one_of(known_metrics()))
+                 "metrics to store: a name (mse, rmse, mae, max_abs_error, r2 in physical "
+                 "units; normalised_mse in the scaled units) means it on the train, validation "
+                 "and test splits (train.rmse, validation.rmse, test.rmse); "
+                 "<split>.<name> only that one (metrics.hpp); model.type narx: the registered "
+                 "sequence metrics (sequence_metrics.hpp), on the validation half only, all "
+                 "of them by default",
+                 Rule::one_of(metric_selection_names(base_metrics(), metric_splits())))
           .field("needs", &E::needs,
                  "experiment files (relative to this file) whose results this one depends on")
           .omit_default()
@@ -353,6 +361,32 @@ std::string read_experiment_name(const ConfigReader& root) {
   return name;
 }
 
+std::vector<std::string> metric_splits_of(const ExperimentSpec& spec) {
+  if (spec.narx) return {"validation"};
+  const SplitOptions::Sizes sizes = spec.split.sizes(spec.dataset.generator->shape().samples);
+  std::vector<std::string> splits;
+  if (sizes.train > 0) splits.emplace_back("train");
+  if (sizes.validation > 0) splits.emplace_back("validation");
+  if (sizes.test > 0) splits.emplace_back("test");
+  return splits;
+}
+
+std::vector<std::string> stored_metrics(const ExperimentSpec& spec) {
+  // Entries naming a split without samples ("validation.rmse" with no
+  // validation split) are accepted and store nothing: a shared metrics list
+  // fits every split of its experiments.
+  const std::vector<std::string> splits = metric_splits_of(spec);
+  std::vector<std::string> selection;
+  for (const auto& m : spec.metrics) {
+    const std::string split = m == kOlderValidationMse ? "validation" : metric_split(m);
+    if (split.empty() || std::find(splits.begin(), splits.end(), split) != splits.end()) {
+      selection.push_back(m);
+    }
+  }
+  if (spec.narx) return expand_metric_selection(selection, sequence_metric_names(), splits);
+  return expand_metric_selection(selection, base_metrics(), splits);
+}
+
 LoadedExperiment load_experiment(const std::filesystem::path& file,
                                  const std::vector<Override>& overrides,
                                  std::optional<std::uint64_t> seed_override,
@@ -361,6 +395,8 @@ LoadedExperiment load_experiment(const std::filesystem::path& file,
   LoadedExperiment loaded = read_experiment(doc, overrides, seed_override, file.parent_path());
   loaded.spec.source_file = file;
   loaded.spec.profile = profile;
+  for (const auto& o : overrides) loaded.spec.overrides.push_back(o.text);
+  if (seed_override) loaded.spec.overrides.push_back("seed=" + std::to_string(*seed_override));
   return loaded;
 }
 

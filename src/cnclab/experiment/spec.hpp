@@ -72,6 +72,9 @@ struct ExperimentSpec {
   // following_error generator scales its columns itself).
   std::optional<NarxModelSpec> narx;
   std::vector<TrainingStage> stages;
+  // metrics: names of nn/metrics.hpp (mlp) or registered sequence metrics
+  // (narx): a base name is that metric on every split the run has
+  // (stored_metrics), "<split>.<base>" that one only.
   std::vector<std::string> metrics = {"mse", "rmse", "mae", "max_abs_error", "r2"};
   // needs: [FILE, ...]: experiments whose results this one depends on (paths
   // relative to the experiment file given, also when the key comes from an
@@ -92,6 +95,9 @@ struct ExperimentSpec {
   // The `profiles:` entry applied when loading ("" = none; core/config.hpp).
   // Upstream experiments (needs, init_from) load with the same profile.
   std::string profile;
+  // The `key=value` overrides applied when loading, as given, then
+  // `seed=N` for a seed override (recorded in the result's provenance).
+  std::vector<std::string> overrides;
   // What the reader changed on its own (LoadedExperiment::notes); not configuration.
   std::vector<std::string> reader_notes;
 };
@@ -102,6 +108,19 @@ struct ExperimentSpec {
 // sample count, dropout with LM, metric names, upstream files) are checked
 // by the reader after it.
 const FieldList<ExperimentSpec>& experiment_fields();
+
+// The splits an experiment's metrics are computed on, of metric_splits()
+// (nn/metrics.hpp), leaving out a part the split gives no samples (no
+// validation split: no validation.*). mlp: train, validation, test. narx
+// (split.mode sequential_halves): validation only; the second half is held
+// out of training (no stage stops on it) and is what seed 002 reports; there
+// is no test part, so a narx selection is chosen and reported on the same
+// half.
+std::vector<std::string> metric_splits_of(const ExperimentSpec& spec);
+// What a result of `spec` stores: spec.metrics through expand_metric_selection
+// over metric_splits_of(spec) ("rmse" -> train.rmse, validation.rmse,
+// test.rmse). A split that turns out empty at run time stores none.
+std::vector<std::string> stored_metrics(const ExperimentSpec& spec);
 
 struct LoadedExperiment {
   ExperimentSpec spec;

@@ -83,48 +83,50 @@ Eigen::Vector3d surface_point(const NurbsSurface& s, double u, double v) {
   return h.a[0][0] / h.w[0][0];
 }
 
-Eigen::Vector3d oriented_unit_normal(const SurfaceDerivatives& d, const Eigen::Vector3d& toward) {
-  const Eigen::Vector3d n = d.du.cross(d.dv);
-  const double length = n.norm();
-  // Relative to the derivative sizes, so the test is scale-free.
-  if (!(length > 1e-14 * d.du.norm() * d.dv.norm())) {
-    throw Error("surface normal undefined at point (" + shortest_double(d.point.x()) + ", " +
-                shortest_double(d.point.y()) + ", " + shortest_double(d.point.z()) +
-                "): S_u x S_v = 0 (degenerate parameterisation)");
-  }
-  const double side = n.dot(toward) / length / toward.norm();
-  if (std::abs(side) < 1e-9) {
-    throw Error("surface normal perpendicular to the tool axis at point (" +
-                shortest_double(d.point.x()) + ", " + shortest_double(d.point.y()) + ", " +
-                shortest_double(d.point.z()) + "): the tool side is undefined");
-  }
-  return (side > 0 ? 1.0 : -1.0) * n / length;
-}
+namespace {
 
-NurbsCurve iso_curve_u(const NurbsSurface& s, double v) {
-  const int q = s.degree_v;
-  const double vc = std::clamp(v, s.knots_v.front(), s.knots_v.back());
-  const int sv = find_span(s.knots_v, q, vc);
-  BasisDerivatives nv;
-  basis_derivatives(s.knots_v, q, sv, vc, 0, nv);
+// Q_a = sum_b N_b(t) w_ab P_ab / W_a, W_a = sum_b N_b(t) w_ab: the surface at
+// fixed t in the direction `across` (v for an iso-u curve), as a curve along
+// the other direction. `at(a, b)` gives the control index of row a, column b.
+template <class Index>
+NurbsCurve iso_curve(const NurbsSurface& s, int degree_along,
+                     const std::vector<double>& knots_along, std::size_t count_along,
+                     int degree_across, const std::vector<double>& knots_across, double t,
+                     Index at) {
+  const double tc = std::clamp(t, knots_across.front(), knots_across.back());
+  const int span = find_span(knots_across, degree_across, tc);
+  BasisDerivatives n;
+  basis_derivatives(knots_across, degree_across, span, tc, 0, n);
   NurbsCurve c;
-  c.degree = s.degree_u;
-  c.knots = s.knots_u;
-  c.points.resize(s.count_u);
-  c.weights.resize(s.count_u);
-  for (std::size_t i = 0; i < s.count_u; ++i) {
-    Eigen::Vector3d a = Eigen::Vector3d::Zero();
+  c.degree = degree_along;
+  c.knots = knots_along;
+  c.points.resize(count_along);
+  c.weights.resize(count_along);
+  for (std::size_t a = 0; a < count_along; ++a) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     double w = 0.0;
-    for (int k = 0; k <= q; ++k) {
-      const auto j = static_cast<std::size_t>(sv - q + k);
-      const double nw = nv[0][k] * s.weight(i, j);
-      a += nw * s.point(i, j);
+    for (int k = 0; k <= degree_across; ++k) {
+      const std::size_t index = at(a, static_cast<std::size_t>(span - degree_across + k));
+      const double nw = n[0][k] * s.weights[index];
+      sum += nw * s.points[index];
       w += nw;
     }
-    c.points[i] = a / w;
-    c.weights[i] = w;
+    c.points[a] = sum / w;
+    c.weights[a] = w;
   }
   return c;
+}
+
+}  // namespace
+
+NurbsCurve iso_curve_u(const NurbsSurface& s, double v) {
+  return iso_curve(s, s.degree_u, s.knots_u, s.count_u, s.degree_v, s.knots_v, v,
+                   [&](std::size_t i, std::size_t j) { return i * s.count_v + j; });
+}
+
+NurbsCurve iso_curve_v(const NurbsSurface& s, double u) {
+  return iso_curve(s, s.degree_v, s.knots_v, s.count_v, s.degree_u, s.knots_u, u,
+                   [&](std::size_t j, std::size_t i) { return i * s.count_v + j; });
 }
 
 BoundingBox sampled_bounding_box(const NurbsSurface& s, int samples) {

@@ -39,14 +39,11 @@ struct SurfaceDerivatives {
 SurfaceDerivatives surface_derivatives(const NurbsSurface& surface, double u, double v);
 Eigen::Vector3d surface_point(const NurbsSurface& surface, double u, double v);
 
-// Unit normal S_u x S_v / |S_u x S_v|, flipped if needed so that
-// normal . toward > 0 (e.g. toward = the tool axis +z). Throws Error when
-// the normal is undefined (|S_u x S_v| = 0) or perpendicular to `toward`.
-Eigen::Vector3d oriented_unit_normal(const SurfaceDerivatives& d, const Eigen::Vector3d& toward);
-
 // The iso-parametric curve u -> S(u, v) at fixed v as an exact NURBS curve:
 // Q_i = sum_j N_j,q(v) w_ij P_ij / W_i with weights W_i = sum_j N_j,q(v) w_ij.
 NurbsCurve iso_curve_u(const NurbsSurface& surface, double v);
+// The same along v at fixed u: v -> S(u, v).
+NurbsCurve iso_curve_v(const NurbsSurface& surface, double u);
 
 // Axis-aligned bounding box of S over its parameter rectangle, from a grid of
 // samples x samples points (>= 2, boundaries included; exact in x and y for the designed surfaces

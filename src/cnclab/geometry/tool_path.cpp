@@ -1,6 +1,7 @@
 #include "cnclab/geometry/tool_path.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
@@ -19,37 +20,65 @@ void ToolPathOptions::validate() const {
     throw OptionError("tool_radius", shortest_double(tool_radius),
                       "must be a finite ball radius > 0 mm");
   }
-}
-
-double tool_path_v(const NurbsSurface& s, const ToolPathOptions& o, std::size_t line) {
-  const double v0 = s.knots_v.front(), v1 = s.knots_v.back();
-  return v0 + (v1 - v0) * static_cast<double>(line) / static_cast<double>(o.lines - 1);
-}
-
-double tool_path_u(const NurbsSurface& s, const ToolPathOptions& o, std::size_t k) {
-  const double u0 = s.knots_u.front(), u1 = s.knots_u.back();
-  const std::size_t m = o.points_per_line;
-  return k + 1 == m ? u1 : u0 + (u1 - u0) * static_cast<double>(k) / static_cast<double>(m - 1);
-}
-
-ToolPathLine plan_line(const NurbsSurface& s, const ToolPathOptions& o, std::size_t line) {
-  ToolPathLine t;
-  t.v = tool_path_v(s, o, line);
-  t.curve = iso_curve_u(s, t.v);
-  t.tool_radius = o.tool_radius;
-  const std::size_t m = o.points_per_line;
-  t.u.resize(m);
-  t.cc.resize(m);
-  t.normal.resize(m);
-  t.cl.resize(m);
-  for (std::size_t k = 0; k < m; ++k) {
-    t.u[k] = tool_path_u(s, o, k);
-    const SurfaceDerivatives d = surface_derivatives(s, t.u[k], t.v);
-    t.cc[k] = d.point;
-    t.normal[k] = oriented_unit_normal(d, kToolAxis);
-    t.cl[k] = d.point + o.tool_radius * t.normal[k];
+  std::vector<std::string> axis_text;
+  for (double a : tool_axis) axis_text.push_back(shortest_double(a));
+  const std::string axis = std::string("[").append(join(axis_text, ", ")).append("]");
+  if (tool_axis.size() != 3) throw OptionError("tool_axis", axis, "must be [x, y, z]");
+  const Eigen::Vector3d a(tool_axis[0], tool_axis[1], tool_axis[2]);
+  if (!a.allFinite() || !(a.norm() > 0.0)) {
+    throw OptionError("tool_axis", axis, "must be a finite direction of non-zero length");
   }
-  return t;
+  if (!(max_normal_angle > 0.0 && max_normal_angle <= 90.0)) {
+    throw OptionError("max_normal_angle", shortest_double(max_normal_angle),
+                      "must be in (0, 90] degrees (the normal's largest angle from the tool axis)");
+  }
+}
+
+Eigen::Vector3d ToolPathOptions::unit_tool_axis() const {
+  return Eigen::Vector3d(tool_axis[0], tool_axis[1], tool_axis[2]).normalized();
+}
+
+namespace {
+
+// The parameter range [first, last] across the lines (fixed) or along them (t).
+std::pair<double, double> range(const NurbsSurface& s, bool along_u) {
+  return along_u ? std::pair{s.knots_u.front(), s.knots_u.back()}
+                 : std::pair{s.knots_v.front(), s.knots_v.back()};
+}
+
+double grid_value(std::pair<double, double> r, std::size_t i, std::size_t n) {
+  if (i + 1 == n) return r.second;
+  return r.first + (r.second - r.first) * static_cast<double>(i) / static_cast<double>(n - 1);
+}
+
+}  // namespace
+
+double tool_path_fixed(const NurbsSurface& s, const ToolPathOptions& o, std::size_t line) {
+  return grid_value(range(s, o.feed == FeedDirection::v), line, o.lines);
+}
+
+double tool_path_t(const NurbsSurface& s, const ToolPathOptions& o, std::size_t k) {
+  return grid_value(range(s, o.feed == FeedDirection::u), k, o.points_per_line);
+}
+
+Eigen::Vector2d ToolPathLine::uv(double t_value) const {
+  return feed == FeedDirection::u ? Eigen::Vector2d(t_value, fixed)
+                                  : Eigen::Vector2d(fixed, t_value);
+}
+
+std::string ToolPathLine::label() const {
+  char value[32];
+  std::snprintf(value, sizeof value, "%.6g", fixed);
+  // (append, not operator+: GCC 12 -Wrestrict false positive on "x" + to_string)
+  return std::string("line ")
+      .append(std::to_string(index))
+      .append(feed == FeedDirection::u ? " (v = " : " (u = ")
+      .append(value)
+      .append(")");
+}
+
+std::size_t ToolPath::points() const {
+  return lines.empty() ? 0 : lines.size() * lines.front().t.size();
 }
 
 }  // namespace cnclab

@@ -3,9 +3,13 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/resource.h>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -29,7 +33,6 @@ extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribu
 namespace cnclab {
 namespace {
 
-constexpr unsigned kChildSeconds = 60;  // a sane file reads in milliseconds
 constexpr int kExitIoError = 3;
 constexpr int kExitOtherError = 4;
 
@@ -60,11 +63,15 @@ void restore_default_fault_handling() {
   if (__sanitizer_set_death_callback != nullptr) __sanitizer_set_death_callback(nullptr);
 }
 
-[[noreturn]] void child(int fd, const std::function<void()>& read) {
+[[noreturn]] void child(int fd, const std::function<void()>& read, double seconds) {
   // Library diagnostics and sanitizer reports of the probe are not ours to print.
   const int devnull = ::open("/dev/null", O_WRONLY);
   if (devnull >= 0) ::dup2(devnull, STDERR_FILENO);
-  ::alarm(kChildSeconds);
+  // SIGALRM after `seconds` of wall time (setitimer: fractions of a second too).
+  itimerval timer{};
+  timer.it_value.tv_sec = static_cast<time_t>(seconds);
+  timer.it_value.tv_usec = static_cast<suseconds_t>((seconds - std::floor(seconds)) * 1e6);
+  ::setitimer(ITIMER_REAL, &timer, nullptr);
 #ifndef CNCLAB_HAS_ASAN
   const rlim_t limit = memory_budget_bytes() / 2;
   const rlimit as{limit, limit};
@@ -93,7 +100,9 @@ void restore_default_fault_handling() {
 
 }  // namespace
 
-void probe_in_child(const std::filesystem::path& file, const std::function<void()>& read) {
+void probe_in_child(const std::filesystem::path& file, const std::function<void()>& read,
+                    double timeout_seconds) {
+  timeout_seconds = std::max(timeout_seconds, 1e-6);  // a zero timer would set no limit
   int fds[2];
   if (::pipe(fds) != 0)
     throw IoError(file.string() + ": cannot create pipe: " + std::strerror(errno));
@@ -106,7 +115,7 @@ void probe_in_child(const std::filesystem::path& file, const std::function<void(
   if (pid == 0) {
     restore_default_fault_handling();
     ::close(fds[0]);
-    child(fds[1], read);
+    child(fds[1], read, timeout_seconds);
   }
   ::close(fds[1]);
   std::string message;
@@ -133,11 +142,15 @@ void probe_in_child(const std::filesystem::path& file, const std::function<void(
     }
   }
   const int sig = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-  throw IoError(file.string() + ": corrupt HDF5 file: the HDF5 library " +
-                (sig == SIGALRM ? std::string("did not finish reading it in ") +
-                                      std::to_string(kChildSeconds) + " s"
-                                : std::string("crashed reading it (signal ") + std::to_string(sig) +
-                                      ", " + ::strsignal(sig) + ")"));
+  if (sig == SIGALRM) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%g", timeout_seconds);
+    throw ProbeTimedOut(file.string() + ": corrupt HDF5 file: the HDF5 library did not finish " +
+                        "reading it in " + seconds + " s");
+  }
+  throw IoError(file.string() +
+                ": corrupt HDF5 file: the HDF5 library crashed reading it (signal " +
+                std::to_string(sig) + ", " + ::strsignal(sig) + ")");
 }
 
 }  // namespace cnclab

@@ -8,10 +8,21 @@
 #include <filesystem>
 #include <functional>
 
+#include "cnclab/core/error.hpp"
+
 namespace cnclab {
 
+// The child did not finish within its time limit.
+class ProbeTimedOut : public IoError {
+ public:
+  using IoError::IoError;
+};
+
 // Runs `read` in a child process. Returns if it completed; re-throws its
-// IoError message; throws IoError for a crash, hang or other exception.
-void probe_in_child(const std::filesystem::path& file, const std::function<void()>& read);
+// IoError message; throws ProbeTimedOut when it runs longer than
+// `timeout_seconds` (wall clock, > 0; a sane HDF5 file reads in
+// milliseconds), IoError for a crash or other exception.
+void probe_in_child(const std::filesystem::path& file, const std::function<void()>& read,
+                    double timeout_seconds = 60);
 
 }  // namespace cnclab

@@ -5,13 +5,20 @@
 //   <group>            cnclab_version, git_commit, master_seed (decimal text),
 //                      host, start_utc, end_utc, wall_seconds (float64),
 //                      status, failure_reason
+//                      and, when known (absent in older files):
+//                      command_line, overrides (one `key=value` a line),
+//                      profile, project_dir, project_commit,
+//                      project_dirty ("yes" | "no"), cpu_seconds (float64)
 //   <group>/seeds      one attribute per derived stream: name = seed (decimal text)
 //   <group>/libraries  one attribute per library: name = version
 // Seeds are decimal text because common readers map HDF5 integers to
 // signed 64-bit and a uint64 seed may not fit.
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace cnclab {
 
@@ -29,9 +36,44 @@ struct Provenance {
   std::map<std::string, std::string> libraries;  // name -> version
   std::string status;                            // "complete" | "failed"
   std::string failure_reason;
+
+  // How it was made; empty (cpu_seconds -1) when unknown, as in files
+  // written before these were stored.
+  std::string command_line;            // this process's argv, shell-quoted
+  std::vector<std::string> overrides;  // `key=value` as given, in order
+  std::string profile;                 // --profile ("" = none)
+  std::string project_dir;             // the experiment file's folder
+  std::string project_commit;          // git HEAD there; "" when not in a git repository
+  std::string project_dirty;           // "yes" | "no" (tracked files changed); "" as above
+  double cpu_seconds = -1;             // user + system CPU time of this process during the run
+  double cpu_at_start = 0;             // process CPU time at make_provenance (not stored)
 };
 
-// Version, commit, host, libraries and start time filled in.
+// The git state of the repository holding `dir` (git on PATH; nothing when
+// `dir` is not in a repository or git is missing). Dirty means a tracked file
+// differs from HEAD: untracked files are left out, as results/ and datasets/
+// may not be ignored in a user's project and every run would be "dirty".
+struct ProjectState {
+  std::string commit;  // 40 hex digits
+  std::string dirty;   // "yes" | "no"
+};
+ProjectState project_git_state(const std::filesystem::path& dir);
+// Sets project_dir, project_commit and project_dirty for `dir`.
+void set_project(Provenance& p, const std::filesystem::path& dir);
+
+// argv of this process from /proc/self/cmdline, each word shell-quoted when
+// it needs it; "" where that file does not exist.
+std::string process_command_line();
+// User + system CPU seconds of this process (all its threads) so far.
+double process_cpu_seconds();
+// end_utc = now, cpu_seconds = CPU time since make_provenance.
+void finish_provenance(Provenance& p);
+// What `show` and reports print of a provenance: (label, text) in order;
+// fields that are unknown are left out.
+std::vector<std::pair<std::string, std::string>> provenance_lines(const Provenance& p);
+
+// Version, commit, host, libraries, start time, command line and the
+// CPU time so far filled in.
 Provenance make_provenance(std::uint64_t master_seed);
 
 std::string utc_now_iso8601();

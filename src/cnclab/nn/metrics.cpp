@@ -24,26 +24,74 @@ bool contains(const std::vector<std::string>& list, const std::string& name) {
 
 }  // namespace
 
+const std::vector<std::string>& metric_splits() {
+  static const std::vector<std::string> names = {"train", "validation", "test"};
+  return names;
+}
+
 const std::vector<std::string>& physical_metrics() {
   static const std::vector<std::string> names = {"mse", "rmse", "mae", "max_abs_error", "r2"};
   return names;
 }
 
-const std::vector<std::string>& normalised_metrics() {
-  static const std::vector<std::string> names = {"normalised_mse", "normalised_validation_mse"};
-  return names;
-}
-
-const std::vector<std::string>& known_metrics() {
+const std::vector<std::string>& base_metrics() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> all = physical_metrics();
-    for (const auto& n : normalised_metrics()) all.push_back(n);
+    all.emplace_back("normalised_mse");
     return all;
   }();
   return names;
 }
 
+std::string metric_name(const std::string& split, const std::string& base) {
+  return split + "." + base;
+}
+
+std::string metric_split(const std::string& name) {
+  const auto dot = name.find('.');
+  if (dot == std::string::npos) return "";
+  const std::string split = name.substr(0, dot);
+  return contains(metric_splits(), split) ? split : "";
+}
+
+std::string metric_base(const std::string& name) {
+  const std::string split = metric_split(name);
+  return split.empty() ? name : name.substr(split.size() + 1);
+}
+
+std::vector<std::string> metric_selection_names(const std::vector<std::string>& bases,
+                                                const std::vector<std::string>& splits) {
+  std::vector<std::string> names = bases;
+  for (const auto& split : splits) {
+    for (const auto& base : bases) names.push_back(metric_name(split, base));
+  }
+  if (bases == base_metrics()) names.emplace_back(kOlderValidationMse);
+  return names;
+}
+
+std::vector<std::string> expand_metric_selection(const std::vector<std::string>& selection,
+                                                 const std::vector<std::string>& bases,
+                                                 const std::vector<std::string>& splits) {
+  const std::vector<std::string> known = metric_selection_names(bases, splits);
+  std::vector<std::string> out;
+  const auto add = [&](const std::string& name) {
+    if (!contains(out, name)) out.push_back(name);
+  };
+  for (const auto& entry : selection) {
+    if (!contains(known, entry)) throw Error("unknown metric '" + entry + "'");
+    if (entry == kOlderValidationMse) {
+      add(metric_name("validation", "normalised_mse"));
+    } else if (contains(bases, entry)) {
+      for (const auto& split : splits) add(metric_name(split, entry));
+    } else {
+      add(entry);
+    }
+  }
+  return out;
+}
+
 std::string metric_unit(const std::string& name, const std::vector<std::string>& target_units) {
+  const std::string base = metric_base(name);
   std::vector<std::string> units;
   for (const auto& u : target_units) {
     if (!contains(units, u)) units.push_back(u);
@@ -51,10 +99,10 @@ std::string metric_unit(const std::string& name, const std::vector<std::string>&
   std::string u;
   for (const auto& x : units) u += (u.empty() ? "" : ", ") + x;
   if (units.size() > 1) u = "(" + u + ")";
-  if (name == "mse") return u == "1" || u.empty() ? u : u + "²";
-  if (name == "rmse" || name == "mae" || name == "max_abs_error") return u;
-  if (name == "r2") return "1";
-  if (contains(normalised_metrics(), name)) return "scaled²";
+  if (base == "mse") return u == "1" || u.empty() ? u : u + "²";
+  if (base == "rmse" || base == "mae" || base == "max_abs_error") return u;
+  if (base == "r2") return "1";
+  if (base == "normalised_mse") return "scaled²";
   return "";
 }
 
@@ -64,22 +112,21 @@ double mean_squared_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return (a - b).array().square().sum() / static_cast<double>(a.size());
 }
 
-std::map<std::string, double> evaluation_metrics(const EvaluationData& d,
+std::map<std::string, double> evaluation_metrics(const std::map<std::string, SplitData>& splits,
                                                  const std::vector<std::string>& names) {
-  std::vector<std::string> physical;
   std::map<std::string, double> out;
   for (const auto& name : names) {
-    if (name == "normalised_mse") {
-      out[name] = mean_squared_error(d.test_outputs, d.test_scaled_targets);
-    } else if (name == "normalised_validation_mse") {
-      out[name] = mean_squared_error(d.validation_outputs, d.validation_scaled_targets);
-    } else if (contains(physical_metrics(), name)) {
-      physical.push_back(name);
-    } else {
+    const std::string split = metric_split(name), base = metric_base(name);
+    if (split.empty() || !contains(base_metrics(), base)) {
       throw Error("unknown metric '" + name + "'");
     }
+    const auto it = splits.find(split);
+    if (it == splits.end() || it->second.targets.cols() == 0) continue;
+    const SplitData& d = it->second;
+    out[name] = base == "normalised_mse"
+                    ? mean_squared_error(d.outputs, d.scaled_targets)
+                    : regression_metrics(d.predictions, d.targets, {base}).at(base);
   }
-  out.merge(regression_metrics(d.test_predictions, d.test_targets, physical));
   return out;
 }
 

@@ -43,6 +43,10 @@ class MinMaxNormaliser {
   const Eigen::VectorXd& x_max() const { return x_max_; }
   double y_min() const { return y_min_; }
   double y_max() const { return y_max_; }
+  // The arithmetic above: y = (x - offset) gain + y_min per feature (an
+  // export writes the same constants).
+  const Eigen::VectorXd& gain() const { return gain_; }
+  const Eigen::VectorXd& offset() const { return offset_; }
   const std::vector<Eigen::Index>& constant_features() const { return constant_; }
 
  private:

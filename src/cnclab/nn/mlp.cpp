@@ -1,5 +1,6 @@
 #include "cnclab/nn/mlp.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "cnclab/core/error.hpp"
@@ -16,6 +17,10 @@ std::string to_string(DropoutPlacement p) {
   return p == DropoutPlacement::between_hidden ? "between_hidden" : "after_every_hidden";
 }
 
+std::string to_string(DropoutInference i) {
+  return i == DropoutInference::deterministic ? "deterministic" : "mc";
+}
+
 void MlpOptions::validate() const {
   if (inputs < 1) throw OptionError("inputs", std::to_string(inputs), "must be at least 1");
   if (outputs < 1) throw OptionError("outputs", std::to_string(outputs), "must be at least 1");
@@ -28,6 +33,10 @@ void MlpOptions::validate() const {
   if (!(dropout_keep_probability > 0.0 && dropout_keep_probability <= 1.0)) {
     throw OptionError("dropout_keep_probability", std::to_string(dropout_keep_probability),
                       "must be in (0, 1] (it is the probability of keeping a unit)");
+  }
+  if (dropout_mc_samples < 1 || dropout_mc_samples > 1000000) {
+    throw OptionError("dropout_mc_samples", std::to_string(dropout_mc_samples),
+                      "must be in [1, 1000000]");
   }
   weights.validate();
   biases.validate();
@@ -121,18 +130,7 @@ double Mlp::loss_and_gradient(const Eigen::VectorXd& params,
   prepare(ws, batch);
   gradient.resize(static_cast<Eigen::Index>(num_parameters_));
 
-  // Forward.
-  ws.a[0] = x;
-  for (std::size_t l = 1; l <= L; ++l) {
-    const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
-    const MapMatrix w(params.data() + weight_offset(l - 1), out, in);
-    const MapVector b(params.data() + weight_offset(l - 1) + in * out, out);
-    const Eigen::MatrixXd& input = dropout_[l - 1] ? ws.d[l - 1] : ws.a[l - 1];
-    ws.a[l].noalias() = w * input;
-    ws.a[l].colwise() += b;
-    apply_activation(l == L ? options_.output_activation : options_.hidden_activation, ws.a[l]);
-    if (dropout_[l]) ws.d[l] = ws.a[l].cwiseProduct(ws.mask[l]);
-  }
+  forward(params, x, ws, true);
 
   // Loss and output error: dMSE/da_L = 2 (a_L - y) / (n_L * batch).
   ws.delta[L] = ws.a[L] - y;
@@ -159,17 +157,51 @@ double Mlp::loss_and_gradient(const Eigen::VectorXd& params,
   return loss;
 }
 
+bool Mlp::has_any_dropout() const {
+  return std::find(dropout_.begin(), dropout_.end(), true) != dropout_.end();
+}
+
+Eigen::MatrixXd Mlp::predict_mc(const Eigen::VectorXd& params, const Eigen::MatrixXd& x,
+                                std::size_t passes, Rng& rng) const {
+  if (!has_any_dropout()) return predict(params, x);
+  if (x.rows() != sizes_.front()) {
+    throw Error("Mlp::predict_mc: expected " + std::to_string(sizes_.front()) +
+                " input rows, got " + std::to_string(x.rows()));
+  }
+  if (passes < 1) throw Error("Mlp::predict_mc: at least one pass");
+  Eigen::MatrixXd mean = Eigen::MatrixXd::Zero(sizes_.back(), x.cols());
+  Workspace ws;
+  for (Eigen::Index start = 0; start < x.cols(); start += kMcBlock) {
+    const Eigen::Index n = std::min(kMcBlock, x.cols() - start);
+    prepare(ws, n);
+    for (std::size_t k = 0; k < passes; ++k) {
+      draw_dropout_masks(ws, rng);
+      forward(params, x.middleCols(start, n), ws, true);
+      mean.middleCols(start, n) += ws.a.back();
+    }
+  }
+  return mean / static_cast<double>(passes);
+}
+
+Eigen::MatrixXd Mlp::infer(const Eigen::VectorXd& params, const Eigen::MatrixXd& x,
+                           DropoutInference inference, Rng& rng) const {
+  return inference == DropoutInference::mc ? predict_mc(params, x, options_.dropout_mc_samples, rng)
+                                           : predict(params, x);
+}
+
 void Mlp::forward(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
-                  Workspace& ws) const {
+                  Workspace& ws, bool masked) const {
   const std::size_t L = num_layers();
   ws.a[0] = x;
   for (std::size_t l = 1; l <= L; ++l) {
     const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
     const MapMatrix w(params.data() + weight_offset(l - 1), out, in);
     const MapVector b(params.data() + weight_offset(l - 1) + in * out, out);
-    ws.a[l].noalias() = w * ws.a[l - 1];
+    const Eigen::MatrixXd& input = masked && dropout_[l - 1] ? ws.d[l - 1] : ws.a[l - 1];
+    ws.a[l].noalias() = w * input;
     ws.a[l].colwise() += b;
     apply_activation(l == L ? options_.output_activation : options_.hidden_activation, ws.a[l]);
+    if (masked && dropout_[l]) ws.d[l] = ws.a[l].cwiseProduct(ws.mask[l]);
   }
 }
 
@@ -184,7 +216,7 @@ void Mlp::output_jacobian(const Eigen::VectorXd& params, const Eigen::Ref<const 
     throw Error("Mlp::output_jacobian: sizes do not match the network");
   }
   prepare(ws, batch);
-  forward(params, x, ws);
+  forward(params, x, ws, false);
   outputs = ws.a[L];
   // Activations with one sample per row, so that each Jacobian column is an
   // elementwise product of two contiguous columns.

@@ -33,6 +33,20 @@ enum class DropoutPlacement {
 };
 std::string to_string(DropoutPlacement p);
 
+// How a network with dropout is evaluated (the predictions and metrics a run
+// reports). Seed 000 does not say; both are in use for regression:
+enum class DropoutInference {
+  // One pass with every r = 1 (inverted dropout's usual evaluation,
+  // PyTorch's eval()): the network's weights at their expected scale.
+  deterministic,
+  // Monte-Carlo dropout (Gal & Ghahramani, ICML 2016): the mean of N passes,
+  // each with new masks r ~ Bernoulli(p) as in training. Through a nonlinear
+  // network the mean of the masked passes is not the deterministic pass (the
+  // variance shift of dropout), so the two can differ in accuracy.
+  mc,
+};
+std::string to_string(DropoutInference i);
+
 struct MlpOptions {
   std::size_t inputs = 1;
   std::vector<std::size_t> hidden = {28, 20};  // seed 000: two hidden layers, 28 and 20
@@ -42,12 +56,17 @@ struct MlpOptions {
   // Probability of KEEPING a unit (seed 000 Eq. 13: P(r = 1) = p). 1 = no dropout.
   double dropout_keep_probability = 1.0;
   DropoutPlacement dropout_placement = DropoutPlacement::between_hidden;
+  DropoutInference dropout_inference = DropoutInference::deterministic;
+  // N of DropoutInference::mc: masks averaged per sample. 100 keeps the
+  // Monte-Carlo error of the mean at a tenth of one pass's spread (1/sqrt(N)).
+  std::size_t dropout_mc_samples = 100;
   Initializer weights{Initializer::Kind::normal, 0.0, 1.0};  // seed 000: N(0, 1)
   // Seed 000 draws biases from U(c, d) without giving c and d; U(0, 0.1) is
   // our choice (small, positive: keeps ReLU units active at the start).
   Initializer biases{Initializer::Kind::uniform, 0.0, 1.0, 0.0, 0.1};
 
-  // Sizes >= 1, keep probability in (0, 1], initialisers valid.
+  // Sizes >= 1, keep probability in (0, 1], mc samples in [1, 1e6],
+  // initialisers valid.
   void validate() const;
 };
 
@@ -78,6 +97,20 @@ class Mlp {
 
   // Evaluation-mode outputs (no dropout).
   Eigen::MatrixXd predict(const Eigen::VectorXd& params, const Eigen::MatrixXd& x) const;
+  // Monte-Carlo dropout: the mean over `passes` training-mode forward passes
+  // of x, each with new masks (entries 0 or 1/p). Samples are taken in blocks
+  // of kMcBlock columns; for each block, pass after pass, the masks are drawn
+  // from `rng` as draw_dropout_masks does (layer by layer, column-major).
+  // Without dropout layers it is predict() and rng is not used.
+  Eigen::MatrixXd predict_mc(const Eigen::VectorXd& params, const Eigen::MatrixXd& x,
+                             std::size_t passes, Rng& rng) const;
+  static constexpr Eigen::Index kMcBlock = 4096;
+  // The predictions under `inference`: predict(), or predict_mc() with
+  // options().dropout_mc_samples passes (rng: the run's own stream for it).
+  Eigen::MatrixXd infer(const Eigen::VectorXd& params, const Eigen::MatrixXd& x,
+                        DropoutInference inference, Rng& rng) const;
+  // Whether any layer has dropout (keep probability < 1 and a layer it applies to).
+  bool has_any_dropout() const;
 
   // Sizes the workspace for batches of `batch` samples.
   void prepare(Workspace& ws, Eigen::Index batch) const;
@@ -100,9 +133,10 @@ class Mlp {
                        Eigen::Ref<Eigen::MatrixXd> jacobian) const;
 
  private:
-  // Evaluation-mode forward pass of x into ws.a (ws prepared for x.cols()).
+  // Forward pass of x into ws.a (ws prepared for x.cols()): evaluation mode,
+  // or with `masked` training mode, the masks in ws applied into ws.d.
   void forward(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
-               Workspace& ws) const;
+               Workspace& ws, bool masked) const;
 
   Eigen::Index weight_offset(std::size_t layer) const { return offsets_[layer]; }
 

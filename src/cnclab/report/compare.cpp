@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <set>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -25,9 +27,10 @@ struct Comparison {
   std::vector<std::string> labels;  // [1], [2], ...
   std::vector<std::pair<std::string, std::vector<std::optional<std::string>>>> config;
   std::vector<std::pair<std::string, std::vector<std::optional<double>>>> metrics;
+  std::map<std::string, std::string> units;  // per metric: the first run's that names one
 };
 
-Comparison build(const std::vector<ComparedRun>& runs) {
+Comparison build(const std::vector<ComparedRun>& runs, bool full) {
   Comparison c;
   std::vector<std::map<std::string, std::string>> flat;
   std::vector<std::string> keys;
@@ -39,7 +42,7 @@ Comparison build(const std::vector<ComparedRun>& runs) {
     label += "]";
     c.labels.push_back(std::move(label));
     flat.emplace_back();
-    for (auto& [k, v] : flatten_config(runs[i].record.resolved_yaml)) {
+    for (auto& [k, v] : flatten_config(runs[i].record.resolved_yaml, full)) {
       if (seen.insert(k).second) keys.push_back(k);
       flat.back()[k] = v;
     }
@@ -57,6 +60,9 @@ Comparison build(const std::vector<ComparedRun>& runs) {
   std::set<std::string> names;
   for (const auto& r : runs) {
     for (const auto& [name, value] : r.record.metrics) names.insert(name);
+    for (const auto& [name, unit] : r.record.metric_units) {
+      if (!unit.empty()) c.units.emplace(name, unit);
+    }
   }
   for (const auto& name : names) {
     std::vector<std::optional<double>> values;
@@ -146,7 +152,10 @@ void print_json(const std::vector<ComparedRun>& runs, const Comparison& c, std::
   out << (c.config.empty() ? "" : "\n  ") << "},\n  \"metrics\": {";
   for (std::size_t m = 0; m < c.metrics.size(); ++m) {
     const auto& v = c.metrics[m].second;
-    out << (m ? "," : "") << "\n    " << json_string(c.metrics[m].first) << ": {\"values\": [";
+    const auto unit = c.units.find(c.metrics[m].first);
+    out << (m ? "," : "") << "\n    " << json_string(c.metrics[m].first)
+        << ": {\"unit\": " << json_string(unit == c.units.end() ? "" : unit->second)
+        << ", \"values\": [";
     for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << json_number(v[i]);
     out << "], \"delta_to_first\": [";
     for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << json_number(delta(v, i));
@@ -194,7 +203,9 @@ TextTable display_table(const std::vector<ComparedRun>& runs, const Comparison& 
     t.rows.push_back(std::move(row));
   }
   for (const auto& [name, v] : c.metrics) {
-    std::vector<std::string> row = {name};
+    const auto unit = c.units.find(name);
+    std::vector<std::string> row = {unit == c.units.end() ? name
+                                                          : name + " [" + unit->second + "]"};
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (!v[i]) {
         row.push_back(kMissingCell);
@@ -241,10 +252,11 @@ CompareFormat parse_compare_format(const std::string& text) {
   throw ConfigError("--format " + text + ": must be one of: table, md, csv, json");
 }
 
-std::vector<std::pair<std::string, std::string>> flatten_config(const std::string& yaml_text) {
+std::vector<std::pair<std::string, std::string>> flatten_config(const std::string& yaml_text,
+                                                                bool full) {
   std::vector<std::pair<std::string, std::string>> out;
   try {
-    flatten(YAML::Load(yaml_text), "", out);
+    flatten(YAML::Load(full ? yaml_text : abbreviate_config(yaml_text).text), "", out);
   } catch (const YAML::Exception& e) {
     throw IoError("stored config is not valid YAML: " + e.msg);
   }
@@ -286,9 +298,9 @@ std::vector<ComparedRun> collect_runs(const std::vector<std::string>& inputs) {
   return runs;
 }
 
-void print_comparison(const std::vector<ComparedRun>& runs, CompareFormat format,
-                      std::ostream& out) {
-  const Comparison c = build(runs);
+void print_comparison(const std::vector<ComparedRun>& runs, CompareFormat format, std::ostream& out,
+                      bool full) {
+  const Comparison c = build(runs, full);
   switch (format) {
     case CompareFormat::json:
       print_json(runs, c, out);
@@ -313,13 +325,18 @@ void print_comparison(const std::vector<ComparedRun>& runs, CompareFormat format
   } else {
     t.print_aligned(out);
   }
-  out << "\nonly config keys that differ are shown; metric deltas are to " << c.labels[0] << "\n";
+  out << "\nonly config keys that differ are shown; metric deltas are to " << c.labels[0];
+  if (!full) {
+    out << "; arrays of more than " << kAbbreviateScalars
+        << " numbers as shape and hash (--full prints them)";
+  }
+  out << "\n";
 }
 
-int compare_command(const std::vector<std::string>& inputs, const std::string& format,
+int compare_command(const std::vector<std::string>& inputs, const std::string& format, bool full,
                     std::ostream& out) {
   const CompareFormat f = parse_compare_format(format);
-  print_comparison(collect_runs(inputs), f, out);
+  print_comparison(collect_runs(inputs), f, out, full);
   return 0;
 }
 

@@ -30,12 +30,17 @@ std::vector<ComparedRun> collect_runs(const std::vector<std::string>& inputs);
 
 // The resolved config flattened to dotted keys, leaf values as YAML text
 // (lists in flow style), in document order: ("model.hidden", "[64, 32]"), ...
-std::vector<std::pair<std::string, std::string>> flatten_config(const std::string& yaml_text);
+// Without `full`, an array of more than kAbbreviateScalars numbers is its
+// shape and hash, as `show` prints it (core/config_abbreviate.hpp:
+// "16 × 16 × 3, hash 1a2b3c4d"; equal arrays, equal text).
+std::vector<std::pair<std::string, std::string>> flatten_config(const std::string& yaml_text,
+                                                                bool full = true);
 
-void print_comparison(const std::vector<ComparedRun>& runs, CompareFormat format,
-                      std::ostream& out);
+// `full`: arrays in full (else abbreviated, in every format).
+void print_comparison(const std::vector<ComparedRun>& runs, CompareFormat format, std::ostream& out,
+                      bool full = false);
 
-int compare_command(const std::vector<std::string>& inputs, const std::string& format,
+int compare_command(const std::vector<std::string>& inputs, const std::string& format, bool full,
                     std::ostream& out);
 
 }  // namespace cnclab

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <set>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/suggest.hpp"
-#include "cnclab/nn/metrics.hpp"
+#include "cnclab/experiment/sequence_metrics.hpp"
+#include "cnclab/nn/metric_range.hpp"
 #include "cnclab/report/text_table.hpp"
 
 namespace cnclab {
@@ -22,10 +22,16 @@ bool is_seed_key(const std::string& key) {
 
 using FlatConfig = std::map<std::string, std::string>;
 
-FlatConfig flat(const ComparedRun& r) {
+FlatConfig flat(const ComparedRun& r, bool full) {
   FlatConfig out;
-  for (auto& [k, v] : flatten_config(r.record.resolved_yaml)) out[k] = v;
+  for (auto& [k, v] : flatten_config(r.record.resolved_yaml, full)) out[k] = v;
   return out;
+}
+
+// A key's value in a config, kMissingCell when the config lacks it.
+std::string value_of(const FlatConfig& c, const std::string& key) {
+  const auto it = c.find(key);
+  return it == c.end() ? kMissingCell : it->second;
 }
 
 // Groups of runs with equal configs apart from seed; each labelled with the
@@ -51,16 +57,10 @@ std::vector<RunGroup> group_repeats(const std::vector<FlatConfig>& configs) {
   for (std::size_t g = 0; g < groups.size(); ++g) {
     std::string label;
     for (const auto& k : all) {
-      const auto mine = keys_of[g].find(k);
-      const bool differs = std::any_of(keys_of.begin(), keys_of.end(), [&](const FlatConfig& o) {
-        const auto theirs = o.find(k);
-        return (theirs == o.end()) != (mine == keys_of[g].end()) ||
-               (theirs != o.end() && theirs->second != mine->second);
-      });
-      if (differs) {
-        label += (label.empty() ? "" : " ") + k + "=" +
-                 (mine == keys_of[g].end() ? kMissingCell : mine->second);
-      }
+      const std::string mine = value_of(keys_of[g], k);
+      const bool differs = std::any_of(keys_of.begin(), keys_of.end(),
+                                       [&](const FlatConfig& o) { return value_of(o, k) != mine; });
+      if (differs) label += (label.empty() ? "" : " ") + k + "=" + mine;
     }
     groups[g].label = label.empty() ? "group " + std::to_string(g + 1) : label;
   }
@@ -71,9 +71,8 @@ std::vector<RunGroup> group_by_key(const std::vector<FlatConfig>& configs, const
   std::vector<RunGroup> groups;
   bool any = false;
   for (std::size_t i = 0; i < configs.size(); ++i) {
-    const auto it = configs[i].find(key);
-    any = any || it != configs[i].end();
-    const std::string label = key + "=" + (it == configs[i].end() ? kMissingCell : it->second);
+    any = any || configs[i].count(key) > 0;
+    const std::string label = key + "=" + value_of(configs[i], key);
     const auto g = std::find_if(groups.begin(), groups.end(),
                                 [&](const RunGroup& x) { return x.label == label; });
     if (g == groups.end()) {
@@ -94,6 +93,118 @@ std::vector<RunGroup> group_by_key(const std::vector<FlatConfig>& configs, const
   return groups;
 }
 
+std::vector<FlatConfig> flat_configs(const std::vector<ComparedRun>& runs, bool full) {
+  std::vector<FlatConfig> configs;
+  for (const auto& r : runs) configs.push_back(flat(r, full));
+  return configs;
+}
+
+// The keys other than the grouping key and the seed, split into those that
+// vary inside some group and those constant in each group that differ
+// between groups.
+void classify_keys(const std::vector<FlatConfig>& configs, const std::vector<RunGroup>& groups,
+                   const std::string& group_by, GroupDesign& d) {
+  std::set<std::string> keys;
+  for (const auto& c : configs) {
+    for (const auto& [k, v] : c) {
+      if (k != group_by && !is_seed_key(k)) keys.insert(k);
+    }
+  }
+  for (const auto& k : keys) {
+    bool inside = false;
+    std::set<std::string> per_group;
+    for (const auto& g : groups) {
+      std::set<std::string> values;
+      for (std::size_t i : g.runs) values.insert(value_of(configs[i], k));
+      inside = inside || values.size() > 1;
+      per_group.insert(*values.begin());
+    }
+    if (inside) {
+      d.varying.push_back(k);
+    } else if (per_group.size() > 1) {
+      d.with_groups.push_back(k);
+    }
+  }
+}
+
+// One stratum per combination of the varying keys' values (order of first
+// appearance), each with the groups that have runs in it.
+std::vector<Stratum> stratify(const std::vector<FlatConfig>& configs, const GroupDesign& d) {
+  std::vector<std::vector<std::string>> combos;
+  std::vector<Stratum> strata;
+  const bool split = !d.pooled && !d.varying.empty();
+  for (std::size_t g = 0; g < d.groups.size(); ++g) {
+    for (std::size_t i : d.groups[g].runs) {
+      std::vector<std::string> combo;
+      if (split) {
+        for (const auto& k : d.varying) combo.push_back(value_of(configs[i], k));
+      }
+      auto it = std::find(combos.begin(), combos.end(), combo);
+      if (it == combos.end()) {
+        combos.push_back(combo);
+        std::string label;
+        for (std::size_t k = 0; k < combo.size(); ++k) {
+          label += (k ? " " : "") + d.varying[k] + "=" + combo[k];
+        }
+        strata.push_back({label.empty() ? "all runs" : label, {}});
+        it = combos.end() - 1;
+      }
+      Stratum& s = strata[static_cast<std::size_t>(it - combos.begin())];
+      if (s.groups.empty() || s.groups.back().label != d.groups[g].label) {
+        s.groups.push_back({d.groups[g].label, {}});
+      }
+      s.groups.back().runs.push_back(i);
+    }
+  }
+  // Groups in their global order within each stratum (runs were visited
+  // group by group, so they already are).
+  return strata;
+}
+
+// The metric's possible range: a registered sequence metric's, else the
+// regression metrics' (nn/metric_range.hpp); unbounded for others.
+MetricRange range_of(const std::string& metric) {
+  const MetricRange r = sequence_metric_range(metric);
+  return r.bounded() ? r : metric_range(metric);
+}
+
+// The interval of `s` clipped to `range`; which bounds were.
+std::string clip(SampleSummary& s, const MetricRange& range) {
+  const bool low = s.ci_low<range.low, high = s.ci_high> range.high;
+  if (low) s.ci_low = range.low;
+  if (high) s.ci_high = range.high;
+  return low && high ? "both" : low ? "low" : high ? "high" : "";
+}
+
+// What pairs run i with a run of another group: its seed and its values of
+// the varying keys (constant within a stratum; pooled, they tell the runs apart).
+std::string pair_key(const FlatConfig& c, const GroupDesign& d) {
+  std::string key = value_of(c, "seed");
+  for (const auto& k : d.varying) {
+    key += '\n';  // appended: GCC 12 warns falsely on "\n" + std::string (-Wrestrict, PR105329)
+    key += value_of(c, k);
+  }
+  return key;
+}
+
+// Finite values of `metric` per pair key of the group's runs; keys that occur
+// more than once in the group are left out (they cannot pair).
+std::map<std::string, double> keyed_values(const std::vector<ComparedRun>& runs,
+                                           const std::vector<FlatConfig>& configs,
+                                           const RunGroup& g, const GroupDesign& d,
+                                           const std::string& metric) {
+  std::map<std::string, double> out;
+  std::set<std::string> repeated;
+  for (std::size_t i : g.runs) {
+    const auto it = runs[i].record.metrics.find(metric);
+    if (it == runs[i].record.metrics.end() || !std::isfinite(it->second)) continue;
+    const std::string key = pair_key(configs[i], d);
+    if (!out.emplace(key, it->second).second) repeated.insert(key);
+  }
+  for (const auto& k : repeated) out.erase(k);
+  return out;
+}
+
 // The group's finite values of `metric` (a diverged run's NaN is left out).
 std::vector<double> values_of(const std::vector<ComparedRun>& runs, const RunGroup& g,
                               const std::string& metric) {
@@ -105,72 +216,35 @@ std::vector<double> values_of(const std::vector<ComparedRun>& runs, const RunGro
   return v;
 }
 
-const std::vector<std::string> kColumns = {"metric",  "group",    "n",         "mean",       "std",
-                                           "ci_low",  "ci_high",  "diff",      "welch_t",    "df",
-                                           "p_value", "boot_low", "boot_high", "significant"};
-
-// A row's cells in kColumns order; NaN and the reference group's difference
-// columns as "" (numbers at full precision: csv and json are for programs).
-std::vector<std::string> cells(const GroupRow& r, bool display) {
-  const auto num = [&](double v) -> std::string {
-    if (std::isnan(v)) return display ? "-" : "";
-    return display ? format_metric(v) : shortest_double(v);
-  };
-  std::vector<std::string> c = {r.metric,
-                                r.group,
-                                std::to_string(r.summary.n),
-                                num(r.summary.mean),
-                                num(r.summary.std),
-                                num(r.summary.ci_low),
-                                num(r.summary.ci_high)};
-  if (r.reference) {
-    c.resize(kColumns.size() - 1, "");
-    c.push_back("");
-    return c;
-  }
-  for (double v : {r.welch.difference, r.welch.t, r.welch.df, r.welch.p_value, r.bootstrap.low,
-                   r.bootstrap.high}) {
-    c.push_back(num(v));
-  }
-  c.push_back(r.significant);
-  return c;
-}
-
-void print_json(const std::vector<ComparedRun>& runs, const std::vector<RunGroup>& groups,
-                const std::vector<GroupRow>& rows, const GroupCompareOptions& o,
-                std::ostream& out) {
-  using Json = nlohmann::ordered_json;
-  Json doc;
-  doc["group_by"] = o.group_by;
-  doc["alpha"] = o.alpha;
-  doc["level"] = 1 - o.alpha;
-  doc["bootstrap"] = {{"resamples", o.resamples}, {"seed", o.seed}, {"method", "percentile"}};
-  doc["groups"] = Json::array();
-  for (const auto& g : groups) {
-    Json files = Json::array();
-    for (std::size_t i : g.runs) files.push_back(runs[i].file.string());
-    doc["groups"].push_back({{"label", g.label}, {"runs", files}});
-  }
-  doc["columns"] = kColumns;
-  doc["rows"] = Json::array();
-  for (const auto& r : rows) {
-    const std::vector<std::string> c = cells(r, false);
-    Json row;
-    for (std::size_t k = 0; k < kColumns.size(); ++k) {
-      const bool text = k < 2 || kColumns[k] == "significant";
-      if (text) {
-        row[kColumns[k]] = c[k];
-      } else if (kColumns[k] == "n") {
-        row["n"] = r.summary.n;  // a count, not 2.0
-      } else if (c[k].empty()) {
-        row[kColumns[k]] = nullptr;  // NaN, or the reference group's difference
-      } else {
-        row[kColumns[k]] = std::stod(c[k]);
-      }
+// Group g of a stratum against its first group.
+void compare_with_first(const std::vector<ComparedRun>& runs,
+                        const std::vector<FlatConfig>& configs, const GroupDesign& d,
+                        const Stratum& s, std::size_t g, const GroupCompareOptions& o,
+                        GroupRow& row) {
+  BootstrapOptions boot;
+  boot.resamples = o.resamples;
+  boot.seed = o.seed;
+  boot.level = 1 - o.alpha;
+  const std::vector<double> first = values_of(runs, s.groups.front(), row.metric);
+  const std::vector<double> mine = values_of(runs, s.groups[g], row.metric);
+  row.welch = welch_t_test(first, mine);
+  row.bootstrap = bootstrap_difference_ci(first, mine, boot);
+  const auto a = keyed_values(runs, configs, s.groups.front(), d, row.metric);
+  const auto b = keyed_values(runs, configs, s.groups[g], d, row.metric);
+  std::vector<double> pa, pb;
+  for (const auto& [key, v] : a) {
+    if (const auto it = b.find(key); it != b.end()) {
+      pa.push_back(v);
+      pb.push_back(it->second);
     }
-    doc["rows"].push_back(std::move(row));
   }
-  out << doc.dump(2) << "\n";
+  row.paired = paired_t_test(pa, pb);
+  row.wilcoxon = wilcoxon_signed_rank(pa, pb);
+  if (pa.size() < 2) row.wilcoxon = {pa.size(), NAN, NAN, false};
+  const bool all_paired = pa.size() >= 2 && pa.size() == first.size() && pa.size() == mine.size();
+  row.test = all_paired ? "paired t" : "welch";
+  const double p = all_paired ? row.paired.p_value : row.welch.p_value;
+  row.significant = std::isnan(p) ? "n/a" : p < o.alpha ? "yes" : "no";
 }
 
 }  // namespace
@@ -185,10 +259,9 @@ void GroupCompareOptions::validate() const {
   b.validate();
 }
 
-std::vector<RunGroup> group_runs(const std::vector<ComparedRun>& runs,
-                                 const std::string& group_by) {
-  std::vector<FlatConfig> configs;
-  for (const auto& r : runs) configs.push_back(flat(r));
+std::vector<RunGroup> group_runs(const std::vector<ComparedRun>& runs, const std::string& group_by,
+                                 bool full) {
+  const std::vector<FlatConfig> configs = flat_configs(runs, full);
   std::vector<RunGroup> groups =
       group_by == kGroupRepeats ? group_repeats(configs) : group_by_key(configs, group_by);
   if (groups.size() < 2) {
@@ -198,75 +271,42 @@ std::vector<RunGroup> group_runs(const std::vector<ComparedRun>& runs,
   return groups;
 }
 
-std::vector<GroupRow> compare_groups(const std::vector<ComparedRun>& runs,
-                                     const std::vector<RunGroup>& groups,
+GroupDesign design_groups(const std::vector<ComparedRun>& runs, const GroupCompareOptions& o) {
+  GroupDesign d;
+  d.groups = group_runs(runs, o.group_by, o.full);
+  const std::vector<FlatConfig> configs = flat_configs(runs, o.full);
+  if (o.group_by != kGroupRepeats) classify_keys(configs, d.groups, o.group_by, d);
+  d.pooled = o.pool && !d.varying.empty();
+  d.strata = stratify(configs, d);
+  return d;
+}
+
+std::vector<GroupRow> compare_groups(const std::vector<ComparedRun>& runs, const GroupDesign& d,
                                      const GroupCompareOptions& o) {
   o.validate();
-  BootstrapOptions boot;
-  boot.resamples = o.resamples;
-  boot.seed = o.seed;
-  boot.level = 1 - o.alpha;
+  const std::vector<FlatConfig> configs = flat_configs(runs, o.full);
   std::set<std::string> metrics;
   for (const auto& r : runs) {
     for (const auto& [name, v] : r.record.metrics) metrics.insert(name);
   }
   std::vector<GroupRow> rows;
   for (const auto& m : metrics) {
-    const std::vector<double> first = values_of(runs, groups.front(), m);
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-      GroupRow row;
-      row.metric = m;
-      row.group = groups[g].label;
-      const std::vector<double> v = values_of(runs, groups[g], m);
-      row.summary = summarize(v, 1 - o.alpha);
-      row.reference = g == 0;
-      if (!row.reference) {
-        row.welch = welch_t_test(first, v);
-        row.bootstrap = bootstrap_difference_ci(first, v, boot);
-        row.significant = std::isnan(row.welch.p_value) ? "n/a"
-                          : row.welch.p_value < o.alpha ? "yes"
-                                                        : "no";
+    const MetricRange range = range_of(m);
+    for (const auto& s : d.strata) {
+      for (std::size_t g = 0; g < s.groups.size(); ++g) {
+        GroupRow row;
+        row.metric = m;
+        row.stratum = s.label;
+        row.group = s.groups[g].label;
+        row.summary = summarize(values_of(runs, s.groups[g], m), 1 - o.alpha);
+        row.ci_clipped = clip(row.summary, range);
+        row.reference = g == 0;
+        if (!row.reference) compare_with_first(runs, configs, d, s, g, o, row);
+        rows.push_back(std::move(row));
       }
-      rows.push_back(std::move(row));
     }
   }
   return rows;
-}
-
-void print_group_comparison(const std::vector<ComparedRun>& runs, const GroupCompareOptions& o,
-                            CompareFormat format, std::ostream& out) {
-  const std::vector<RunGroup> groups = group_runs(runs, o.group_by);
-  const std::vector<GroupRow> rows = compare_groups(runs, groups, o);
-  if (format == CompareFormat::json) {
-    print_json(runs, groups, rows, o, out);
-    return;
-  }
-  TextTable t;
-  t.header = kColumns;
-  const bool display = format == CompareFormat::table || format == CompareFormat::markdown;
-  for (const auto& r : rows) t.rows.push_back(cells(r, display));
-  if (format == CompareFormat::csv) {
-    t.print_csv(out);
-    return;
-  }
-  const bool md = format == CompareFormat::markdown;
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    out << (md ? "- " : "") << "group " << g + 1 << ": " << groups[g].label << " ("
-        << groups[g].runs.size() << " run(s))\n";
-  }
-  out << "\n";
-  if (md) {
-    t.print_markdown(out);
-  } else {
-    t.print_aligned(out);
-  }
-  const std::string level = shortest_double(100 * (1 - o.alpha));
-  out << "\nmean with its " << level << " % Student-t interval [ci_low, ci_high] over each "
-      << "group's runs; diff = mean - the first group's mean, Welch's t-test (two-sided p, "
-      << "Welch-Satterthwaite df) and a " << level << " % percentile bootstrap interval of the "
-      << "difference (" << o.resamples << " resamples, seed " << o.seed << "); significant: p < "
-      << shortest_double(o.alpha) << " (no correction for " << groups.size() - 1
-      << " comparison(s) per metric)\n";
 }
 
 int compare_groups_command(const std::vector<std::string>& inputs, const std::string& format,

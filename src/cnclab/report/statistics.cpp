@@ -1,9 +1,11 @@
 #include "cnclab/report/statistics.hpp"
 
 #include <algorithm>
+#include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "cnclab/core/error.hpp"
@@ -76,6 +78,93 @@ WelchTest welch_t_test(const std::vector<double>& a, const std::vector<double>& 
   // 2 (1 - F(|t|)) = 2 F(-|t|): the lower tail keeps precision for large |t|.
   w.p_value = 2 * student_t_cdf(-std::abs(w.t), w.df);
   return w;
+}
+
+PairedTTest paired_t_test(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) throw std::invalid_argument("paired_t_test: unequal sizes");
+  PairedTTest r;
+  r.pairs = a.size();
+  std::vector<double> d(a.size());
+  for (std::size_t i = 0; i < d.size(); ++i) d[i] = b[i] - a[i];
+  r.difference = d.empty() ? kNaN : mean_of(d);
+  r.df = d.size() < 2 ? kNaN : static_cast<double>(d.size() - 1);
+  r.t = r.p_value = kNaN;
+  if (d.size() < 2) return r;
+  const double se = std::sqrt(variance_of(d, r.difference) / static_cast<double>(d.size()));
+  if (!(se > 0)) return r;
+  r.t = r.difference / se;
+  r.p_value = 2 * student_t_cdf(-std::abs(r.t), r.df);
+  return r;
+}
+
+namespace {
+
+// P(W+ = w) for w = 0 .. n(n+1)/2 with n distinct ranks 1..n and independent
+// fair signs: the number of subsets of {1..n} summing to w, over 2^n.
+std::vector<double> signed_rank_distribution(std::size_t n) {
+  std::vector<double> count(n * (n + 1) / 2 + 1, 0.0);
+  count[0] = 1;
+  for (std::size_t k = 1; k <= n; ++k) {
+    for (std::size_t w = count.size() - 1; w >= k; --w) count[w] += count[w - k];
+  }
+  const double total = std::ldexp(1.0, static_cast<int>(n));
+  for (double& c : count) c /= total;
+  return count;
+}
+
+}  // namespace
+
+WilcoxonTest wilcoxon_signed_rank(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) throw std::invalid_argument("wilcoxon_signed_rank: unequal sizes");
+  std::vector<double> d;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (b[i] - a[i] != 0) d.push_back(b[i] - a[i]);
+  }
+  WilcoxonTest r;
+  r.n = d.size();
+  if (d.empty()) {
+    r.w = r.p_value = kNaN;
+    return r;
+  }
+  // Average ranks of |d|, and the sizes of the groups of ties.
+  std::vector<std::size_t> order(d.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t i, std::size_t j) { return std::abs(d[i]) < std::abs(d[j]); });
+  std::vector<double> rank(d.size());
+  double tie_term = 0;  // Σ (t³ - t)
+  for (std::size_t lo = 0; lo < order.size();) {
+    std::size_t hi = lo + 1;
+    while (hi < order.size() && std::abs(d[order[hi]]) == std::abs(d[order[lo]])) ++hi;
+    const double average = 0.5 * static_cast<double>(lo + 1 + hi);  // ranks lo+1 .. hi
+    for (std::size_t k = lo; k < hi; ++k) rank[order[k]] = average;
+    const double t = static_cast<double>(hi - lo);
+    tie_term += t * t * t - t;
+    lo = hi;
+  }
+  double plus = 0, minus = 0;
+  for (std::size_t i = 0; i < d.size(); ++i) (d[i] > 0 ? plus : minus) += rank[i];
+  r.w = std::min(plus, minus);
+  const double n = static_cast<double>(d.size());
+  if (d.size() <= 50 && tie_term == 0) {
+    r.exact = true;
+    const std::vector<double> pmf = signed_rank_distribution(d.size());
+    const auto w = static_cast<std::size_t>(plus);  // whole without ties
+    if (2 * w == pmf.size() - 1) {
+      r.p_value = 1.0;  // the centre of the distribution
+    } else {
+      double below = 0, above = 0;
+      for (std::size_t k = 0; k < pmf.size(); ++k) (k <= w ? below : above) += pmf[k];
+      above += pmf[w];  // P(W+ >= w) includes w
+      r.p_value = std::min(1.0, 2 * std::min(below, above));
+    }
+    return r;
+  }
+  const double mean = n * (n + 1) / 4;
+  const double sd = std::sqrt(n * (n + 1) * (2 * n + 1) / 24 - tie_term / 48);
+  const double z = (r.w - mean) / sd;
+  r.p_value = 2 * boost::math::cdf(boost::math::normal_distribution<double>(), -std::abs(z));
+  return r;
 }
 
 void BootstrapOptions::validate() const {

@@ -1,6 +1,8 @@
 #include "cnclab/report/sweep_report.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "cnclab/nn/metrics.hpp"
@@ -42,23 +44,30 @@ void print_summary(std::ostream& out, const SweepPlan& plan,
                    const std::vector<TrialOutcome>& outcomes, const SweepSummary& s,
                    const fs::path& dir, const std::string& name) {
   const std::string& objective = plan.objective.metric;
+  const std::map<std::string, std::string> units = metric_units(outcomes);
+  const auto with_unit = [&](const std::string& metric) {
+    const auto it = units.find(metric);
+    return it == units.end() || it->second.empty() ? metric : metric + " [" + it->second + "]";
+  };
+  // The ranking's split only: the other splits' numbers of every point are
+  // in summary.h5; the test numbers are reported for the chosen point below.
+  std::vector<std::string> shown;
+  for (const auto& m : plan.metrics) {
+    if (m != objective && metric_split(m) == metric_split(objective)) shown.push_back(m);
+  }
   TextTable table;
   table.header = {"rank"};
   for (const auto& k : plan.keys) table.header.push_back(k);
-  table.header.push_back(objective + (plan.objective.maximize ? " (max)" : " (min)"));
+  table.header.push_back(with_unit(objective) + (plan.objective.maximize ? " (max)" : " (min)"));
   table.header.push_back("ok/runs");
-  for (const auto& m : plan.metrics) {
-    if (m != objective) table.header.push_back(m);
-  }
+  for (const auto& m : shown) table.header.push_back(with_unit(m));
   for (std::size_t r = 0; r < s.points.size(); ++r) {
     const PointStats& p = s.points[r];
     std::vector<std::string> row = {std::to_string(r + 1)};
     row.insert(row.end(), p.values.begin(), p.values.end());
     row.push_back(mean_std_text(p, objective));
     row.push_back(ok_runs_text(p, outcomes));
-    for (const auto& m : plan.metrics) {
-      if (m != objective) row.push_back(mean_std_text(p, m));
-    }
+    for (const auto& m : shown) row.push_back(mean_std_text(p, m));
     table.rows.push_back(std::move(row));
   }
   out << "== sweep "
@@ -90,7 +99,23 @@ void print_summary(std::ostream& out, const SweepPlan& plan,
         << ", " << s.points.front().complete << " complete)";
     for (const auto& w : outcomes[i].warnings) out << "; warning: " << w;
     out << "\n";
+    const PointStats& chosen = s.points.front();
+    const std::vector<std::string> tested = test_metrics(plan);
+    if (tested.empty()) {
+      out << "chosen point, test: none (" << kNoTestSplitNote << ")\n";
+    } else {
+      out << "chosen point, test (rank 1, chosen by " << objective << "; reported after the "
+          << "choice, mean ± std over its " << chosen.complete << " complete repeat"
+          << (chosen.complete == 1 ? "" : "s") << "):\n";
+      std::size_t width = 0;
+      for (const auto& m : tested) width = std::max(width, with_unit(m).size());
+      for (const auto& m : tested) {
+        out << "  " << with_unit(m) << std::string(width - with_unit(m).size() + 2, ' ')
+            << mean_std_text(chosen, m) << "\n";
+      }
+    }
   }
+  if (const std::string w = objective_warning(plan); !w.empty()) out << "WARNING " << w << "\n";
 }
 
 }  // namespace cnclab

@@ -13,7 +13,11 @@ namespace cnclab {
 
 // The ranked table, failures and the best trial, for people. `name`: the
 // sweep's own name (a `kind: sweep` file's), shown with the experiment it
-// sweeps; "": the header names the experiment only.
+// sweeps; "": the header names the experiment only. The table shows the
+// metrics of the objective's split (validation by default; summary.h5 holds
+// every split), each with its unit; below it the chosen point's test
+// metrics, labelled as reported after the choice, and a warning when the
+// objective is itself a test metric (objective_warning).
 void print_summary(std::ostream& out, const SweepPlan& plan,
                    const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary,
                    const std::filesystem::path& dir, const std::string& name = "");

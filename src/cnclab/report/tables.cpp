@@ -8,13 +8,18 @@
 #include <utility>
 
 #include "cnclab/core/share_paths.hpp"
+#include "cnclab/experiment/profiles.hpp"
 #include "cnclab/report/targets.hpp"
 
 namespace cnclab {
 
 double normalised_test_mse(const RunRecord& r) {
+  return normalised_test_mse(r, r.test_predictions);
+}
+
+double normalised_test_mse(const RunRecord& r, const Eigen::MatrixXd& predictions) {
   const ScalingRecord& y = r.target_scaling;
-  return (y.transform(r.test_predictions) - y.transform(r.test_targets)).array().square().mean();
+  return (y.transform(predictions) - y.transform(r.test_targets)).array().square().mean();
 }
 
 namespace {
@@ -150,11 +155,36 @@ void print_table_document(const TableEntry& entry, const TablesOptions& options,
       entry.name, options, [&](std::ostream& o) { entry.print(options, o); }, out);
 }
 
+namespace {
+
+// The profile check of `tables NAME --profile P` (the set rule of profiles.hpp).
+void check_table_profile(const TableEntry& t, const TablesOptions& options) {
+  if (options.profile.empty() || !t.experiment_files) return;
+  check_profile_in_set(t.experiment_files(options), options.profile,
+                       "the experiment files of table " + t.name);
+}
+
+// Whether table `t` reads a result of one of `ran` (weakly canonical); a
+// table that does not list its files counts as related.
+bool table_related(const TableEntry& t, const TablesOptions& options,
+                   const std::vector<std::filesystem::path>& ran) {
+  if (!t.experiment_files) return true;
+  for (const auto& f : t.experiment_files(options)) {
+    if (std::find(ran.begin(), ran.end(), std::filesystem::weakly_canonical(f)) != ran.end()) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 int tables_command(const std::string& name, const TablesOptions& options, std::ostream& out) {
   const auto& tables = registered_tables();
   std::string known;
   for (const auto& t : tables) {
     if (t.name == name) {
+      check_table_profile(t, options);
       // --check's table joins the document (json: one more table).
       int code = 0;
       print_tables_body(
@@ -175,12 +205,18 @@ int tables_command(const std::string& name, const TablesOptions& options, std::o
   throw ConfigError("tables: unknown table '" + name + "'; known: " + known);
 }
 
-int print_available_tables(const TablesOptions& options, std::ostream& out) {
+int print_available_tables(const TablesOptions& options, std::ostream& out,
+                           const std::vector<std::filesystem::path>* ran) {
+  std::vector<std::filesystem::path> ran_files;
+  if (ran) {
+    for (const auto& f : *ran) ran_files.push_back(std::filesystem::weakly_canonical(f));
+  }
   int code = 0;
   TableCheck total;
   std::size_t checked_tables = 0;
   for (const auto& t : registered_tables()) {
     try {
+      if (ran && !table_related(t, options, ran_files)) continue;
       t.print(options, out);
     } catch (const Error& e) {
       // Missing or failed inputs: the runs' summary above stands; say why

@@ -64,11 +64,19 @@ struct TableEntry {
   // Optional: the manifest whose `targets:` `--check` checks, relative to
   // TablesOptions::configs_dir ("studies/step_error_tables.yaml").
   std::filesystem::path manifest;
+  // Optional: the experiment and job files whose results the tables read, as
+  // found through the options (throws as print does when the study's
+  // manifest is absent). `--profile NAME` must be defined by one of them
+  // (experiment/profiles.hpp), and `reproduce` prints the tables only of the
+  // studies whose files it ran.
+  std::function<std::vector<std::filesystem::path>(const TablesOptions&)> experiment_files = {};
 };
 
 // Test MSE in the normalised units the network was trained in: the mean of
 // (T(prediction) - T(target))^2 with T the run's target scaling.
 double normalised_test_mse(const RunRecord& r);
+// The same of other test predictions of r (physical units, r.test_targets' shape).
+double normalised_test_mse(const RunRecord& r, const Eigen::MatrixXd& predictions);
 
 // The store a table reads its results from: the options' results folder and profile.
 ResultStore table_store(const TablesOptions& options);
@@ -96,15 +104,21 @@ void register_table(TableEntry entry);
 const std::vector<TableEntry>& registered_tables();
 
 // Prints table `name`; an empty name lists the tables. Unknown names are
-// ConfigErrors listing the known ones. With options.check, then checks its
-// targets (targets.hpp). Returns the exit code: 0, or 1 when a target fails.
+// ConfigErrors listing the known ones, as is a profile that none of the
+// table's experiment files defines (TableEntry::experiment_files). With
+// options.check, then checks its targets (targets.hpp). Returns the exit
+// code: 0, or 1 when a target fails.
 int tables_command(const std::string& name, const TablesOptions& options, std::ostream& out);
 
 // Prints every table whose results exist; a table whose inputs are missing
 // or unusable gets a one-line note instead (what `cnclab reproduce` ends
-// with). With options.check, checks the targets of every table printed and
-// ends with one line of totals. Returns the exit code: 0; 1 when a target
-// fails; 2 when a manifest's targets are malformed (each said in a note).
-int print_available_tables(const TablesOptions& options, std::ostream& out);
+// with). `ran` (reproduce: the files it ran) limits both to the tables with
+// an experiment file among them: a study the run did not touch (a project's
+// starters are not the paper studies) gets neither table nor note. With
+// options.check, checks the targets of every table printed and ends with one
+// line of totals. Returns the exit code: 0; 1 when a target fails; 2 when a
+// manifest's targets are malformed (each said in a note).
+int print_available_tables(const TablesOptions& options, std::ostream& out,
+                           const std::vector<std::filesystem::path>* ran = nullptr);
 
 }  // namespace cnclab

@@ -37,6 +37,21 @@ struct SweepExecution {
 // stored plan, store_plan), in parallel (trial_pool.hpp); trials whose
 // upstream results changed run again. One line per finished trial to `note`
 // (nullptr: silent). What `cnclab sweep` and a `kind: sweep` job do.
+//
+// One writer per trial: several processes may work on one sweep folder at
+// once (shards, Slurm array tasks, a second `cnclab sweep` of the same plan,
+// `reproduce` jobs). Before a trial starts, or takes the result store's file,
+// the process takes the trial's lock file trials/.<id>.lock (io/lock_file.hpp:
+// O_EXCL, NFS-safe, naming host and pid, as the dataset cache's). A trial
+// whose lock another process holds is left to it; once this process has
+// nothing else to run it waits for those trials (a note names the lock file
+// and its holder) and then takes each one's outcome, or runs it if the holder
+// stopped without one. With the lock held, a trial whose files another process
+// wrote since this one looked is not run again (even with --rerun): each
+// trial is trained once, and its result file, once linked to the result
+// store, is never replaced by a second training (which would cut the link).
+// Processes of different hosts coordinate only through the shared folder: a
+// lock of a crashed node stays until removed (the note says which file).
 SweepExecution execute_sweep(const SweepPlan& plan, const std::filesystem::path& dir,
                              const SweepExecuteOptions& options, std::ostream* note);
 

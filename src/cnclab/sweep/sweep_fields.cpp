@@ -16,7 +16,9 @@ const FieldList<Objective>& objective_fields() {
   static const auto fields =
       FieldList<Objective>()
           .field("metric", &Objective::metric,
-                 "a metric of the experiment's `metrics` (default: its first)")
+                 "a metric of the experiment's `metrics` on a split (validation.rmse); a name "
+                 "without a split is its validation value; test.* is allowed with a warning "
+                 "(selecting on test data)")
           .required()
           .choice("mode", &Objective::maximize, {{"min", false}, {"max", true}},
                   "min: lower is better; max: higher is better");
@@ -24,7 +26,9 @@ const FieldList<Objective>& objective_fields() {
 }
 
 FieldInfo objective_info() {
-  FieldInfo i = custom_info("objective", "what `best` means (default: the first metric, min)",
+  FieldInfo i = custom_info("objective",
+                            "what `best` means (default: the validation value of the "
+                            "experiment's first metric, min; max for r2)",
                             FieldKind::section);
   i.optional = true;
   i.children = objective_fields().info();

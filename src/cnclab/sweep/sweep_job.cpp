@@ -256,6 +256,9 @@ JobKind sweep_job_kind() {
   k.prework = [](const fs::path& file, const JobContext& c) {
     return sweep_job_prework(load_sweep_job(file, c.overrides, c.options.profile), c.options);
   };
+  k.profile_sources = [](const fs::path& file) {
+    return std::vector<fs::path>{load_sweep_job(file).experiment};
+  };
   k.schema = [] {
     return object_schema(sweep_file_fields(),
                          "kind sweep: a sweep of an experiment file and the selection of its best "

@@ -10,14 +10,18 @@
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
+#include "cnclab/experiment/result_file.hpp"
 #include "cnclab/io/atomic_file.hpp"
+#include "cnclab/nn/metrics.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kPlanFormat = "cnclab-sweep-plan";
-constexpr int kPlanVersion = 1;
+// 2: metrics named per split ("validation.rmse"); 1: as result format 1
+// (format1_metric_name, experiment/result_file.hpp), renamed when read.
+constexpr int kPlanVersion = 2;
 
 using Point = std::vector<YAML::Node>;
 
@@ -99,6 +103,31 @@ std::string SweepPlan::hash() const {
   return hash_hex(to_yaml());
 }
 
+Objective resolve_objective(const std::optional<Objective>& given,
+                            const std::vector<std::string>& selection) {
+  if (given) {
+    Objective o = *given;
+    if (o.metric == kOlderValidationMse) {
+      o.metric = metric_name("validation", "normalised_mse");
+    } else if (metric_split(o.metric).empty()) {
+      o.metric = metric_name("validation", o.metric);
+    }
+    return o;
+  }
+  if (selection.empty()) throw ConfigError("sweep: the experiment lists no metrics to rank by");
+  const std::string& first = selection.front();
+  const std::string base = first == kOlderValidationMse ? "normalised_mse" : metric_base(first);
+  return {metric_name("validation", base), base == "r2"};
+}
+
+std::string objective_warning(const SweepPlan& plan) {
+  if (metric_split(plan.objective.metric) != "test") return "";
+  return "the objective " + plan.objective.metric +
+         " ranks the points by the test split: the point is chosen on test data, so its test "
+         "metrics are no estimate of new data (rank by a validation metric, the default, and "
+         "report test once, after)";
+}
+
 SweepPlan plan_sweep(const fs::path& file, const std::vector<std::string>& overrides,
                      std::optional<std::uint64_t> seed, const SweepSpec& spec,
                      const std::string& profile) {
@@ -108,19 +137,25 @@ SweepPlan plan_sweep(const fs::path& file, const std::vector<std::string>& overr
   plan.experiment = base.spec.name;
   plan.method = spec.resolved_method() == SweepMethod::grid ? "grid" : "random";
   plan.repeats = spec.repeats;
-  plan.metrics = base.spec.metrics;
-  if (spec.objective) {
-    plan.objective = *spec.objective;
-  } else {
-    plan.objective.metric = plan.metrics.front();
-    plan.objective.maximize = plan.objective.metric == "r2";
-  }
+  plan.metrics = stored_metrics(base.spec);
+  plan.objective = resolve_objective(spec.objective, base.spec.metrics);
   if (std::find(plan.metrics.begin(), plan.metrics.end(), plan.objective.metric) ==
       plan.metrics.end()) {
     std::string known;
     for (const auto& m : plan.metrics) known += (known.empty() ? "" : ", ") + m;
-    throw ConfigError("sweep: objective metric '" + plan.objective.metric +
-                      "' is not among the experiment's metrics (" + known + ")");
+    const std::string split = metric_split(plan.objective.metric);
+    const auto splits = metric_splits_of(base.spec);
+    const bool no_split = std::find(splits.begin(), splits.end(), split) == splits.end();
+    throw ConfigError(
+        "sweep: objective metric '" + plan.objective.metric + "' is not among the experiment's " +
+        "metrics (" + known + ")" +
+        (no_split ? "; the experiment has no " + split + " split" +
+                        (split == "validation"
+                             ? " (a sweep ranks by a validation metric unless told otherwise: "
+                               "give the experiment one, e.g. split.validation=0.1, or name "
+                               "the objective)"
+                             : "")
+                  : ""));
   }
   for (const auto& p : spec.parameters) plan.keys.push_back(p.key);
 
@@ -205,6 +240,13 @@ fs::path trial_error_path(const fs::path& dir, const std::string& id) {
   return dir / "trials" / (id + ".error");
 }
 
+fs::path trial_lock_path(const fs::path& dir, const std::string& id) {
+  std::string name = ".";  // appended: GCC 12 warns falsely on "." + id (-Wrestrict, PR105329)
+  name += id;
+  name += ".lock";
+  return dir / "trials" / name;
+}
+
 void store_plan(const fs::path& dir, const SweepPlan& plan) {
   const fs::path path = dir / "sweep.yaml";
   const std::string text = plan.to_yaml();
@@ -236,8 +278,8 @@ SweepPlan plan_from(const ConfigDocument& doc, const std::string& origin) {
     if (r.get<std::string>("format", "") != kPlanFormat) {
       r.fail("format", std::string("not a sweep plan (expected ") + kPlanFormat + ")");
     }
-    r.check(r.require<std::int64_t>("format_version") == kPlanVersion, "format_version",
-            "unsupported version");
+    const auto version = r.require<std::int64_t>("format_version");
+    r.check(version == 1 || version == kPlanVersion, "format_version", "unsupported version");
     SweepPlan plan;
     plan.experiment = r.require<std::string>("experiment");
     plan.method = r.require<std::string>("method");
@@ -248,6 +290,10 @@ SweepPlan plan_from(const ConfigDocument& doc, const std::string& origin) {
     plan.keys = r.require<std::vector<std::string>>("keys");
     plan.metrics = r.require<std::vector<std::string>>("metrics");
     plan.merged_duplicates = r.require<std::size_t>("merged_duplicates");
+    if (version == 1) {
+      plan.objective.metric = format1_metric_name(plan.objective.metric);
+      for (auto& m : plan.metrics) m = format1_metric_name(m);
+    }
     const YAML::Node trials = r.raw("trials");
     if (!trials.IsSequence()) r.fail("trials", "expected a list");
     for (const auto& node : trials) {

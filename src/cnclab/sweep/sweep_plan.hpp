@@ -8,6 +8,8 @@
 //   sweep.yaml          the plan (this file's SweepPlan), written atomically
 //   trials/<id>.h5      one result file per trial (result_file.hpp)
 //   trials/<id>.error   why a trial stopped without a result (exception, crash)
+//   trials/.<id>.lock   while a process runs the trial: its host and pid
+//                       (io/lock_file.hpp; sweep_execute.hpp, "One writer per trial")
 //   summary.h5          parameters -> metrics -> status table (sweep_summary.hpp)
 // A complete trial is also the result store's result of its config (hard
 // link; sweep_execute.cpp, "Trials share results with the result store").
@@ -38,7 +40,7 @@ struct SweepPlan {
   std::size_t repeats = 1;
   Objective objective;
   std::vector<std::string> keys;      // swept config keys
-  std::vector<std::string> metrics;   // the experiment's metrics
+  std::vector<std::string> metrics;   // the experiment's stored metrics (stored_metrics)
   std::vector<PlannedTrial> trials;   // points in order, repeats within a point
   std::size_t merged_duplicates = 0;  // samples whose config equalled an earlier trial's
 
@@ -51,6 +53,17 @@ struct SweepPlan {
 // "key=value key=value": a point's swept values (keys and values in plan order).
 std::string point_text(const std::vector<std::string>& keys,
                        const std::vector<std::string>& values);
+
+// The objective a sweep ranks by. Given: its metric as named, a name without
+// a split meaning its validation value ("rmse" -> validation.rmse;
+// normalised_validation_mse -> validation.normalised_mse); a test.* name is
+// allowed (objective_warning). Not given: the validation value of the first
+// entry of the experiment's `metrics:` (`selection`), maximised for r2.
+Objective resolve_objective(const std::optional<Objective>& given,
+                            const std::vector<std::string>& selection);
+// For people, where a sweep runs or is summarised: "" unless the objective
+// is a test metric (selecting on test data), then why that misleads.
+std::string objective_warning(const SweepPlan& plan);
 
 // Expands and resolves every trial (loading each config validates it, so a
 // bad key or value stops the sweep before anything runs: ConfigError).
@@ -78,5 +91,6 @@ SweepPlan parse_plan(const std::string& yaml_text, const std::string& origin);
 
 std::filesystem::path trial_result_path(const std::filesystem::path& dir, const std::string& id);
 std::filesystem::path trial_error_path(const std::filesystem::path& dir, const std::string& id);
+std::filesystem::path trial_lock_path(const std::filesystem::path& dir, const std::string& id);
 
 }  // namespace cnclab

@@ -59,7 +59,7 @@ enum class SweepMethod { grid, random };
 
 // The quantity a sweep ranks trials by.
 struct Objective {
-  std::string metric;     // a name from the experiment's `metrics`
+  std::string metric;     // a stored metric of the experiment ("validation.rmse")
   bool maximize = false;  // false: lower is better
 };
 
@@ -76,7 +76,8 @@ struct SweepSpec {
   // seed derive_seed(seed, "repeat/<r>"), so raising `repeats` keeps (and
   // resumes past) the runs already done. Points report mean ± std (n - 1).
   std::size_t repeats = 1;
-  // Default: the experiment's first metric, maximised if it is r2.
+  // Default: the validation value of the experiment's first metric,
+  // maximised if it is r2 (resolve_objective, sweep_plan.hpp).
   std::optional<Objective> objective;
   std::vector<SweepParameter> parameters;  // in order of appearance
 
@@ -88,7 +89,8 @@ struct SweepSpec {
   void set(SweepParameter parameter);
 };
 
-// "rmse", "rmse:min", "r2:max"; ConfigError otherwise.
+// "validation.rmse", "rmse:min", "validation.r2:max"; ConfigError otherwise
+// (the name is resolved by resolve_objective, sweep_plan.hpp).
 Objective parse_objective(const std::string& text);
 
 // Command-line words after the experiment file: `key=value` with one plain

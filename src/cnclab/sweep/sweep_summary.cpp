@@ -20,7 +20,7 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr int kSummaryVersion = 1;
+constexpr int kSummaryVersion = 2;  // 1: metric names of result format 1 (sweep_summary.hpp)
 const double kNaN = std::nan("");
 
 std::string read_text(const fs::path& p) {
@@ -103,6 +103,24 @@ double metric_or_nan(const std::map<std::string, double>& m, const std::string& 
   return it == m.end() ? kNaN : it->second;
 }
 
+std::map<std::string, std::string> metric_units(const std::vector<TrialOutcome>& outcomes) {
+  std::map<std::string, std::string> units;
+  for (const auto& o : outcomes) {
+    for (const auto& [name, unit] : o.metric_units) {
+      if (!unit.empty()) units.emplace(name, unit);
+    }
+  }
+  return units;
+}
+
+std::vector<std::string> test_metrics(const SweepPlan& plan) {
+  std::vector<std::string> names;
+  for (const auto& m : plan.metrics) {
+    if (metric_split(m) == "test") names.push_back(m);
+  }
+  return names;
+}
+
 std::string to_string(TrialOutcome::Status status) {
   switch (status) {
     case TrialOutcome::Status::complete:
@@ -129,6 +147,7 @@ TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) 
       if (r.status == "complete") {
         o.status = TrialOutcome::Status::complete;
         o.metrics = std::move(r.metrics);
+        o.metric_units = std::move(r.metric_units);
         o.warnings = std::move(r.warnings);
       } else {
         o.status = TrialOutcome::Status::failed;
@@ -259,10 +278,15 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
     f.write_int64s("/trials/point", point);
     f.write_int64s("/trials/repeat", repeat);
     write_parameters(f, "/trials", plan, plan.trials);
+    const std::map<std::string, std::string> units = metric_units(outcomes);
+    const auto unit_of = [&](const std::string& metric) {
+      const auto it = units.find(metric);
+      return it == units.end() ? std::string() : it->second;
+    };
     for (const auto& metric : plan.metrics) {
       std::vector<double> v;
       for (const auto& o : outcomes) v.push_back(metric_or_nan(o.metrics, metric));
-      f.write_vector("/trials/metrics/" + metric, v);
+      f.write_vector("/trials/metrics/" + metric, v, unit_of(metric));
     }
 
     std::vector<std::int64_t> p_index, p_complete, p_failed;
@@ -287,6 +311,24 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
       f.write_vector("/points/metrics/" + metric + "/mean", mean);
       f.write_vector("/points/metrics/" + metric + "/std", sd);
     }
+    if (s.best_trial >= 0) {
+      const PointStats& chosen = s.points.front();
+      f.create_group("/selected");
+      f.set_attribute("/selected", "point", static_cast<std::int64_t>(chosen.point));
+      f.set_attribute("/selected", "trial", plan.trials[static_cast<std::size_t>(s.best_trial)].id);
+      f.set_attribute("/selected", "objective_metric", plan.objective.metric);
+      f.set_attribute("/selected", "complete", static_cast<std::int64_t>(chosen.complete));
+      for (const char* g : {"/selected/metrics", "/selected/metrics_std", "/selected/units"}) {
+        f.create_group(g);
+      }
+      const std::vector<std::string> tested = test_metrics(plan);
+      if (tested.empty()) f.set_attribute("/selected", "note", std::string(kNoTestSplitNote));
+      for (const auto& metric : tested) {
+        f.set_attribute("/selected/metrics", metric, metric_or_nan(chosen.mean, metric));
+        f.set_attribute("/selected/metrics_std", metric, metric_or_nan(chosen.std, metric));
+        f.set_attribute("/selected/units", metric, unit_of(metric));
+      }
+    }
     mark_complete(f);  // last
     f.close();
     out.commit();
@@ -307,9 +349,17 @@ TrialOutcome::Status parse_status(const std::string& text, const fs::path& file)
 
 StoredSummary read_summary_in_process(const fs::path& file) {
   const H5File f = H5File::open_read(file);
-  require_format(f, kSummaryFormat, kSummaryVersion);
+  const int version = require_format(f, kSummaryFormat, 1, kSummaryVersion);
   StoredSummary s;
   s.plan = parse_plan(f.read_string("/plan"), file.string() + ":/plan");
+  // Each of the plan's metrics (today's names) as the summary stores it.
+  std::map<std::string, std::string> stored_as;
+  for (const auto& m : s.plan.metrics) stored_as[m] = m;
+  if (version == 1 && f.is_group("/trials/metrics")) {
+    for (const auto& name : f.children("/trials/metrics")) {
+      stored_as[format1_metric_name(name)] = name;
+    }
+  }
   const std::size_t n = s.plan.trials.size();
   const auto ids = f.read_strings("/trials/id");
   const auto status = f.read_strings("/trials/status");
@@ -325,9 +375,12 @@ StoredSummary read_summary_in_process(const fs::path& file) {
     }
   }
   std::map<std::string, std::vector<double>> metrics;
+  std::map<std::string, std::string> units;
   for (const auto& m : s.plan.metrics) {
-    metrics[m] = f.read_vector("/trials/metrics/" + m);
-    if (metrics[m].size() != n) throw IoError(file.string() + ": /trials/metrics/" + m + ": size");
+    const std::string name = "/trials/metrics/" + stored_as[m];
+    metrics[m] = f.read_vector(name);
+    if (metrics[m].size() != n) throw IoError(file.string() + ":" + name + ": size");
+    if (f.has_attribute(name, "units")) units[m] = f.units(name);
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (ids[i] != s.plan.trials[i].id) {
@@ -340,6 +393,7 @@ StoredSummary read_summary_in_process(const fs::path& file) {
     o.result_file = result[i];
     if (o.status == TrialOutcome::Status::complete) {
       for (const auto& [m, v] : metrics) o.metrics[m] = v[i];
+      o.metric_units = units;
       o.warnings = split_warnings(warnings[i]);
     }
     s.outcomes.push_back(std::move(o));

@@ -3,8 +3,8 @@
 // points (parameter combinations) aggregated over repeats and ranked by the
 // objective, and the summary HDF5 file (the table for people: sweep_report.hpp).
 //
-// summary.h5 (h5py: f["trials/metrics/rmse"][:]):
-//   /                  attrs format = "cnclab-sweep-summary", format_version = 1,
+// summary.h5 (h5py: f["trials/metrics/validation.rmse"][:]):
+//   /                  attrs format = "cnclab-sweep-summary", format_version = 2,
 //                      experiment, method, repeats, objective_metric,
 //                      objective_mode (min|max), plan_hash, counts trials,
 //                      complete_trials, failed, errors, missing; best_trial (id, when
@@ -16,11 +16,22 @@
 //                              absent in summaries written before warnings existed)
 //   /trials/{point, repeat}                           int64
 //   /trials/parameters/<key>   float64 when every value is a number, else strings (YAML)
-//   /trials/metrics/<metric>   float64, NaN where the trial has no metrics
+//   /trials/metrics/<metric>   float64, NaN where the trial has no metrics; attribute
+//                              units when the trials' results give one
 //   /points/...                one row per point, ranked by the objective (best first):
 //                              point, trials (its trial ids "id1,id2,..." in
 //                              repeat order), parameters/<key>, complete, failed,
 //                              metrics/<metric>/{mean, std} (std over repeats, n - 1; NaN if n < 2)
+//   /selected          (when a trial completed) the chosen point: attrs point,
+//                      trial (= best_trial), objective_metric, complete (its
+//                      repeats); /selected/metrics, /selected/metrics_std and
+//                      /selected/units: one attribute per test metric
+//                      (test.*), its mean and std over those repeats and unit:
+//                      the test numbers of the point the objective chose,
+//                      reported after the choice (none without a test split:
+//                      attr note says so)
+// Metric names as in result files (validation.rmse, nn/metrics.hpp); version 1
+// summaries (rmse, normalised_validation_mse, ...) are read under today's names.
 #include <cstddef>
 #include <filesystem>
 #include <map>
@@ -40,8 +51,9 @@ struct TrialOutcome {
   // unreadable).
   enum class Status { complete, failed, error, missing };
   Status status = Status::missing;
-  std::string reason;                     // failed/error: why; missing: unreadable result
-  std::map<std::string, double> metrics;  // complete only
+  std::string reason;                               // failed/error: why; missing: unreadable result
+  std::map<std::string, double> metrics;            // complete only
+  std::map<std::string, std::string> metric_units;  // per metric, when the result gives one
   std::vector<std::string> warnings;  // complete only ("constant predictions", run_warnings.hpp)
   std::string result_file;            // relative to the sweep folder; "" if none
   std::vector<UpstreamRef> upstream;  // upstream results the trial was made from
@@ -79,8 +91,20 @@ struct SweepSummary {
 // metrics[name], NaN when absent.
 double metric_or_nan(const std::map<std::string, double>& metrics, const std::string& name);
 
+// The unit of each metric as the trials' results give it (the first that
+// names one).
+std::map<std::string, std::string> metric_units(const std::vector<TrialOutcome>& outcomes);
+// The plan's metrics of the test split (test.*), in plan order: what a sweep
+// reports of its chosen point, after the choice.
+std::vector<std::string> test_metrics(const SweepPlan& plan);
+
 // How best_trial is chosen (summary.h5 attribute best_trial_rule).
 inline constexpr const char* kBestTrialRule = "median repeat of the rank-1 point by the objective";
+// What a sweep without test metrics reports of its chosen point (narx runs:
+// split.mode sequential_halves has no test part).
+inline constexpr const char* kNoTestSplitNote =
+    "no test split: no part is held out of both the training and the choice, so the chosen "
+    "point's numbers are no estimate on new data";
 
 SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& outcomes);
 

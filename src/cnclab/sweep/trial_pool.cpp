@@ -221,7 +221,7 @@ int run_trial_pool(const std::function<std::optional<TrialJob>()>& next_ready,
       const auto now = Clock::now();
       for (auto& [pid, trial] : running) {
         const double seconds = std::chrono::duration<double>(now - trial.start).count();
-        if (!trial.timed_out && seconds > options.trial_timeout_seconds) {
+        if (trial.job.timed && !trial.timed_out && seconds > options.trial_timeout_seconds) {
           trial.timed_out = true;
           ::kill(pid, SIGKILL);
         }

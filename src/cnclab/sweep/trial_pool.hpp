@@ -39,6 +39,9 @@ struct TrialJob {
   // dataset into the cache while trainings run); its exceptions end it like
   // a trial's. Set either this or `experiment`.
   std::function<void()> task;
+  // false: PoolOptions::trial_timeout_seconds does not apply (a task that
+  // waits for another process, which takes as long as that process does).
+  bool timed = true;
 };
 
 // How a child ended.

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/job_result.hpp"
@@ -78,6 +79,12 @@ TEST(FeedrateTables, MeasuresTheWorstToleranceAndChecksTheDoneWhen) {
   ASSERT_EQ(pass.size(), 2u);
   EXPECT_TRUE(pass.at("constrained.min_share_within"));
   EXPECT_TRUE(pass.at("min_ratio_uniform_constrained"));
+  // The section was chosen on this outcome itself: the table's note says so.
+  std::ostringstream table;
+  print_feedrate_example_tables(f.options, table);
+  EXPECT_NE(table.str().find("section: chosen on the reported data, not on validation"),
+            std::string::npos)
+      << table.str();
 
   f.write({1.0, 0.998, 1.0}, {1.16, 1.2, 1.27});  // one tolerance at 99.8 %
   EXPECT_FALSE(f.check().at("constrained.min_share_within"));

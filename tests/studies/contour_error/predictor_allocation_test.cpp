@@ -1,68 +1,23 @@
-// The real-time path allocates nothing: this executable interposes glibc's
-// malloc family (which operator new and Eigen's aligned_malloc call) with
-// counting wrappers around __libc_malloc & co., and counts the heap
-// allocations during ticks and resets of the contour predictor. Built
-// without sanitizers only (AddressSanitizer owns malloc; tests/CMakeLists).
+// The real-time path allocates nothing: this executable counts the heap
+// allocations (common/counting_malloc.hpp) during ticks and resets of the
+// contour predictor. Built without sanitizers only (AddressSanitizer owns
+// malloc; tests/CMakeLists).
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
-#include <cstddef>
 #include <numbers>
 #include <vector>
 
 #include "cnclab/motion/analytic_paths.hpp"
 #include "cnclab/studies/contour_error/contour_predictor.hpp"
+#include "common/counting_malloc.hpp"
 #include "common/stable_narx.hpp"
-
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* __libc_memalign(std::size_t, std::size_t);
-void __libc_free(void*);
-}
-
-namespace {
-std::atomic<long> g_allocations{0};  // test-only instrumentation
-}  // namespace
-
-extern "C" {
-void* malloc(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_malloc(size);
-}
-void* calloc(std::size_t count, std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_calloc(count, size);
-}
-void* realloc(void* p, std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_realloc(p, size);
-}
-void* memalign(std::size_t alignment, std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_memalign(alignment, size);
-}
-void* aligned_alloc(std::size_t alignment, std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_memalign(alignment, size);
-}
-int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  *out = __libc_memalign(alignment, size);
-  return *out == nullptr ? 12 /* ENOMEM */ : 0;
-}
-void free(void* p) {
-  __libc_free(p);
-}
-}
 
 namespace cnclab {
 namespace {
 
 long allocations() {
-  return g_allocations.load(std::memory_order_relaxed);
+  return testing::heap_allocations();
 }
 
 // Keeps the optimiser from eliding an allocation whose result is unused.

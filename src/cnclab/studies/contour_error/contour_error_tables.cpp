@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cnclab/core/config.hpp"
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/contour_error/narx_study_runs.hpp"
 
@@ -123,11 +124,21 @@ std::string stable_note() {
          "as in the paper); mean ± std are over the bounded runs, stable or not";
 }
 
+// "The runs ran with profile quick (per the result files' configs): dataset:
+// ...; model: ..." of the study's runs (report/run_settings.hpp).
+std::string settings_note(const NarxStudyRuns& r) {
+  return "The runs " + ran_with(r.profile, r.configs,
+                                {"dataset.options.samples", "dataset.options.runs",
+                                 "dataset.options.path.control_points", "model.hidden",
+                                 "model.input_delays", "model.feedback_delays"});
+}
+
 // `notes`, then the notes both study tables end with (what "stable" means,
 // the second try, each run that is not stable, each trial that did not
 // complete), then the files read.
 void print_training_notes(const NarxStudyRuns& r, std::vector<std::string> notes, TableFormat f,
                           std::ostream& out) {
+  notes.push_back(settings_note(r) + "; their trainer stages give the epochs column.");
   notes.push_back(stable_note());
   notes.push_back(kRetryNote);
   notes.push_back(second_try_note(r));
@@ -209,6 +220,7 @@ void print_architecture(const NarxStudyRuns& r, const ConfigReader& ref, TableFo
   for (const auto& a : r.axes) t.columns.push_back(mean_std_column("RMS " + a, "rms_" + a, "um"));
   t.columns.push_back(mean_std_column("contour RMS", "contour_rms", "um"));
   t.columns.push_back(number_column("paper", "paper_choice"));  // 1: the paper's architecture
+  t.columns.push_back(number_column("chosen", "chosen"));       // 1: the sweep's choice
   const auto same_architecture = [](const NarxStudyRun& a, const NarxStudyRun& b) {
     return a.hidden == b.hidden && a.input_delays == b.input_delays &&
            a.feedback_delays == b.feedback_delays;
@@ -242,7 +254,9 @@ void print_architecture(const NarxStudyRuns& r, const ConfigReader& ref, TableFo
     }
     row.push_back(mean_std(stats(metric_of(runs, "contour_rms"))));
     const bool papers = h == paper_h && di == paper_d && df == paper_d;
+    const bool chosen = r.chosen && same_architecture(*k, r.runs[*r.chosen]);
     row.push_back(number_cell(papers ? 1 : 0, papers ? "<- paper's choice" : ""));
+    row.push_back(number_cell(chosen ? 1 : 0, chosen ? "<- chosen on validation" : ""));
     t.rows.push_back(row);
   }
   t.print(out, f);
@@ -251,6 +265,23 @@ void print_architecture(const NarxStudyRuns& r, const ConfigReader& ref, TableFo
           " input and feedback delays: " + reference_text(ref, "architecture", "claim"),
       "Training: " + (r.runs.empty() ? std::string("-") : r.runs.front().method) +
           " (experiments/contour_error/architecture.yaml)"};
+  if (r.chosen) {
+    const NarxStudyRun& c = r.runs[*r.chosen];
+    const bool same =
+        c.hidden == paper_h && c.input_delays == paper_d && c.feedback_delays == paper_d;
+    notes.push_back("Chosen on validation: H=" + std::to_string(c.hidden) + ", delays " +
+                    std::to_string(c.input_delays) + "/" + std::to_string(c.feedback_delays) +
+                    ", the lowest mean " + r.objective +
+                    " (the sweep's objective; unstable runs rank last)" +
+                    (same ? ", the paper's choice too."
+                          : "; the paper chose H=" + std::to_string(paper_h) + ", delays " +
+                                std::to_string(paper_d) + "/" + std::to_string(paper_d) + "."));
+  }
+  notes.push_back(
+      "No test split: seed 002 trains on the first half and reports the second (sequential "
+      "halves), and no training stage stops on it, so it is held out; but both choices above "
+      "are made on that half, the half every number here is measured on: the chosen "
+      "architecture's numbers are optimistic, not an estimate on new data.");
   print_training_notes(r, std::move(notes), f, out);
 }
 
@@ -272,7 +303,9 @@ void print_estimates(const NarxStudyRuns& r, const ConfigReader& ref, TableForma
                     number_cell(exact_mean, table_number(exact_mean, 3) + " (mean)"),
                     number_cell(exact_max, table_number(exact_max, 3) + " (max)")});
   t.print(out, f);
-  print_table_notes(out, f, {"Paper: " + reference_text(ref, "contour", "estimate")});
+  print_table_notes(out, f,
+                    {"Paper: " + reference_text(ref, "contour", "estimate"),
+                     settings_note(r) + " (the estimates use their simulated data)."});
 }
 
 void print_predictor(const NarxStudyRuns& r, const ConfigReader& ref, TableFormat f,
@@ -304,7 +337,8 @@ void print_predictor(const NarxStudyRuns& r, const ConfigReader& ref, TableForma
                     {"zero predictor: contour RMS = RMS of the exact contour error; its mean is " +
                          table_number(r.metric("exact_contour_mean"), 3) + " µm, max " +
                          table_number(r.metric("exact_contour_max"), 3) + " µm",
-                     stable_note(), "Paper: " + reference_text(ref, "contour", "accuracy")});
+                     stable_note(), "Paper: " + reference_text(ref, "contour", "accuracy"),
+                     settings_note(r) + "."});
 }
 
 // The measured quantities of one group of runs (a method, an architecture)
@@ -348,7 +382,8 @@ void add_methods(Measurements& m, const NarxStudyRuns& r) {
   }
 }
 
-// architecture.h<H>_d<in>_<fb>.* per architecture, architecture.all.* over every run.
+// architecture.h<H>_d<in>_<fb>.* per architecture, architecture.all.* over every run,
+// architecture.chosen.{hidden,delays}: the sweep's choice on validation (input delays).
 void add_architectures(Measurements& m, const NarxStudyRuns& r) {
   std::map<std::string, std::vector<const NarxStudyRun*>> by_arch;
   std::vector<const NarxStudyRun*> all;
@@ -362,6 +397,10 @@ void add_architectures(Measurements& m, const NarxStudyRuns& r) {
   }
   for (const auto& [arch, runs] : by_arch) add_group(m, "architecture." + arch, r, runs);
   add_group(m, "architecture.all", r, all);
+  if (r.chosen) {
+    m["architecture.chosen.hidden"] = static_cast<double>(r.runs[*r.chosen].hidden);
+    m["architecture.chosen.delays"] = static_cast<double>(r.runs[*r.chosen].input_delays);
+  }
 }
 
 }  // namespace

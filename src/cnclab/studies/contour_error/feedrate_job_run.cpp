@@ -185,7 +185,7 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
   ticks_out.commit();
   rec.outputs = {{"ticks", ticks_name}};
   rec.facts["predictor"] = model.upstream.result_file.string();
-  rec.provenance.end_utc = utc_now_iso8601();
+  finish_provenance(rec.provenance);
   rec.provenance.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   feedrate_run_metric(rec, "wall_seconds", rec.provenance.wall_seconds, "s");

@@ -94,12 +94,8 @@ TrainedContourModel load_trained_contour_model(const std::filesystem::path& narx
   if (dataset) *dataset = cached.dataset;
   Rng rng(seed);  // the generator's first draw is the path (following_error.cpp)
   m.path = std::make_unique<NurbsPlanarPath>(random_planar_nurbs(m.dataset.path, rng));
-  // The contour RMS of the closed-loop prediction of the validation half,
-  // named with or without its split ("validation.contour_rms").
-  const auto& metrics = m.upstream.record.metrics;
-  auto rms = metrics.find("contour_rms");
-  if (rms == metrics.end()) rms = metrics.find("validation.contour_rms");
-  m.contour_rms = rms == metrics.end() ? 0.0 : rms->second * 1e-3;
+  const auto rms = m.upstream.record.metrics.find("validation.contour_rms");  // narx_metrics.hpp
+  m.contour_rms = rms == m.upstream.record.metrics.end() ? 0.0 : rms->second * 1e-3;
   return m;
 }
 

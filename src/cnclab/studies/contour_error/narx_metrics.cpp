@@ -40,27 +40,29 @@ std::vector<std::string> metric_names() {
   return names;
 }
 
-Eigen::VectorXd validation_row(const SequencePrediction& p, const std::string& name) {
+// A metadata column over the scored steps: the validation part from its
+// first predicted step (first_step), the steps the closed-loop metrics cover.
+Eigen::VectorXd scored_row(const SequencePrediction& p, const std::string& name) {
   const Dataset& d = *p.data;
   const Eigen::Index row = d.metadata_row(name);
   if (row < 0) throw Error("contour_error metrics: the dataset has no metadata column " + name);
-  const auto half = static_cast<Eigen::Index>(p.first_validation);
-  return d.metadata.row(row).segment(half, d.metadata.cols() - half).transpose();
+  const Eigen::Index first = static_cast<Eigen::Index>(p.first_validation) + p.first_step;
+  return d.metadata.row(row).segment(first, d.metadata.cols() - first).transpose();
 }
 
-// The dataset-level numbers: zero predictor, exact contour, estimates.
+// The dataset-level numbers over the scored steps: zero predictor, exact
+// contour, estimates.
 void dataset_metrics(const SequencePrediction& p, std::map<std::string, double>& out) {
   for (const char* a : kAxes) {
-    const Eigen::VectorXd e = validation_row(p, std::string("e_ref_") + a);
+    const Eigen::VectorXd e = scored_row(p, std::string("e_ref_") + a);
     out[std::string("zero_rms_") + a] = std::sqrt(e.squaredNorm() / static_cast<double>(e.size()));
     out[std::string("zero_max_") + a] = e.cwiseAbs().maxCoeff();
   }
-  const Eigen::VectorXd exact = validation_row(p, "contour_exact");
+  const Eigen::VectorXd exact = scored_row(p, "contour_exact");
   out["exact_contour_mean"] = exact.mean();
   out["exact_contour_max"] = exact.maxCoeff();
   for (const char* m : kEstimates) {
-    const Eigen::ArrayXd diff =
-        (validation_row(p, std::string("contour_") + m) - exact).array().abs();
+    const Eigen::ArrayXd diff = (scored_row(p, std::string("contour_") + m) - exact).array().abs();
     out[std::string(m) + "_mean_abs_diff"] = diff.mean();
     out[std::string(m) + "_max_abs_diff"] = diff.maxCoeff();
   }
@@ -146,8 +148,12 @@ std::map<std::string, double> compute(const SequencePrediction& p) {
 void register_contour_error_metrics() {
   // Every metric is a distance in µm but `stable`, a 0/1 flag.
   std::map<std::string, std::string> units;
-  for (const auto& name : metric_names()) units[name] = name == "stable" ? "1" : "µm";
-  register_sequence_metrics({"contour_error (seed 002)", metric_names(), compute, units});
+  std::map<std::string, MetricRange> ranges;
+  for (const auto& name : metric_names()) {
+    units[name] = name == "stable" ? "1" : "µm";
+    ranges[name] = {0.0, name == "stable" ? 1.0 : std::numeric_limits<double>::infinity()};
+  }
+  register_sequence_metrics({"contour_error (seed 002)", metric_names(), compute, units, ranges});
 }
 
 }  // namespace cnclab

@@ -13,7 +13,11 @@
 //   <estimate>_mean_abs_diff, <estimate>_max_abs_diff  |estimate - exact| for the
 //                contour estimates taylor, tangent, osculating (motion/contour_error.hpp)
 // The dataset-level numbers (zero_*, exact_*, estimates) do not depend on the
-// network; every trial carries them so a table needs no second source.
+// network; every trial carries them so a table needs no second source. All
+// numbers cover the same steps: the validation part from first_step (the
+// first predicted step, after the delays' measured initial states), so the
+// zero predictor is scored where the network is. Stored as
+// validation.<name> (experiment/spec.hpp: a narx run's one split).
 namespace cnclab {
 
 inline constexpr double kStableBound = 10.0;

@@ -5,6 +5,7 @@
 
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/result_store.hpp"
+#include "cnclab/nn/metrics.hpp"
 #include "cnclab/sweep/sweep_job.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 
@@ -66,7 +67,11 @@ NarxStudyRun run_of(const RunRecord& r, const fs::path& file) {
                    to_string(net.stages.back().summary.termination);
     }
   }
-  run.metrics = r.metrics;
+  // The registered names (narx_metrics.hpp): every metric of a narx run is
+  // of its validation half (validation.<name>, experiment/spec.hpp).
+  for (const auto& [name, value] : r.metrics) {
+    if (metric_split(name) == "validation") run.metrics[metric_base(name)] = value;
+  }
   return run;
 }
 
@@ -101,6 +106,7 @@ NarxStudyRuns load_narx_study(const TablesOptions& o, const std::string& file) {
   const SweepJob job = load_sweep_job(experiment, {}, o.profile);
   const SweepJobState state = sweep_job_state(job, o.results_dir);
   NarxStudyRuns out;
+  out.profile = o.profile;
   out.trials = state.plan.trials.size();
   if (state.summary.missing > 0) {
     const ResultStore store(o.results_dir, o.profile);
@@ -126,9 +132,12 @@ NarxStudyRuns load_narx_study(const TablesOptions& o, const std::string& file) {
       out.train_samples = r.split.train.size();
       out.validation_samples = r.split.validation.size();
     }
+    if (state.summary.best_trial == static_cast<std::ptrdiff_t>(i)) out.chosen = out.runs.size();
     out.runs.push_back(run_of(r, path));
     out.sources.push_back(path);
+    out.configs.push_back(r.resolved_yaml);
   }
+  out.objective = state.plan.objective.metric;
   if (out.runs.empty()) {
     throw MissingResults("no trial of " + experiment.string() + " completed under " +
                          state.dir.string() + " (see the .error notes there)");

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,10 @@ struct NarxStudyRun {
   std::size_t open_epochs = 0, closed_epochs = 0;  // the first network's, per mode
   std::size_t second_tries = 0;  // networks whose stage was tried again (fallback_horizon)
   std::string stops;             // "x: max_epochs, y: mu_max": how each network's last stage ended
-  std::map<std::string, double> metrics;  // narx_metrics.hpp names, µm
-  bool bounded() const;                   // metric "stable" is 1: the prediction stayed bounded
+  // narx_metrics.hpp names ("contour_rms", stored as validation.contour_rms:
+  // the validation half), µm.
+  std::map<std::string, double> metrics;
+  bool bounded() const;  // metric "stable" is 1: the prediction stayed bounded
 };
 
 // Issue 17's criterion for a stable run, stricter than bounded: a bounded
@@ -39,15 +42,23 @@ struct NarxStudyRun {
 inline constexpr double kStableFactor = 3.0;
 
 struct NarxStudyRuns {
+  std::string profile;            // the tables' --profile the runs were loaded with
   std::vector<std::string> axes;  // network axes of the first run (x, y)
   std::size_t train_samples = 0, validation_samples = 0;
   std::vector<NarxStudyRun> runs;              // plan order
   std::vector<std::filesystem::path> sources;  // the result files read
+  std::vector<std::string> configs;            // their resolved configs (the settings notes)
   std::size_t trials = 0;                      // planned; runs.size() completed
   // One line per trial that ran and did not complete: "trial <id> (key=value
   // ..., seed S): failed: <reason>". The tables print them as notes, so a
   // mean over 4 runs is never read as a mean over the 5 planned.
   std::vector<std::string> not_completed;
+  // The sweep's choice: the median repeat of its best point by `objective`
+  // (sweep_summary.hpp), an index into `runs`; nullopt when none completed.
+  // The objective is of the validation half, the half the tables report:
+  // seed 002's sequential halves have no test part.
+  std::optional<std::size_t> chosen;
+  std::string objective;  // the sweep's objective metric (validation.contour_rms)
   double metric(const std::string& name) const;  // of the first run (dataset-level numbers)
   bool stable(const NarxStudyRun& run) const;    // kStableFactor criterion above
 };

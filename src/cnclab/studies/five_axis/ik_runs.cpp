@@ -83,6 +83,23 @@ bool IkVariant::any() const {
   return false;
 }
 
+std::vector<fs::path> ik_experiment_files(const TablesOptions& o) {
+  std::vector<fs::path> files;
+  for (const char* axis : kIkAxes) {
+    for (const std::string& name :
+         {"ik/ik_" + lower(axis) + ".yaml", "ik_search/search_" + lower(axis) + ".yaml",
+          "ik_trainbr/ik_" + lower(axis) + ".yaml"}) {
+      try {
+        const fs::path file = o.experiment_file(name);
+        if (fs::exists(file)) files.push_back(file);
+      } catch (const MissingResults&) {
+        // a variant without this axis (the search has no A and C)
+      }
+    }
+  }
+  return files;
+}
+
 std::vector<IkVariant> load_ik_variants(const TablesOptions& o) {
   std::vector<IkVariant> out(3);
   out[0].key = "sgdm", out[0].label = "ours";

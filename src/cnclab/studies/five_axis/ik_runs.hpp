@@ -42,4 +42,7 @@ struct IkVariant {
 // missing, Error when a result is for another target or failed.
 std::vector<IkVariant> load_ik_variants(const TablesOptions& options);
 
+// The variants' experiment and job files that exist: TableEntry::experiment_files.
+std::vector<std::filesystem::path> ik_experiment_files(const TablesOptions& options);
+
 }  // namespace cnclab

@@ -7,6 +7,7 @@
 #include "cnclab/core/field_schema.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/report/tables.hpp"
+#include "cnclab/studies/five_axis/ik_runs.hpp"
 #include "cnclab/studies/five_axis/ik_tables.hpp"
 #include "cnclab/studies/five_axis/trochoid_job.hpp"
 
@@ -48,7 +49,7 @@ void register_five_axis_study() {
       {"ik",
        "seed 004 Table 5 (IK networks per axis, ours vs paper) and the machine-space error of the "
        "predicted joints",
-       print_ik_tables, measure_ik_tables, "studies/ik_tables.yaml"});
+       print_ik_tables, measure_ik_tables, "studies/ik_tables.yaml", ik_experiment_files});
 }
 
 }  // namespace cnclab

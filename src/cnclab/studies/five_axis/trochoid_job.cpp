@@ -340,7 +340,7 @@ TrochoidFiles write_trochoid_outputs(const TrochoidJob& job, const fs::path& res
                  {"ramp_engagement_deg", o.ramp_engagement_rad * kDegPerRad},
                  {"start_circle_engagement_deg", o.entry_engagement_rad * kDegPerRad},
                  {"exit_engagement_deg", o.exit_engagement_rad * kDegPerRad}};
-  rec.provenance.end_utc = utc_now_iso8601();
+  finish_provenance(rec.provenance);
   rec.provenance.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_job_result(files.result, rec);  // last: it names the files above

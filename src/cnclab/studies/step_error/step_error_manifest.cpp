@@ -73,6 +73,7 @@ StudyManifest read_step_error_manifest(const fs::path& file) {
     const bool known = std::any_of(m.variants.begin(), m.variants.end(),
                                    [&](const StudyVariant& v) { return v.name == rep.variant; });
     if (!known) r.fail("variant", "must name one of the variants");
+    rep.table2 = read_path(r, "table2");
     rep.surface1 = read_path(r, "surface1");
     rep.surface2_ft15 = read_path(r, "surface2_ft15");
     rep.surface3_ft15 = read_path(r, "surface3_ft15");

@@ -12,7 +12,8 @@
 //       surface1_no_dropout: ... # Fig. 6b
 //       surface2: {0: ..., 1: ..., 5: ..., 10: ..., 15: ...}   # fine-tune % -> file
 //       surface3: {0: ..., ...}
-//       note: "one line: what this variant is"
+//       note: "one line: what this variant is meant to be" (the tables add what
+//                                it ran with, from the result files)
 //     tuned: {...}               # optional, same keys
 //   normaliser:
 //     default: refit             # or keep
@@ -20,8 +21,10 @@
 //     refit: {surface2: FILE, surface3: FILE}
 //   repeats:                     # optional: seed-to-seed spread (step_error_repeats.hpp)
 //     variant: tuned             # the variant whose headline rows are repeated
-//     surface1: FILE             # kind: sweep over model.dropout.keep_probability (Table 2's
-//     p, 1.0) surface2_ft15: FILE        # kind: sweep over init_from (refit and keep chains)
+//     table2: FILE               # kind: sweep over model.dropout.keep_probability (Table 2's
+//                                # p and 1.0) with a validation split to choose p on
+//     surface1: FILE             # kind: sweep of surface 1 itself (keep 1.0, 70/30 split)
+//     surface2_ft15: FILE        # kind: sweep over init_from (refit and keep chains)
 //     surface3_ft15: FILE
 //   targets: [...]                 # `--check` (report/targets.hpp; names: step_error_measures.hpp)
 #include <filesystem>
@@ -46,11 +49,11 @@ struct NormaliserChoice {
 };
 
 // The `kind: sweep` files that repeat a variant's headline rows over seeds
-// (sweep repeats): surface 1 with Table 2's keep probabilities, and the 15 %
-// fine-tunings with the normaliser refitted and kept.
+// (sweep repeats): Table 2's keep probabilities (and none), surface 1, and
+// the 15 % fine-tunings with the normaliser refitted and kept.
 struct StudyRepeats {
   std::string variant;  // a variant of `variants`
-  std::filesystem::path surface1, surface2_ft15, surface3_ft15;
+  std::filesystem::path table2, surface1, surface2_ft15, surface3_ft15;
 };
 
 struct StudyManifest {

@@ -2,12 +2,21 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "cnclab/report/statistics.hpp"
 #include "cnclab/report/text_table.hpp"
 
 namespace cnclab {
 namespace {
+
+// Table 2's figures over seeds (run_figures), and its two evaluations of one
+// network: the measures' suffix and the inference.
+const char* const kTable2Figures[] = {
+    "test_mse",    "validation_mse",   "test_mse_deterministic", "validation_mse_deterministic",
+    "test_mse_mc", "validation_mse_mc"};
+const std::pair<const char*, DropoutInference> kTable2Evaluations[] = {
+    {"", DropoutInference::deterministic}, {"_mc", DropoutInference::mc}};
 
 void add_run(Measurements& m, const std::string& prefix, const StepErrorRun& r) {
   for (const auto& [name, value] : run_figures(r)) m[prefix + "." + name] = value;
@@ -26,16 +35,23 @@ void add_seeds(Measurements& m, const std::string& prefix, const RepeatedPoint& 
 
 void add_repeats(Measurements& m, const StepErrorRepeats& r) {
   const std::string prefix = r.variant + ".seeds.";
-  for (const auto& point : r.surface1.points) {
-    const double p = point.number();
-    if (p == 1.0) {
-      add_seeds(m, prefix + "surface1", point);
-    } else {
-      RepeatedPoint mse = point;
-      for (auto& figures : mse.runs) figures = {{"test_mse", figures.at("test_mse")}};
-      add_seeds(m, prefix + "table2.p" + table_number(p), mse);
+  for (const auto& point : r.table2.points) {
+    RepeatedPoint mse = point;
+    for (auto& figures : mse.runs) {
+      std::map<std::string, double> kept;
+      for (const char* f : kTable2Figures) kept[f] = figures.at(f);
+      figures = std::move(kept);
     }
+    add_seeds(m, prefix + "table2.p" + table_number(point.number()), mse);
   }
+  const auto p_of = [](const RepeatedPoint* point) { return point ? point->number() : NAN; };
+  for (const auto& [suffix, figures] : {std::pair{"", "_deterministic"}, std::pair{"_mc", "_mc"}}) {
+    const std::string best = prefix + "table2.best_p" + suffix;
+    m[best] = p_of(table2_choice_over_seeds(r.table2, std::string("validation_mse") + figures));
+    m[best + "_on_test"] =
+        p_of(table2_choice_over_seeds(r.table2, std::string("test_mse") + figures));
+  }
+  for (const auto& point : r.surface1.points) add_seeds(m, prefix + "surface1", point);
   for (const auto* sweep : {&r.surface2_ft15, &r.surface3_ft15}) {
     const std::string surface = sweep == &r.surface2_ft15 ? "surface2" : "surface3";
     for (const auto& point : sweep->points) {
@@ -44,27 +60,48 @@ void add_repeats(Measurements& m, const StepErrorRepeats& r) {
   }
 }
 
-// Table 2 of one variant: test MSE per keep probability, and the best p
-// (lowest test MSE of the trainings that did not diverge, as the table's note).
+// Table 2 of one variant: validation and test MSE per keep probability under
+// each evaluation, and the chosen p (table2_choice, as the table's notes).
 void add_table2(Measurements& m, const std::string& variant, const StepErrorStudy& s,
                 const StudyVariant& v) {
-  double best = NAN, best_p = NAN;
   for (const auto& [p, file] : v.table2) {
     const StepErrorRun& run = s.at(file);
     const std::string key = variant + ".table2.p" + table_number(p);
     const bool diverged = !run.failure.empty();
-    const double mse = diverged ? NAN : normalised_test_mse(run.record);
     m[key + ".diverged"] = diverged ? 1.0 : 0.0;
-    m[key + ".test_mse"] = mse;
-    if (!std::isnan(mse) && !(mse >= best)) {
-      best = mse;
-      best_p = p;
+    for (const auto& [suffix, inference] : kTable2Evaluations) {
+      m[key + ".test_mse" + suffix] = inference_test_mse(run, inference);
+      m[key + ".validation_mse" + suffix] = inference_validation_mse(run, inference);
     }
   }
-  m[variant + ".table2.best_p"] = best_p;
+  for (const auto& [suffix, inference] : kTable2Evaluations) {
+    const Table2Choice choice = table2_choice(s, v, inference);
+    m[variant + ".table2.best_p" + suffix] = choice.on_validation;
+    m[variant + ".table2.best_p" + suffix + "_on_test"] = choice.on_test;
+  }
 }
 
 }  // namespace
+
+double validation_mse(const RunRecord& r) {
+  const auto it = r.metrics.find("validation.normalised_mse");
+  return it == r.metrics.end() ? NAN : it->second;
+}
+
+Table2Choice table2_choice(const StepErrorStudy& s, const StudyVariant& v,
+                           DropoutInference inference) {
+  Table2Choice c;
+  double best_validation = NAN, best_test = NAN;
+  for (const auto& [p, file] : v.table2) {
+    const StepErrorRun& run = s.at(file);
+    if (!run.failure.empty()) continue;
+    const double val = inference_validation_mse(run, inference);
+    const double test = inference_test_mse(run, inference);
+    if (!std::isnan(val) && !(val >= best_validation)) best_validation = val, c.on_validation = p;
+    if (!std::isnan(test) && !(test >= best_test)) best_test = test, c.on_test = p;
+  }
+  return c;
+}
 
 // As Tables 3-7 and the normaliser table print them (step_error_tables.cpp:
 // the rows' lambdas).
@@ -80,7 +117,14 @@ std::map<std::string, double> run_figures(const StepErrorRun& r) {
           {"share_rel_below_10pct", f.share_rel_below(10)},
           {"share_rel_above_10pct", 100.0 - f.share_rel_below(10)},
           {"final_train_loss", h.empty() ? NAN : h.back().train_loss},
-          {"test_mse", normalised_test_mse(r.record)}};
+          {"test_mse", normalised_test_mse(r.record)},
+          {"validation_mse", validation_mse(r.record)},
+          {"test_mse_deterministic", inference_test_mse(r, DropoutInference::deterministic)},
+          {"validation_mse_deterministic",
+           inference_validation_mse(r, DropoutInference::deterministic)},
+          {"test_mse_mc", inference_test_mse(r, DropoutInference::mc)},
+          {"validation_mse_mc", inference_validation_mse(r, DropoutInference::mc)},
+          {"mc_samples", static_cast<double>(r.record.model.dropout_mc_samples)}};
 }
 
 Measurements step_error_measures(const StepErrorStudy& s) {

@@ -7,6 +7,7 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/result_store.hpp"
+#include "cnclab/report/statistics.hpp"
 #include "cnclab/studies/step_error/step_error_measures.hpp"
 #include "cnclab/sweep/sweep_job.hpp"
 
@@ -61,6 +62,19 @@ const RepeatedPoint* RepeatedSweep::find(double number) const {
   return nullptr;
 }
 
+const RepeatedPoint* table2_choice_over_seeds(const RepeatedSweep& table2,
+                                              const std::string& figure) {
+  const RepeatedPoint* best = nullptr;
+  double best_mean = NAN;
+  for (const auto& point : table2.points) {
+    const std::vector<double> v = point.sample(figure);
+    if (point.number() == kNoDropout || v.size() < 2) continue;
+    const double mean = summarize(v).mean;
+    if (!best || mean < best_mean) best = &point, best_mean = mean;
+  }
+  return best;
+}
+
 RepeatedSweep load_repeated_sweep(const fs::path& file, const TablesOptions& o) {
   if (!fs::exists(file)) throw MissingResults(file.string() + ": not found");
   const SweepJob job = load_sweep_job(file, {}, o.profile);
@@ -91,16 +105,18 @@ RepeatedSweep load_repeated_sweep(const fs::path& file, const TablesOptions& o) 
     const TrialOutcome& outcome = state.outcomes[i];
     if (outcome.status != TrialOutcome::Status::complete) continue;
     const fs::path path = state.dir / outcome.result_file;
-    point.runs.push_back(run_figures(step_error_run(read_result(path), path)));
+    const StepErrorRun run = step_error_run(read_result(path), path);
+    point.runs.push_back(run_figures(run));
     point.seeds.push_back(t.seed);
     out.sources.push_back(path);
+    out.configs.push_back(run.record.resolved_yaml);
   }
   return out;
 }
 
 StepErrorRepeats load_step_error_repeats(const StudyRepeats& r, const TablesOptions& o) {
-  return {r.variant, load_repeated_sweep(r.surface1, o), load_repeated_sweep(r.surface2_ft15, o),
-          load_repeated_sweep(r.surface3_ft15, o)};
+  return {r.variant, load_repeated_sweep(r.table2, o), load_repeated_sweep(r.surface1, o),
+          load_repeated_sweep(r.surface2_ft15, o), load_repeated_sweep(r.surface3_ft15, o)};
 }
 
 }  // namespace cnclab

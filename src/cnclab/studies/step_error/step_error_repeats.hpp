@@ -18,6 +18,9 @@
 
 namespace cnclab {
 
+// The keep probability of no dropout: Table 2's sweep point beside its p.
+inline constexpr double kNoDropout = 1.0;
+
 // One value of the swept key over its seeds.
 struct RepeatedPoint {
   // The value as the plan writes it ("0.5"); of an init_from mapping, its
@@ -39,15 +42,27 @@ struct RepeatedSweep {
   std::string key;                                            // the swept key
   std::vector<RepeatedPoint> points;                          // plan order
   std::vector<std::filesystem::path> sources;                 // the result files read
+  std::vector<std::string> configs;                           // their resolved configs
   const RepeatedPoint* find(const std::string& value) const;  // nullptr when absent
   const RepeatedPoint* find(double number) const;
 };
 
 struct StepErrorRepeats {
-  std::string variant;                         // the variant whose headline rows these repeat
-  RepeatedSweep surface1;                      // model.dropout.keep_probability: Table 2's p, 1.0
+  std::string variant;  // the variant whose headline rows these repeat
+  // model.dropout.keep_probability: Table 2's p and 1.0, with a validation
+  // split (chosen on validation, reported on test).
+  RepeatedSweep table2;
+  RepeatedSweep surface1;                      // surface 1 itself (keep 1.0, 70/30)
   RepeatedSweep surface2_ft15, surface3_ft15;  // init_from: refit and keep chains
 };
+
+// Table 2 over seeds: the point of Table 2's sweep (a keep probability, not
+// 1.0: no dropout) with the lowest mean `figure` over at least 2 seeds;
+// nullptr when none has 2. The choice is on "validation_mse"
+// (step_error_measures.hpp); on "test_mse" it is the paper's reading, shown
+// beside it.
+const RepeatedPoint* table2_choice_over_seeds(const RepeatedSweep& table2,
+                                              const std::string& figure);
 
 // The complete trials of one sweep file with one swept key under the
 // tables' results folder and profile. MissingResults naming the command

@@ -13,12 +13,6 @@ std::string seed_notes_fixed(double v, int decimals) {
   return buf;
 }
 
-// "0.070 ± 0.003"; a single seed has no spread: "0.070 (1 seed)".
-std::string seed_notes_mean_std(const SampleSummary& s, int decimals) {
-  if (s.n < 2) return seed_notes_fixed(s.mean, decimals) + " (1 seed)";
-  return seed_notes_fixed(s.mean, decimals) + " ± " + seed_notes_fixed(s.std, decimals);
-}
-
 // "(5 and 5 seeds; Welch p = 0.00012 < 0.05)"
 std::string seed_notes_test(const SeedComparison& c, double alpha) {
   const std::string seeds = std::to_string(c.a.n) + " and " + std::to_string(c.b.n) + " seeds; ";
@@ -32,6 +26,11 @@ std::string seed_notes_test(const SeedComparison& c, double alpha) {
 
 }  // namespace
 
+std::string seed_mean_std_text(const SampleSummary& s, int decimals) {
+  if (s.n < 2) return seed_notes_fixed(s.mean, decimals) + " (1 seed)";
+  return seed_notes_fixed(s.mean, decimals) + " ± " + seed_notes_fixed(s.std, decimals);
+}
+
 SeedComparison compare_seeds(const SeedSample& a, const SeedSample& b, double alpha) {
   SeedComparison c;
   c.a = summarize(a.values);
@@ -44,8 +43,8 @@ SeedComparison compare_seeds(const SeedSample& a, const SeedSample& b, double al
 std::string seed_difference_sentence(const std::string& what, const SeedSample& a,
                                      const SeedSample& b, int decimals, double alpha) {
   const SeedComparison c = compare_seeds(a, b, alpha);
-  const std::string left = a.label + " " + seed_notes_mean_std(c.a, decimals);
-  const std::string right = b.label + " " + seed_notes_mean_std(c.b, decimals);
+  const std::string left = a.label + " " + seed_mean_std_text(c.a, decimals);
+  const std::string right = b.label + " " + seed_mean_std_text(c.b, decimals);
   if (!c.significant) {
     return what + ": " + left + " and " + right + " are not distinguishable from seed noise " +
            seed_notes_test(c, alpha) + ".";
@@ -65,8 +64,8 @@ std::string lowest_mean_sentence(const std::string& what, const std::vector<Seed
   std::stable_sort(ranked.begin(), ranked.end(),
                    [&](const SeedSample* x, const SeedSample* y) { return mean(x) < mean(y); });
   const SeedComparison c = compare_seeds(*ranked[0], *ranked[1], alpha);
-  const std::string best = ranked[0]->label + " (" + seed_notes_mean_std(c.a, decimals) + ")";
-  const std::string next = ranked[1]->label + " (" + seed_notes_mean_std(c.b, decimals) + ")";
+  const std::string best = ranked[0]->label + " (" + seed_mean_std_text(c.a, decimals) + ")";
+  const std::string next = ranked[1]->label + " (" + seed_mean_std_text(c.b, decimals) + ")";
   if (c.significant) {
     return what + ": lowest mean at " + best + ", below the next, " + next +
            ", beyond seed noise " + seed_notes_test(c, alpha) + ": " + ranked[0]->label +

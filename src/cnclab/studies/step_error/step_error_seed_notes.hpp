@@ -28,6 +28,9 @@ struct SeedComparison {
 };
 SeedComparison compare_seeds(const SeedSample& a, const SeedSample& b, double alpha = kSeedAlpha);
 
+// "0.070 ± 0.003"; a single seed has no spread: "0.070 (1 seed)".
+std::string seed_mean_std_text(const SampleSummary& s, int decimals);
+
 // "mean |e| (µm), surface 2: refit 0.070 ± 0.003 is lower than keep 0.098 ±
 // 0.004 (5 and 5 seeds; Welch p = 0.00012 < 0.05)." or "...: refit 0.070 ±
 // 0.003 and keep 0.071 ± 0.004 are not distinguishable from seed noise (5

@@ -3,16 +3,16 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/statistics.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/step_error/step_error_measures.hpp"
 #include "cnclab/studies/step_error/step_error_seed_notes.hpp"
+#include "cnclab/studies/step_error/step_error_table_parts.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
-
-constexpr double kNoDropout = 1.0;  // the surface-1 point of the keep-probability sweep
 
 std::string spread_fixed(double v, int decimals) {
   if (std::isnan(v)) return "-";
@@ -34,9 +34,6 @@ const SpreadQuantity kShareBelow1{"|e| < 1 µm (%)", "share_abs_below_1um_percen
                                   "share_abs_below_1um", 2};
 const SpreadQuantity kMaxAbs{"max |e| (µm)", "max_abs_um", "max_abs_um", 3};
 const SpreadQuantity kMeanAbs{"mean |e| (µm)", "mean_abs_um", "mean_abs_um", 3};
-const SpreadQuantity kTestMse{"test MSE (z-score units)", "test_mse", "test_mse", 3};
-// The notes' test MSE: no dropout reaches 0.002, whose spread needs a fourth decimal.
-constexpr int kNoteMseDecimals = 4;
 
 TableCell spread_value_cell(double v, int decimals) {
   return std::isnan(v) ? missing_cell("-") : number_cell(v, spread_fixed(v, decimals));
@@ -65,33 +62,6 @@ SeedSample spread_sample(const RepeatedPoint& point, const std::string& label,
 }
 
 }  // namespace
-
-std::vector<std::string> table2_seed_notes(const StepErrorRepeats& r) {
-  std::vector<SeedSample> by_p;
-  for (const auto& point : r.surface1.points) {
-    if (point.number() != kNoDropout) {
-      by_p.push_back(spread_sample(point, "p = " + point.value, kTestMse.figure));
-    }
-  }
-  std::vector<std::string> notes;
-  const std::string what = "ours, " + r.variant + ", test MSE over seeds";
-  const std::string lowest = lowest_mean_sentence(what, by_p, kNoteMseDecimals);
-  if (!lowest.empty()) notes.push_back(lowest);
-  const RepeatedPoint* none = r.surface1.find(kNoDropout);
-  const SeedSample* best = nullptr;
-  for (const auto& s : by_p) {
-    if (s.values.size() >= 2 &&
-        (!best || summarize(s.values).mean < summarize(best->values).mean)) {
-      best = &s;
-    }
-  }
-  if (none && best) {
-    notes.push_back(seed_difference_sentence(
-        "ours, " + r.variant + ", no dropout against the best p (test MSE)",
-        spread_sample(*none, "keep 1.0", kTestMse.figure), *best, kNoteMseDecimals));
-  }
-  return notes;
-}
 
 std::vector<std::string> normaliser_seed_notes(const StepErrorRepeats& r) {
   std::vector<std::string> notes;
@@ -131,11 +101,6 @@ void print_step_error_spread(const StepErrorStudy& s, TableFormat format, std::o
                           : missing_cell(one ? "diverged" : "-"),
                       spread_seeds_cell(point, q), spread_count_cell(point)});
   };
-  for (std::size_t i = 0; i < s.ref.table2_p.size(); ++i) {
-    const double p = s.ref.table2_p[i];
-    row(label_cell("Table 2, p = " + table_number(p), "table2_p" + table_number(p)), kTestMse,
-        s.ref.table2_mse[i], variant ? s.find(variant->table2, p) : nullptr, r.surface1.find(p));
-  }
   const RepeatedPoint* s1 = r.surface1.find(kNoDropout);
   const StepErrorRun* s1_run = variant ? &s.at(variant->surface1_no_dropout) : nullptr;
   const TableCell s1_label = label_cell("Surface 1, no dropout", "surface1");
@@ -159,17 +124,21 @@ void print_step_error_spread(const StepErrorStudy& s, TableFormat format, std::o
   }
   print_table_title(out, format,
                     "Seed-to-seed spread of the headline rows (" + ours +
-                        "): the paper's single number, our run of Tables 2-7, mean ± std over "
+                        "): the paper's single number, our run of Tables 3-7, mean ± std over "
                         "seeds");
   t.print(out, format);
   std::vector<std::string> notes = {
       "mean ± std (n − 1) over the complete trials of the seed sweeps (seeds: complete/planned): "
       "repeat 0 at the experiment's seed, the others at seeds derived from it (sweep repeats). "
-      "Surface 1 and Table 2: a seed draws the 70/30 split, the initial weights and the "
+      "Surface 1: a seed draws the 70/30 split, the initial weights and the "
       "mini-batch order; the 15 % rows: the fine-tuning share and the order, from the one "
       "upstream network. The paper reports one run.",
       "Differences are stated below only where Welch's test over the seeds gives p < 0.05."};
-  for (auto& n : table2_seed_notes(r)) notes.push_back(n);
+  std::vector<std::string> configs;
+  for (const auto* sweep : {&r.surface1, &r.surface2_ft15, &r.surface3_ft15}) {
+    configs.insert(configs.end(), sweep->configs.begin(), sweep->configs.end());
+  }
+  notes.push_back("The trials " + ran_with(s.profile, configs, step_error_settings_keys()) + ".");
   for (auto& n : normaliser_seed_notes(r)) notes.push_back(n);
   print_table_notes(out, format, notes);
   for (const auto* sweep : {&r.surface1, &r.surface2_ft15, &r.surface3_ft15}) {

@@ -1,9 +1,10 @@
 #pragma once
 // The seed-to-seed spread of the step-error study's headline rows (issue 20
 // item 3; the manifest's `repeats:`, step_error_repeats.hpp): one table with,
-// per row, the paper's single number, our run that Tables 2-7 show, and the
+// per row, the paper's single number, our run that Tables 3-7 show, and the
 // mean ± std over the seed sweep; and the notes that compare settings only
-// as far as Welch's test supports (step_error_seed_notes.hpp).
+// as far as Welch's test supports (step_error_seed_notes.hpp). Table 2 over
+// the seeds has its own table (step_error_table2.hpp).
 #include <ostream>
 #include <string>
 #include <vector>
@@ -13,9 +14,6 @@
 
 namespace cnclab {
 
-// Table 2 over seeds: the lowest mean test MSE against the next lowest p,
-// and no dropout (keep 1.0) against that p.
-std::vector<std::string> table2_seed_notes(const StepErrorRepeats& repeats);
 // Keep vs refit at 15 %, mean |e| per surface.
 std::vector<std::string> normaliser_seed_notes(const StepErrorRepeats& repeats);
 

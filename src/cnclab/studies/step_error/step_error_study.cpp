@@ -1,6 +1,9 @@
 #include "cnclab/studies/step_error/step_error_study.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "cnclab/experiment/result_inference.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -35,8 +38,45 @@ StepErrorRun step_error_run(RunRecord record, const fs::path& file) {
   return run;
 }
 
+double inference_test_mse(const StepErrorRun& run, DropoutInference inference) {
+  if (!run.failure.empty()) return NAN;
+  const Eigen::MatrixXd* predictions = test_predictions_by(run.record, inference);
+  return predictions ? normalised_test_mse(run.record, *predictions) : NAN;
+}
+
+double inference_validation_mse(const StepErrorRun& run, DropoutInference inference) {
+  if (!run.failure.empty()) return NAN;
+  const std::map<std::string, double>* metrics = metrics_by(run.record, inference);
+  if (!metrics) return NAN;
+  const auto it = metrics->find("validation.normalised_mse");
+  return it == metrics->end() ? NAN : it->second;
+}
+
+std::vector<fs::path> step_error_experiment_files(const TablesOptions& o) {
+  const StudyManifest m = read_step_error_manifest(o.config_file("studies/step_error_tables.yaml"));
+  std::vector<fs::path> files;
+  for (const auto& v : m.variants) {
+    for (const auto* numbered : {&v.table2, &v.surface2, &v.surface3}) {
+      for (const auto& [key, f] : *numbered) files.push_back(f);
+    }
+    files.push_back(v.surface1);
+    files.push_back(v.surface1_no_dropout);
+  }
+  for (const auto& n : m.normaliser) {
+    files.push_back(n.surface2);
+    files.push_back(n.surface3);
+  }
+  if (m.repeats) {
+    files.insert(files.end(), {m.repeats->table2, m.repeats->surface1, m.repeats->surface2_ft15,
+                               m.repeats->surface3_ft15});
+  }
+  files.push_back(o.experiment_file("step_error/table8_timing.yaml"));
+  return files;
+}
+
 StepErrorStudy load_step_error_study(const TablesOptions& o) {
   StepErrorStudy s;
+  s.profile = o.profile;
   s.manifest = read_step_error_manifest(o.config_file("studies/step_error_tables.yaml"));
   s.reference_file = o.reference_file("seed000_step_error.yaml");
   s.ref = read_seed000_reference(s.reference_file);

@@ -31,7 +31,16 @@ struct StepErrorRun {
 // otherwise. Error when a complete result is not one step-error target in µm.
 StepErrorRun step_error_run(RunRecord record, const std::filesystem::path& file);
 
+// Table 2's test MSE (z-score units) of a run evaluated by `inference`
+// (experiment/result_inference.hpp); NaN when the result lacks that
+// evaluation (written before it was stored) or the run failed.
+double inference_test_mse(const StepErrorRun& run, DropoutInference inference);
+// Its validation MSE (z-score units: validation.normalised_mse) so evaluated;
+// NaN as above or without a validation split.
+double inference_validation_mse(const StepErrorRun& run, DropoutInference inference);
+
 struct StepErrorStudy {
+  std::string profile;  // the tables' --profile ("" none)
   StudyManifest manifest;
   Seed000Reference ref;
   std::filesystem::path reference_file;
@@ -43,6 +52,10 @@ struct StepErrorStudy {
     return it == files.end() ? nullptr : &runs.at(it->second);
   }
 };
+
+// The experiment and job files the step-error tables read (the manifest's,
+// its seed sweeps and Table 8's timing job): TableEntry::experiment_files.
+std::vector<std::filesystem::path> step_error_experiment_files(const TablesOptions& options);
 
 // Every result the manifest names (the seed sweeps of `repeats:` too), read
 // before anything is printed. Throws

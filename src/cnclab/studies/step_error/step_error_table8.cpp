@@ -92,8 +92,10 @@ void print_step_error_table8(const StepErrorStudy& s, const TablesOptions& o, st
   print_table_notes(
       out, format,
       {verdict(t2, "Surface 2"), verdict(t3, "Surface 3"),
-       "Measured in one run by " + timing.name + " on " + timing.host + " (" + timing.utc +
-           ", cnclab " + timing.cnclab_version + ", " + timing.git_commit +
+       "Measured in one run by " + timing.name +
+           (o.profile.empty() ? std::string(" (no profile)") : " (profile " + o.profile + ")") +
+           " on " + timing.host + " (" + timing.utc + ", cnclab " + timing.cnclab_version + ", " +
+           timing.git_commit +
            "), single thread, "
            "median of " +
            std::to_string(timing.repeats) +

@@ -8,10 +8,13 @@
 #include <vector>
 
 #include "cnclab/core/format.hpp"
+#include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/step_error/step_error_spread_table.hpp"
 #include "cnclab/studies/step_error/step_error_study.hpp"
+#include "cnclab/studies/step_error/step_error_table2.hpp"
 #include "cnclab/studies/step_error/step_error_table8.hpp"
+#include "cnclab/studies/step_error/step_error_table_parts.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -21,16 +24,6 @@ constexpr double kFineTuneReported = 15;  // Tables 6, 7 and the normaliser tabl
 
 using Run = StepErrorRun;
 using Study = StepErrorStudy;
-
-// A table's footer: the paper's numbers file (`reference`, unless empty),
-// then the result files of `runs`.
-void print_sources(std::ostream& out, TableFormat format, const fs::path& reference,
-                   const std::vector<const Run*>& runs) {
-  std::vector<fs::path> files;
-  if (!reference.empty()) files.push_back(reference);
-  for (const Run* r : runs) files.push_back(r->file);
-  print_table_sources(out, format, files);
-}
 
 std::string fixed(double v, int decimals = 2) {
   if (std::isnan(v)) return "-";
@@ -70,12 +63,6 @@ TableCell count_cell(std::size_t n) {
 }
 TableCell integer_cell(double v) {
   return number_cell(v, integer(v));
-}
-
-// A source ("ours, tuned") as a label, carried as "ours_tuned" by csv/json
-// (the column names of the surface-1 table).
-TableCell source_cell(const std::string& label) {
-  return label_cell(label, machine_name(label));
 }
 
 // The reference's sentences about one table ("Table 6: ...").
@@ -181,87 +168,6 @@ void print_bin_tables(std::ostream& out, TableFormat format, const std::string& 
   print_sources(out, format, reference, runs);
 }
 
-std::string ours(const StudyVariant& v) {
-  return "ours, " + v.name;
-}
-
-void print_variant_notes(const Study& s, std::vector<std::string>& notes) {
-  for (const auto& v : s.manifest.variants) {
-    if (!v.note.empty()) notes.push_back("Variant " + v.name + ": " + v.note);
-  }
-}
-
-void print_table2(const Study& s, TableFormat format, std::ostream& out) {
-  TypedTable t;
-  t.columns = {label_column("p (keep probability)", "source"), label_column("", "quantity")};
-  for (double p : s.ref.table2_p) {
-    std::string name = "p_";  // appended: see bin_columns
-    name += shortest_double(p);
-    t.columns.push_back(number_column(table_number(p), name));
-  }
-  std::vector<TableCell> paper = {"paper", label_cell("MSE", "mse")};
-  for (double m : s.ref.table2_mse) paper.push_back(number_cell(m, table_number(m)));
-  t.rows.push_back(paper);
-  std::vector<std::string> notes;
-  std::vector<const Run*> read;
-  // The paper's minimum, from its own row.
-  const auto paper_min = std::min_element(s.ref.table2_mse.begin(), s.ref.table2_mse.end());
-  const double paper_best_p =
-      paper_min == s.ref.table2_mse.end()
-          ? NAN
-          : s.ref.table2_p[static_cast<std::size_t>(paper_min - s.ref.table2_mse.begin())];
-  for (const auto& v : s.manifest.variants) {
-    std::vector<TableCell> test = {source_cell(ours(v)),
-                                   label_cell("test MSE (z-score units)", "test_mse")};
-    std::vector<TableCell> train = {source_cell(ours(v)),
-                                    label_cell("training loss, last epoch", "train_loss")};
-    double best = NAN, best_p = NAN;
-    for (double p : s.ref.table2_p) {
-      const Run* run = s.find(v.table2, p);
-      if (run) read.push_back(run);
-      if (run && !run->failure.empty()) {
-        test.push_back(missing_cell("diverged"));
-        train.push_back(missing_cell("diverged"));
-        continue;
-      }
-      const double mse = run ? normalised_test_mse(run->record) : NAN;
-      const auto& h = run ? run->record.training.history : std::vector<EpochRecord>{};
-      test.push_back(number_cell(mse, table_number(mse, 3)));
-      train.push_back(h.empty()
-                          ? missing_cell("-")
-                          : number_cell(h.back().train_loss, table_number(h.back().train_loss, 3)));
-      if (!std::isnan(mse) && !(mse >= best)) {
-        best = mse;
-        best_p = p;
-      }
-    }
-    t.rows.push_back(test);
-    t.rows.push_back(train);
-    notes.push_back(ours(v) +
-                    ": the run shown has its lowest test MSE at p = " + table_number(best_p) +
-                    " (paper: minimum at p = " + table_number(paper_best_p) + ")" +
-                    (s.repeats && s.repeats->variant == v.name
-                         ? "; over seeds:"
-                         : "; one run per p, no seed repeats: not a finding."));
-    if (s.repeats && s.repeats->variant == v.name) {
-      for (auto& n : table2_seed_notes(*s.repeats)) notes.push_back(n);
-    }
-  }
-  print_table_title(
-      out, format, "Seed 000 Table 2: dropout keep probability p and MSE (surface 1, 70/30 split)");
-  t.print(out, format);
-  notes.push_back(
-      "MSE in the z-score units of the targets (Eq. 7, fitted on the training split). The paper "
-      "does not say whether its MSE is the training loss or a test error, nor in which units; "
-      "both of ours are shown. Training loss is with dropout active (mean over the epoch).");
-  notes.push_back(
-      "'diverged': training with the paper's settings (N(0, 1) weights, per-sample SGDM) ended "
-      "with a non-finite loss at that p; its result file says when.");
-  print_variant_notes(s, notes);
-  print_table_notes(out, format, notes);
-  print_sources(out, format, s.reference_file, read);
-}
-
 // The text's share of relative errors above 10 % against Table 3's own counts
 // (the bins from 10 % up over all bins), both from the reference file.
 std::string paper_relative_above_10_note(const Seed000Reference& ref) {
@@ -323,12 +229,17 @@ void print_table3(const Study& s, TableFormat format, std::ostream& out) {
       });
   print_table_title(out, format, "Surface 1 in the text (below Fig. 6; Fig. 5's final MSE)");
   t.print(out, format);
-  print_table_notes(
-      out, format,
-      {"Issue targets on our surfaces: >= 99.5 % of |e| < 0.5 µm and max |e| < 1 µm (paper: " +
-           fixed(s.ref.table3_share_below_0_5um) + " %, " + table_number(s.ref.table3_max_abs_um) +
-           " µm).",
-       paper_relative_above_10_note(s.ref), kSurfacesNote});
+  std::vector<std::string> notes = {
+      "Issue targets on our surfaces: >= 99.5 % of |e| < 0.5 µm and max |e| < 1 µm (paper: " +
+          fixed(s.ref.table3_share_below_0_5um) + " %, " + table_number(s.ref.table3_max_abs_um) +
+          " µm).",
+      paper_relative_above_10_note(s.ref), kSurfacesNote};
+  for (auto& n : variant_settings_notes(s, [&](const StudyVariant& v) {
+         return std::vector<const Run*>{&s.at(v.surface1), &s.at(v.surface1_no_dropout)};
+       })) {
+    notes.push_back(n);
+  }
+  print_table_notes(out, format, notes);
   std::vector<const Run*> runs;
   for (const auto& [label, run] : sources) runs.push_back(run);
   print_sources(out, format, s.reference_file, runs);
@@ -420,6 +331,10 @@ void print_fine_tune_table(const Study& s, TableFormat format, std::ostream& out
     for (auto& c : checks_about(s.ref, "Table 7")) notes.push_back(c);
   }
   for (auto& c : checks_about(s.ref, "Tables 4 and 5")) notes.push_back(c);
+  for (auto& n :
+       variant_settings_notes(s, [&](const StudyVariant& v) { return study_runs(s, files(v)); })) {
+    notes.push_back(n);
+  }
   print_table_notes(out, format, notes);
   std::vector<const Run*> runs;
   for (const auto& v : s.manifest.variants) {
@@ -438,11 +353,20 @@ void print_bins_at_15(const Study& s, TableFormat format, std::ostream& out, int
     }
   }
   const int table = surface == 2 ? 6 : 7;
+  std::vector<std::string> notes = checks_about(s.ref, "Table " + std::to_string(table));
+  for (auto& n : variant_settings_notes(s, [&](const StudyVariant& v) {
+         std::vector<const Run*> runs;
+         if (const Run* r = s.find(surface == 2 ? v.surface2 : v.surface3, kFineTuneReported)) {
+           runs.push_back(r);
+         }
+         return runs;
+       })) {
+    notes.push_back(n);
+  }
   print_bin_tables(out, format, "Seed 000 Table " + std::to_string(table),
                    "prediction error of the surface-" + std::to_string(surface) +
                        " test set at 15 % fine-tuning",
-                   surface == 2 ? s.ref.table6 : s.ref.table7, s.reference_file, sources,
-                   checks_about(s.ref, "Table " + std::to_string(table)));
+                   surface == 2 ? s.ref.table6 : s.ref.table7, s.reference_file, sources, notes);
 }
 
 void print_normaliser_table(const Study& s, TableFormat format, std::ostream& out) {
@@ -470,8 +394,11 @@ void print_normaliser_table(const Study& s, TableFormat format, std::ostream& ou
                     "Beyond the paper: z-score normaliser at fine-tuning, kept from the upstream "
                     "network or refitted on the new surface's training share");
   t.print(out, format);
-  std::vector<std::string> notes = {"The paper does not say which it does; Tables 4-7 use " +
-                                    s.manifest.normaliser_default + "."};
+  std::vector<std::string> configs;
+  for (const Run* r : read) configs.push_back(r->record.resolved_yaml);
+  std::vector<std::string> notes = {
+      "The paper does not say which it does; Tables 4-7 use " + s.manifest.normaliser_default + ".",
+      "The runs " + ran_with(s.profile, configs, step_error_settings_keys()) + "."};
   if (s.repeats) {
     for (auto& n : normaliser_seed_notes(*s.repeats)) notes.push_back(n);
   }
@@ -485,6 +412,7 @@ void print_step_error_tables(const TablesOptions& options, std::ostream& out) {
   const Study study = load_step_error_study(options);
   const TableFormat f = options.format;
   print_table2(study, f, out);
+  print_table2_over_seeds(study, f, out);
   print_table3(study, f, out);
   print_fine_tune_table(study, f, out, 2, study.ref.surface2);
   print_bins_at_15(study, f, out, 2);

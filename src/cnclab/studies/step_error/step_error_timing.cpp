@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <set>
 #include <string_view>
 
 #include "cnclab/core/config.hpp"
@@ -48,6 +47,7 @@ struct SurfaceCase {
   std::string surface;
   LoadedExperiment experiment;
   const StepErrorDatasetOptions* dataset = nullptr;  // inside experiment.spec
+  std::size_t samples = 0;                           // the dataset's
   fs::path result_file;
   std::string identity;                // result_identity of that result
   std::vector<std::size_t> test;       // dataset sample indices
@@ -65,6 +65,7 @@ SurfaceCase prepare(const std::string& surface, const fs::path& file, const Resu
     throw ConfigError(file.string() + ": Table 8 timing needs a step_error dataset");
   }
   c.dataset = &generator->options();
+  c.samples = generator->shape().samples;
   StoredResult stored = store.get(c.experiment);  // complete only
   c.result_file = stored.file;
   const RunRecord& r = stored.record;
@@ -73,9 +74,8 @@ SurfaceCase prepare(const std::string& surface, const fs::path& file, const Resu
     throw Error(c.result_file.string() + ": expected one step-error target in µm");
   }
   c.test = r.split.test;
-  const std::size_t n = c.dataset->num_samples();
   for (std::size_t s : c.test) {
-    if (s >= n) throw Error(c.result_file.string() + ": test index beyond the dataset");
+    if (s >= c.samples) throw Error(c.result_file.string() + ": test index beyond the dataset");
   }
   c.targets_um.assign(r.test_targets.data(), r.test_targets.data() + r.test_targets.size());
   c.predictions_um.assign(r.test_predictions.data(),
@@ -83,27 +83,17 @@ SurfaceCase prepare(const std::string& surface, const fs::path& file, const Resu
   return c;
 }
 
-// The planned tool-path lines holding test segments (line index -> line).
-std::map<std::size_t, ToolPathLine> plan_test_lines(const SurfaceCase& c) {
-  const std::size_t segments = c.dataset->tool_path.points_per_line - 1;
-  std::set<std::size_t> needed;
-  for (std::size_t s : c.test) needed.insert(s / segments);
-  std::map<std::size_t, ToolPathLine> lines;
-  for (std::size_t l : needed) {
-    lines.emplace(l, plan_line(c.dataset->surface, c.dataset->tool_path, l));
-  }
-  return lines;
+// The tool path the dataset was made on, planned again (the shared start of the three methods).
+ToolPath plan_path(const SurfaceCase& c) {
+  return plan_tool_path(c.dataset->surface, c.dataset->tool_path, c.dataset->face());
 }
 
 template <class Method>
-std::vector<double> step_errors_um(const SurfaceCase& c,
-                                   const std::map<std::size_t, ToolPathLine>& lines,
-                                   Method&& method) {
-  const std::size_t segments = c.dataset->tool_path.points_per_line - 1;
+std::vector<double> step_errors_um(const SurfaceCase& c, const ToolPath& path, Method&& method) {
   std::vector<double> e(c.test.size());
   for (std::size_t i = 0; i < c.test.size(); ++i) {
-    const ToolPathLine& line = lines.at(c.test[i] / segments);
-    e[i] = method(line.segment(c.test[i] % segments)).error * kUmPerMm;
+    const PathSample& sample = path.samples[c.test[i]];
+    e[i] = method(path.lines[sample.line].segment(sample.point)).error * kUmPerMm;
   }
   return e;
 }
@@ -125,21 +115,20 @@ SurfaceTiming time_surface(const SurfaceCase& c, const StepErrorTimingOptions& o
   std::vector<double> planning, iterative, exact, load, inputs, forward;
   std::vector<double> e_iterative, e_exact, e_network;
   const std::size_t k = c.dataset->curve_points;
-  const std::size_t segments = c.dataset->tool_path.points_per_line - 1;
   for (std::size_t r = 0; r < o.repeats; ++r) {
     auto start = Clock::now();
-    const auto lines = plan_test_lines(c);
+    const ToolPath path = plan_path(c);
     planning.push_back(seconds_since(start));
-    t.lines = lines.size();
+    t.lines = path.lines.size();
 
     start = Clock::now();
     e_iterative = step_errors_um(
-        c, lines, [&](const StepErrorSegment& s) { return iterative_step_error(s, o.iterative); });
+        c, path, [&](const StepErrorSegment& s) { return iterative_step_error(s, o.iterative); });
     iterative.push_back(seconds_since(start));
 
     start = Clock::now();
     e_exact = step_errors_um(
-        c, lines, [&](const StepErrorSegment& s) { return exact_step_error(s, c.dataset->exact); });
+        c, path, [&](const StepErrorSegment& s) { return exact_step_error(s, c.dataset->exact); });
     exact.push_back(seconds_since(start));
 
     start = Clock::now();
@@ -151,7 +140,8 @@ SurfaceTiming time_surface(const SurfaceCase& c, const StepErrorTimingOptions& o
     Eigen::MatrixXd x(static_cast<Eigen::Index>(c.dataset->num_inputs()),
                       static_cast<Eigen::Index>(c.test.size()));
     for (std::size_t i = 0; i < c.test.size(); ++i) {
-      step_error_inputs(lines.at(c.test[i] / segments), c.test[i] % segments, k,
+      const PathSample& sample = path.samples[c.test[i]];
+      step_error_inputs(path.lines[sample.line], sample.point, k,
                         x.col(static_cast<Eigen::Index>(i)));
     }
     inputs.push_back(seconds_since(start));

@@ -90,7 +90,7 @@ struct SurfaceTiming {
   std::string identity;         // result_identity of that result (upstream.hpp)
   std::size_t test_samples = 0;
   std::size_t lines = 0;         // tool-path lines planned
-  double planning_s = 0;         // CC curves, CC/CL points of those lines (shared start)
+  double planning_s = 0;         // the tool path: CC curves, CC/CL points, checks (shared start)
   double iterative_s = 0;        // (a)
   double exact_s = 0;            // (b)
   double network_load_s = 0;     // (c) read the result file, build the network

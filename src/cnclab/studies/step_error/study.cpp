@@ -6,6 +6,7 @@
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/report/tables.hpp"
 #include "cnclab/studies/step_error/step_error_measures.hpp"
+#include "cnclab/studies/step_error/step_error_study.hpp"
 #include "cnclab/studies/step_error/step_error_tables.hpp"
 #include "cnclab/studies/step_error/step_error_timing.hpp"
 
@@ -46,7 +47,8 @@ void register_step_error_study() {
       {"step-error",
        "seed 000 Tables 2-8 (step-error BP network: dropout, surface 1, fine-tuning on surfaces 2 "
        "and 3, timing), ours vs paper, and the normaliser keep/refit comparison",
-       print_step_error_tables, measure_step_error_tables, "studies/step_error_tables.yaml"});
+       print_step_error_tables, measure_step_error_tables, "studies/step_error_tables.yaml",
+       step_error_experiment_files});
 }
 
 }  // namespace cnclab

@@ -1,0 +1,231 @@
+#include "cnclab/deploy/c_export.hpp"
+
+#include <cctype>
+#include <sstream>
+
+#include "cnclab/deploy/c_export_detail.hpp"
+#include "cnclab/deploy/export_weights.hpp"
+#include "cnclab/nn/minmax.hpp"
+
+namespace cnclab {
+namespace c_export_detail {
+namespace {
+
+constexpr int kLiteralsPerLine = 3;
+
+// C comment text: ASCII (a controller's toolchain may not take UTF-8; µ as u,
+// ² as ^2, anything else as ?), never opening or closing a comment inside it.
+std::string comment_safe(const std::string& utf8) {
+  std::string line;
+  for (std::size_t i = 0; i < utf8.size(); ++i) {
+    const auto c = static_cast<unsigned char>(utf8[i]);
+    if (c < 0x80) {
+      line += static_cast<char>(c);
+      continue;
+    }
+    const std::string rest = utf8.substr(i, 2);
+    line += rest == "\xc2\xb5" ? "u" : rest == "\xc2\xb2" ? "^2" : rest == "\xc2\xb3" ? "^3" : "?";
+    while (i + 1 < utf8.size() && (static_cast<unsigned char>(utf8[i + 1]) & 0xC0) == 0x80) ++i;
+  }
+  for (const char* mark : {"*/", "/*"}) {
+    const std::string spaced = std::string(1, mark[0]) + " " + mark[1];
+    for (std::size_t at = line.find(mark); at != std::string::npos; at = line.find(mark, at)) {
+      line.replace(at, 2, spaced);
+    }
+  }
+  return line;
+}
+
+std::string comment_block(const std::vector<std::string>& lines) {
+  std::string out = "/*\n";
+  for (const auto& line : lines) out += line.empty() ? " *\n" : " * " + comment_safe(line) + "\n";
+  return out + " */\n";
+}
+
+}  // namespace
+
+std::string ArrayWriter::operator()(const std::string& name, const std::vector<std::size_t>& dims,
+                                    const std::vector<double>& values) const {
+  std::string out = "static const " + c_.real() + " " + c_.name + "_" + name;
+  for (auto d : dims) {
+    // Appended, not `"[" + std::to_string`: GCC 12 warns falsely (-Wrestrict, PR105329).
+    out += '[';
+    out += std::to_string(d);
+    out += ']';
+  }
+  std::size_t next = 0;
+  out += " = " + nested(dims, 0, values, next, 0) + ";\n";
+  return out;
+}
+
+std::string ArrayWriter::nested(const std::vector<std::size_t>& dims, std::size_t level,
+                                const std::vector<double>& values, std::size_t& next,
+                                int indent) const {
+  const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
+  std::string out = "{";
+  if (level + 1 == dims.size()) {
+    for (std::size_t i = 0; i < dims[level]; ++i) {
+      if (i > 0) out += i % kLiteralsPerLine == 0 ? "," : ", ";
+      if (i % kLiteralsPerLine == 0) out += "\n" + pad;
+      out += c_.literal(values[next++]);
+    }
+  } else {
+    for (std::size_t i = 0; i < dims[level]; ++i) {
+      out += "\n" + pad + nested(dims, level + 1, values, next, indent + 2) +
+             (i + 1 < dims[level] ? "," : "");
+    }
+  }
+  return out + "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "}";
+}
+
+std::vector<double> values_of(const Eigen::VectorXd& v) {
+  return {v.data(), v.data() + v.size()};
+}
+
+std::string activation(Activation f, const std::string& z, const CCodeContext& c) {
+  switch (f) {
+    case Activation::relu:
+      return "(" + z + " > " + c.literal(0) + " ? " + z + " : " + c.literal(0) + ")";
+    case Activation::tanh:
+      return c.math("tanh") + "(" + z + ")";
+    case Activation::sigmoid:
+      return c.literal(1) + " / (" + c.literal(1) + " + " + c.math("exp") + "(-" + z + "))";
+    case Activation::linear:
+      break;
+  }
+  return z;
+}
+
+std::string header_top(const DeployedModel& m, const CCodeContext& c,
+                       const std::vector<std::string>& notes, const ExtraCode& extra,
+                       const std::vector<std::string>& use) {
+  std::vector<std::string> lines = {c.name + ".h, " + c.name +
+                                        ".c: a network trained by cnclab, "
+                                        "exported as C99 (cnclab export --format c).",
+                                    ""};
+  const auto add = [&](const std::vector<std::string>& more) {
+    lines.insert(lines.end(), more.begin(), more.end());
+  };
+  add(model_description(m));
+  add(extra.description);
+  lines.push_back("precision   " + to_string(c.precision) +
+                  (c.precision == CPrecision::float64
+                       ? ": the trained values exactly (hex-float literals)"
+                       : ": the trained values each rounded once to float (hex-float literals)"));
+  add(notes);
+  lines.push_back("");
+  add(use);
+  lines.push_back("");
+  lines.push_back("No dynamic memory and no global state (the only globals are static const");
+  lines.push_back("weights); only <math.h>. Generated: edit the model, not this file.");
+  const std::string guard = macro_prefix(c.name) + "_H";
+  return comment_block(lines) + "#ifndef " + guard + "\n#define " + guard + "\n\ntypedef " +
+         to_string(c.precision) + " " + c.real() + ";\n";
+}
+
+std::string source_top(const CCodeContext& c) {
+  return "/* " + c.name + ".c: generated by cnclab export; " + c.name +
+         ".h says what it is. */\n#include \"" + c.name + ".h\"\n\n#include <math.h>\n\n";
+}
+
+}  // namespace c_export_detail
+
+namespace {
+using namespace c_export_detail;
+
+// The normalisation of nn/scaling.hpp: its constants and the C expression
+// of feature `i` of `x` (forward) or of `y` (inverse).
+struct ScalingCode {
+  std::string arrays, forward, inverse;
+};
+ScalingCode scaling_code(const ScalingRecord& s, const std::string& side, std::size_t n,
+                         const ArrayWriter& array, const CCodeContext& c) {
+  const std::string p = c.name + "_" + side + "_";
+  ScalingCode code{"", "x[i]", "y[i]"};
+  if (s.method == Scaling::zscore) {  // seed 000 Eq. 7: (x - mean) / std
+    code.arrays =
+        array(side + "_mean", {n}, values_of(s.mean)) + array(side + "_std", {n}, values_of(s.std));
+    code.forward = "(x[i] - " + p + "mean[i]) / " + p + "std[i]";
+    code.inverse = "y[i] * " + p + "std[i] + " + p + "mean[i]";
+  } else if (s.method == Scaling::minmax) {  // mapminmax: (x - offset) gain + y_min
+    const MinMaxNormaliser m(s.min, s.max, s.y_min, s.y_max);
+    code.arrays = array(side + "_offset", {n}, values_of(m.offset())) +
+                  array(side + "_gain", {n}, values_of(m.gain()));
+    code.forward = "(x[i] - " + p + "offset[i]) * " + p + "gain[i]" +
+                   (s.y_min < 0 ? " - " + c.literal(-s.y_min) : " + " + c.literal(s.y_min));
+    code.inverse = "(y[i]" +
+                   (s.y_min < 0 ? " + " + c.literal(-s.y_min) : " - " + c.literal(s.y_min)) +
+                   ") / " + p + "gain[i] + " + p + "offset[i]";
+  }
+  return code;
+}
+
+CExport mlp_export(const DeployedModel& m, const CCodeContext& c,
+                   const std::vector<std::string>& notes) {
+  const Mlp mlp(m.mlp);
+  const auto& sizes = mlp.layer_sizes();
+  const std::string M = macro_prefix(c.name), R = c.real();
+  const std::vector<std::string> use = {
+      "Use: " + R + " in[" + M + "_INPUTS] = {...}, out[" + M + "_OUTPUTS];",
+      "     if (" + c.name + "_predict(in, out) != 0) { ... an input is NaN or infinite ... }"};
+  CExport e;
+  e.header = header_top(m, c, notes, {}, use);
+  e.header += "#define " + M + "_INPUTS " + std::to_string(m.num_inputs()) + "\n#define " + M +
+              "_OUTPUTS " + std::to_string(m.num_outputs()) + "\n\n";
+  e.header +=
+      "/* out = the network's prediction of in (units above); 0, or -1 with out\n"
+      "   unchanged when an input is NaN or infinite. */\n";
+  e.header += "int " + c.name + "_predict(const " + R + " in[" + M + "_INPUTS], " + R + " out[" +
+              M + "_OUTPUTS]);\n\n#endif\n";
+
+  const ArrayWriter array(c);
+  std::ostringstream s;
+  s << source_top(c) << "/* Layer l: w<l>[i][j] weights input j of unit i, b<l>[i] its bias. */\n";
+  const std::vector<DenseLayer> layers = mlp_layers(m);
+  for (std::size_t l = 1; l <= layers.size(); ++l) {
+    const DenseLayer& layer = layers[l - 1];
+    const std::string number = std::to_string(l);
+    s << array(std::string("w").append(number), {layer.outputs, layer.inputs}, layer.weights);
+    s << array(std::string("b").append(number), {layer.outputs}, layer.biases);
+  }
+  const ScalingCode in_scaling = scaling_code(m.input_scaling, "in", m.num_inputs(), array, c);
+  const ScalingCode out_scaling = scaling_code(m.target_scaling, "out", m.num_outputs(), array, c);
+  s << in_scaling.arrays << out_scaling.arrays << "\n";
+  s << "int " << c.name << "_predict(const " << R << " in[" << M << "_INPUTS], " << R << " out["
+    << M << "_OUTPUTS])\n{\n";
+  for (std::size_t l = 0; l < sizes.size(); ++l) {
+    s << "  " << R << " a" << l << "[" << sizes[l] << "];\n";
+  }
+  s << "  " << R << " z;\n  const " << R << " *x = in;\n  const " << R << " *y = a"
+    << sizes.size() - 1 << ";\n  int i, j;\n"
+    << "  for (i = 0; i < " << M << "_INPUTS; ++i) {\n    if (!isfinite(in[i])) return -1;\n  }\n"
+    << "  for (i = 0; i < " << M << "_INPUTS; ++i) a0[i] = " << in_scaling.forward << ";\n";
+  for (std::size_t l = 1; l < sizes.size(); ++l) {
+    const Activation f = l + 1 == sizes.size() ? m.mlp.output_activation : m.mlp.hidden_activation;
+    s << "  for (i = 0; i < " << sizes[l] << "; ++i) {\n    z = " << c.literal(0) << ";\n"
+      << "    for (j = 0; j < " << sizes[l - 1] << "; ++j) z += " << c.name << "_w" << l
+      << "[i][j] * a" << l - 1 << "[j];\n    z += " << c.name << "_b" << l << "[i];\n    a" << l
+      << "[i] = " << activation(f, "z", c) << ";\n  }\n";
+  }
+  s << "  for (i = 0; i < " << M << "_OUTPUTS; ++i) out[i] = " << out_scaling.inverse
+    << ";\n  return 0;\n}\n";
+  e.source = s.str();
+  return e;
+}
+
+}  // namespace
+
+std::string macro_prefix(const std::string& name) {
+  std::string out;
+  for (const char ch : name) out += static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return out;
+}
+
+CExport c_export(const DeployedModel& m, const CCodeContext& c,
+                 const std::vector<std::string>& notes) {
+  check_export_identifier(c.name);
+  return m.kind == ModelKind::mlp ? mlp_export(m, c, notes)
+                                  : c_export_detail::narx_export(m, c, notes);
+}
+
+}  // namespace cnclab
