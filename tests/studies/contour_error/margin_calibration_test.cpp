@@ -10,36 +10,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cnclab/core/config.hpp"
 #include "cnclab/core/error.hpp"
-#include "cnclab/data/generator.hpp"
 #include "common/expect_error.hpp"
+#include "studies/contour_error/margin_fixtures.hpp"
 
 namespace cnclab {
 namespace {
 
-// e = 0 whatever the input: zero weights, output range symmetric about 0.
-NarxAxisModel zero_model() {
-  NarxOptions o;
-  o.input_delays = o.feedback_delays = 1;
-  o.hidden = 1;
-  return {o, Eigen::VectorXd::Zero(5),
-          MinMaxNormaliser(Eigen::VectorXd::Constant(1, -300), Eigen::VectorXd::Constant(1, 300)),
-          MinMaxNormaliser(Eigen::VectorXd::Constant(1, -1), Eigen::VectorXd::Constant(1, 1))};
-}
-
-const Dataset& plans() {
-  static const Dataset d = [] {
-    const ConfigDocument doc = ConfigDocument::parse(
-        "dataset:\n  generator: following_error\n  options:\n"
-        "    path: {control_points: 12}\n    runs: 1\n    smoothing: 1\n    samples: 1200\n"
-        "    feed_factors: [1, 0.5]\n",
-        "test.yaml");
-    Rng rng(5);
-    return read_generator(doc.root().section("dataset"))->generate(rng);
-  }();
-  return d;
-}
+using testing::plans;
+using testing::zero_model;
 
 // The ceil(q n)-th smallest, by sorting.
 double sorted_quantile(std::vector<double> v, double q) {

@@ -130,8 +130,9 @@ const FieldList<FeedrateJob>& feedrate_job_fields() {
                  "also run the loop with the simulated machine as its error model (a perfect "
                  "predictor, margin 0): method oracle, the loop's own limit (a diagnostic)")
           .field("calibrate_margin", &J::calibrate_margin,
-                 "the margin per feed band from the predictor's residuals on its dataset's "
-                 "held-out (validation) plans, instead of prediction_margin")
+                 "the margin per feed band stored with the predictor's result (its residuals "
+                 "on its dataset's validation plans; calibrated and stored first when the "
+                 "result has none for these options), instead of prediction_margin")
           .omit_default()
           .section("calibration", &J::calibration, feedrate_job_calibration_fields(),
                    "the margin calibration (margin_calibration.hpp)")

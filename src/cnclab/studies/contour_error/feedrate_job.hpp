@@ -21,7 +21,7 @@
 // key optional:
 //   sections: {count: 15, length: 150, span: validation}   # instead of section
 //   path: {seed: 7}                 # another random path of the dataset's options
-//   calibrate_margin: true          # margins per feed band from held-out plans
+//   calibrate_margin: true          # margins per feed band stored with the predictor
 //   calibration: {quantile, feed_bands, min_ticks}   # margin_calibration.hpp
 //   compare_predictors: [../narx.yaml]   # scored on the same held-out plans
 //   constant_feed: false            # skip the best-constant-feed baseline
@@ -82,7 +82,9 @@ struct FeedrateJob {
   bool oracle = false;
   // The loop's margin per feed band from the predictor's residuals on its
   // dataset's validation plans (margin_calibration.hpp) instead of
-  // prediction_margin (which must then be 0).
+  // prediction_margin (which must then be 0): the calibration stored with
+  // the predictor's result (stored_margins.hpp), made and stored first when
+  // that result has none for these options.
   bool calibrate_margin = false;
   MarginCalibrationOptions calibration;
   // narx experiments whose predictors are scored on the same held-out plans

@@ -20,6 +20,7 @@
 #include "cnclab/studies/contour_error/feedrate_job.hpp"
 #include "cnclab/studies/contour_error/feedrate_job_section.hpp"
 #include "cnclab/studies/contour_error/narx_contour_model.hpp"
+#include "cnclab/studies/contour_error/stored_margins.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -106,12 +107,23 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
   VerificationOptions ver = job.verification;
   ver.machine = model.dataset.machine;  // the machine the predictor was trained on
 
-  // The margins from the held-out plans of the predictor's dataset, and the
-  // compared predictors on the same plans.
+  // The margins from the held-out plans of the predictor's dataset (with
+  // calibrate_margin: those stored with the predictor's result,
+  // stored_margins.hpp, calibrated and stored first if it has none), and
+  // the compared predictors on the same plans.
   if (job.calibrate_margin || !job.compare_files.empty()) {
-    const MarginCalibration cal = calibrate_margins(predictor, dataset, job.calibration);
+    MarginCalibration cal;
+    if (job.calibrate_margin) {
+      const StoredMargins stored = predictor_margins(
+          predictor, dataset, model.upstream.record.dataset_hash, model.upstream.result_file,
+          result_identity(model.upstream.record), job.calibration, report);
+      cal = stored.calibration;
+      opt.margin_bands = cal.margins;
+      rec.facts["margins_file"] = stored_margins_path(model.upstream.result_file).string();
+    } else {
+      cal = calibrate_margins(predictor, dataset, job.calibration);
+    }
     feedrate_run_calibration(rec, "calibration_", cal);
-    if (job.calibrate_margin) opt.margin_bands = cal.margins;
     report << "margins per feed band (quantile " << shortest_double(job.calibration.quantile)
            << " of simulated - predicted on " << cal.validation.ticks << " held-out ticks):";
     for (std::size_t b = 0; b < cal.margins.margin.size(); ++b) {
