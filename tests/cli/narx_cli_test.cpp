@@ -179,7 +179,7 @@ TEST(NarxCli, FeedrateJobAloneTrainsItsPredictorAndNamesWhatItCannotPlan) {
       named + stored_at.size(), first.out.find(" (written)", named) - named - stored_at.size());
   ASSERT_TRUE(fs::exists(dir.path() / file)) << file;
   const Result edit = sh(dir.path(),
-                         "python3 -c \"import h5py, numpy\n"
+                         "/usr/bin/python3 -c \"import h5py, numpy\n"
                          "with h5py.File('" +
                              file +
                              "', 'r+') as f:\n"
