@@ -1,5 +1,5 @@
 // Step-error dataset generation from a STEP face against the same surface
-// from YAML (issue 19 "Done when": within 2x), single thread, seed 000's tool
+// from YAML (target: within 2x), single thread, seed 000's tool
 // path (200 lines x 100 CC points, R = 5 mm, K = 20; a third argument
 // LINESxPOINTS, e.g. 800x400, for a longer path). Each timing is the whole
 // path of an experiment: reading the `dataset` section (YAML surface file, or
@@ -10,7 +10,7 @@
 // cad/occt_shape_io.cpp), so a loaded machine does not skew the ratio.
 // Medians over REPEATS (default 5). Run via `scripts/bench_cad_step_error
 // --in-process`; that script's own figures (each side a fresh `cnclab dataset
-// generate` process) are what users see and the issue's figure.
+// generate` process) are what users see and the benchmark's figure.
 //
 // Where the STEP side's extra time goes: the read (fork, OCCT's STEP session
 // set-up, parse and transfer in the child, the BRep handover; about 50 ms

@@ -11,10 +11,19 @@
 //   cnclab_bench_lm prepare DIR           writes (b)'s data and initial weights
 //                                         for scripts/bench_lm_scipy.py
 //   cnclab_bench_lm race DIR TARGET_SSE   LM on (b) until SSE <= TARGET_SSE
+//   cnclab_bench_lm forms [EPOCHS]        trainbr on the step-error MLP
+//                                         73-32-16-1 (2,913 weights, 936
+//                                         samples): the P x P primal with one
+//                                         Cholesky per mu trial (the method
+//                                         before the dual form) against the
+//                                         automatic form (N x N dual,
+//                                         spectral), seconds per epoch and
+//                                         the largest relative difference
 // scripts/bench_lm runs all three beside scipy.optimize.least_squares(method='lm').
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -28,6 +37,7 @@
 #include "cnclab/train/mlp_residuals.hpp"
 #include "cnclab/train/narx_training.hpp"
 #include "cnclab/train/normal_equations.hpp"
+#include "cnclab/train/trainbr.hpp"
 
 namespace {
 using namespace cnclab;
@@ -237,6 +247,64 @@ int race(double target_sse) {
   return 0;
 }
 
+// trainbr for EPOCHS epochs on a 73-32-16-1 ReLU network with 936 samples
+// (teacher of the same shape + noise 0.1), in `form` with `decomposition`.
+struct FormRun {
+  double seconds_per_epoch;
+  Eigen::VectorXd w;
+  double gamma;
+};
+FormRun trainbr_run(LmForm form, LmDecomposition decomposition, std::size_t epochs) {
+  constexpr Eigen::Index kSamples = 936;
+  MlpOptions mo;
+  mo.inputs = 73;
+  mo.hidden = {32, 16};
+  mo.outputs = 1;
+  mo.hidden_activation = Activation::relu;
+  mo.weights = {Initializer::Kind::normal, 0.0, 0.1};
+  const Mlp mlp(mo);
+  Rng rng(12);
+  Eigen::MatrixXd x(73, kSamples);
+  for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] = rng.normal();
+  Eigen::VectorXd teacher, w;
+  MlpOptions to = mo;
+  to.weights = {Initializer::Kind::he};
+  Mlp(to).initialise(teacher, rng);
+  Eigen::MatrixXd y = mlp.predict(teacher, x);
+  for (Eigen::Index i = 0; i < y.size(); ++i) y.data()[i] += 0.1 * rng.normal();
+  mlp.initialise(w, rng);
+  MlpResidualObjective objective(mlp, x, y);
+  TrainbrOptions o;
+  o.epochs = epochs;
+  o.min_gradient = 0;
+  o.form = form;
+  o.decomposition = decomposition;
+  const auto t0 = Clock::now();
+  const Summary s = train_trainbr(objective, w, o);
+  const double sec = seconds_since(t0);
+  if (s.lm_history.size() != epochs) {
+    std::fprintf(stderr, "trainbr stopped early: %s\n", s.message.c_str());
+    std::exit(1);
+  }
+  return {sec / static_cast<double>(epochs), w, s.lm_history.back().gamma};
+}
+
+int forms(std::size_t epochs) {
+  const FormRun before = trainbr_run(LmForm::primal, LmDecomposition::cholesky, epochs);
+  const FormRun now = trainbr_run(LmForm::automatic, LmDecomposition::automatic, epochs);
+  const double ratio = before.seconds_per_epoch / now.seconds_per_epoch;
+  const double diff = (now.w - before.w).norm() / before.w.norm();
+  const double dgamma = std::abs(now.gamma - before.gamma) / before.gamma;
+  std::printf("trainbr 73-32-16-1 (2913 weights), 936 samples, %zu epochs, 1 thread:\n", epochs);
+  std::printf("  primal J^T J, Cholesky per mu:  %.3f s/epoch\n", before.seconds_per_epoch);
+  std::printf("  automatic (dual J J^T, spectral): %.3f s/epoch\n", now.seconds_per_epoch);
+  std::printf(
+      "  speed-up %.1fx (target >= 5x), weights differ by %.1e relative, gamma by %.1e "
+      "(target <= 1e-9) %s\n",
+      ratio, diff, dgamma, ratio >= 5 && diff <= 1e-9 && dgamma <= 1e-9 ? "PASS" : "FAIL");
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -244,7 +312,10 @@ int main(int argc, char** argv) {
   if (mode == "iteration") return iteration(argc > 2 ? std::atoi(argv[2]) : 3);
   if (mode == "prepare" && argc > 2) return prepare(argv[2]);
   if (mode == "race" && argc > 3) return race(std::atof(argv[3]));
-  std::fprintf(stderr, "usage: %s iteration [REPEATS] | prepare DIR | race DIR TARGET_SSE\n",
+  if (mode == "forms") return forms(argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 5);
+  std::fprintf(stderr,
+               "usage: %s iteration [REPEATS] | prepare DIR | race DIR TARGET_SSE | forms "
+               "[EPOCHS]\n",
                argv[0]);
   return 2;
 }

@@ -1,4 +1,4 @@
-// Motion benchmark (issue 9): feedrate planning of a >= 170 s path with
+// Motion benchmark: feedrate planning of a >= 170 s path with
 // Ipopt (seconds, iterations per window), the two Ipopt-free bounds, the
 // 1 ms interpolation and the feed-drive simulator (axis-seconds per wall
 // second, i.e. multiples of real time).

@@ -1,4 +1,4 @@
-// Limit refinement benchmark (issue 17): plans the seed 002 study's tool path
+// Limit refinement benchmark (docs/motion.md): plans the seed 002 study's tool path
 // (the following_error generator's random NURBS walk with the study's options
 // and dataset seed, configs/studies/contour_error.yaml) without and with the
 // limit refinement, and prints, for both, the traversal time, the planning

@@ -1,4 +1,4 @@
-// NARX benchmark (issue 9), seed 002's network (12 tanh neurons, 4 input and
+// NARX benchmark, seed 002's network (12 tanh neurons, 4 input and
 // 4 feedback delays), single thread:
 //   (1) one trainbr iteration in the parallel (closed-loop) configuration --
 //       dynamic Jacobian by RTRL, J^T J, one LM step and its trial

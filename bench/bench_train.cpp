@@ -1,7 +1,8 @@
 // Training throughput of the seed-000 network shape, single thread:
 // 73 inputs -> 28 ReLU -> dropout (keep 0.5) -> 20 ReLU -> 1 linear,
 // SGDM eta 1e-5, beta 0.8, on 13,860 samples (70 % of 19,800).
-// Prints one line per batch size: "batch <b> samples_per_s <x>" (median of
+// Prints one line per batch size and precision (trainer.precision, sgdm.hpp):
+// "batch <b> samples_per_s <x> precision <float64|float32>" (median of
 // repeats). scripts/bench_train runs this beside the PyTorch equivalent.
 #include <algorithm>
 #include <chrono>
@@ -33,32 +34,36 @@ int main(int argc, char** argv) {
   mo.weights = {Initializer::Kind::normal, 0.0, 0.1};
   const Mlp mlp(mo);
 
-  for (std::size_t batch : {1, 32, 256}) {
-    // Enough epochs for ~0.5 s per measurement at each batch size.
-    const std::size_t epochs = batch == 1 ? 2 : 10;
-    std::vector<double> rates;
-    for (int r = 0; r < repeats; ++r) {
-      Rng init(2), dropout(3), shuffle(4);
-      Eigen::VectorXd p;
-      mlp.initialise(p, init);
-      MlpRegressionObjective objective(mlp, x, y, dropout);
-      SgdmOptions o;
-      o.learning_rate = 1e-5;
-      o.momentum = 0.8;
-      o.batch_size = batch;
-      o.epochs = epochs;
-      const auto t0 = std::chrono::steady_clock::now();
-      const Summary s = train_sgdm(objective, p, o, shuffle);
-      const double sec =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (s.termination != Termination::max_epochs) {
-        std::fprintf(stderr, "benchmark training stopped: %s\n", s.message.c_str());
-        return 1;
+  for (const Precision precision : {Precision::float64, Precision::float32}) {
+    for (std::size_t batch : {1, 32, 256}) {
+      // Enough epochs for ~0.5 s per measurement at each batch size.
+      const std::size_t epochs = batch == 1 ? 2 : 10;
+      std::vector<double> rates;
+      for (int r = 0; r < repeats; ++r) {
+        Rng init(2), dropout(3), shuffle(4);
+        Eigen::VectorXd p;
+        mlp.initialise(p, init);
+        MlpRegressionObjective objective(mlp, x, y, dropout);
+        SgdmOptions o;
+        o.learning_rate = 1e-5;
+        o.momentum = 0.8;
+        o.batch_size = batch;
+        o.epochs = epochs;
+        o.precision = precision;
+        const auto t0 = std::chrono::steady_clock::now();
+        const Summary s = train_sgdm(objective, p, o, shuffle);
+        const double sec =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (s.termination != Termination::max_epochs) {
+          std::fprintf(stderr, "benchmark training stopped: %s\n", s.message.c_str());
+          return 1;
+        }
+        rates.push_back(static_cast<double>(kSamples * epochs) / sec);
       }
-      rates.push_back(static_cast<double>(kSamples * epochs) / sec);
+      std::sort(rates.begin(), rates.end());
+      std::printf("batch %zu samples_per_s %.0f precision %s\n", batch, rates[rates.size() / 2],
+                  precision == Precision::float32 ? "float32" : "float64");
     }
-    std::sort(rates.begin(), rates.end());
-    std::printf("batch %zu samples_per_s %.0f\n", batch, rates[rates.size() / 2]);
   }
   return 0;
 }

@@ -6,6 +6,7 @@
 #   experiments/         the studies' experiment files (the tables find their results by them)
 #   results/reference/   the papers' numbers, transcribed
 #   scripts/figures/     the figure scripts (SHARE/scripts/figures/run RESULTS_DIR)
+#   scripts/optuna/      the Optuna helper of model-based sweeps (sweep/optuna_helper.hpp)
 #   templates/project/   what `cnclab init DIR` copies
 # `cpack -G DEB` in the build folder packages the same as a .deb.
 include(GNUInstallDirs)
@@ -14,7 +15,7 @@ set(CNCLAB_SHARE_INSTALL_DIR ${CMAKE_INSTALL_DATADIR}/cnclab)
 install(TARGETS cnclab RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY configs experiments templates DESTINATION ${CNCLAB_SHARE_INSTALL_DIR})
 install(DIRECTORY results/reference DESTINATION ${CNCLAB_SHARE_INSTALL_DIR}/results)
-install(DIRECTORY scripts/figures DESTINATION ${CNCLAB_SHARE_INSTALL_DIR}/scripts
+install(DIRECTORY scripts/figures scripts/optuna DESTINATION ${CNCLAB_SHARE_INSTALL_DIR}/scripts
         USE_SOURCE_PERMISSIONS PATTERN "__pycache__" EXCLUDE)
 install(FILES README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
@@ -32,6 +33,6 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
-    "python3, python3-matplotlib, python3-h5py, python3-numpy, python3-yaml")
+    "python3, python3-matplotlib, python3-h5py, python3-numpy, python3-yaml, python3-optuna, python3-cmaes, python3-sklearn")
 set(CPACK_GENERATOR DEB)
 include(CPack)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The contour-error constrained feedrate (issue 18, seed 002's application).
+"""The contour-error constrained feedrate (seed 002's application, docs/motion.md).
 
 Usage: /usr/bin/python3 scripts/figures/feedrate.py [--format png|pdf|svg]
        [--dpi N] [--out DIR] [--no-title] [RESULTS_DIR]

@@ -1,10 +1,12 @@
 #include "cli/commands.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <iomanip>
 
 #include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/isa.hpp"
 #include "cnclab/core/share_paths.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/profiles.hpp"
@@ -19,32 +21,6 @@
 
 namespace cnclab {
 namespace fs = std::filesystem;
-std::string metrics_line(const std::map<std::string, double>& metrics) {
-  // Grouped by split, in metric_splits() order, then names without one:
-  // "train: mse 0.1, rmse 0.3; validation: ...; test: ...".
-  std::vector<std::string> groups = metric_splits();
-  groups.emplace_back("");
-  std::string s;
-  for (const auto& split : groups) {
-    std::string part;
-    for (const auto& [k, v] : metrics) {
-      if (metric_split(k) != split) continue;
-      part += (part.empty() ? "" : ", ") + metric_base(k) + " " + format_metric(v);
-    }
-    if (!part.empty()) s += (s.empty() ? "" : "; ") + (split.empty() ? "" : split + ": ") + part;
-  }
-  return s;
-}
-
-RunOptions run_options(const CommandOptions& options, std::ostream& log) {
-  RunOptions r;
-  r.results_dir = options.results_dir;
-  r.datasets_dir = options.datasets_dir;
-  r.progress = options.quiet ? ProgressMode::quiet : ProgressMode::automatic;
-  r.log = options.quiet ? nullptr : &log;
-  r.regenerate_dataset = options.regenerate;
-  return r;
-}
 
 namespace {
 
@@ -140,6 +116,7 @@ void show_summary(const fs::path& file, std::ostream& out) {
   const StoredSummary stored = read_summary(file);
   const SweepSummary summary = summarize(stored.plan, stored.outcomes);
   print_summary(out, stored.plan, stored.outcomes, summary, file.parent_path());
+  if (stored.search) print_search_findings(out, *stored.search);
   const std::string best = summary.best_trial >= 0
                                ? stored.plan.trials[static_cast<std::size_t>(summary.best_trial)].id
                                : "";
@@ -166,34 +143,6 @@ int show_command(const std::vector<std::string>& result_files, const CommandOpti
   return 0;
 }
 
-std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
-  std::vector<fs::path> files;
-  const std::vector<std::string> roots =
-      paths.empty() ? std::vector<std::string>{"experiments"} : paths;
-  for (const auto& root : roots) {
-    std::error_code ec;
-    if (fs::is_regular_file(root, ec)) {
-      files.emplace_back(root);
-    } else if (fs::is_directory(root, ec)) {
-      for (auto it = fs::recursive_directory_iterator(root); it != fs::end(it); ++it) {
-        const auto& entry = *it;
-        if (entry.is_directory() && fs::exists(entry.path() / kOptInMarker)) {
-          it.disable_recursion_pending();  // an opt-in set: only when named
-          continue;
-        }
-        const auto ext = entry.path().extension();
-        if (entry.is_regular_file() && (ext == ".yaml" || ext == ".yml"))
-          files.push_back(entry.path());
-      }
-    } else {
-      throw ConfigError(root + ": no such experiment file or folder");
-    }
-  }
-  std::sort(files.begin(), files.end());
-  files.erase(std::unique(files.begin(), files.end()), files.end());
-  return files;
-}
-
 int gcode_command(const std::string& toolpath, const fs::path& config, const fs::path& output,
                   const std::vector<std::string>& overrides, std::ostream& out) {
   if (toolpath != "trochoid") {
@@ -208,6 +157,14 @@ int gcode_command(const std::string& toolpath, const fs::path& config, const fs:
 int version_command(std::ostream& out) {
   const Provenance p = make_provenance(0);
   out << "cnclab " << p.cnclab_version << " (git " << p.git_commit << ")\n";
+  // The hot kernels' instruction-set level (core/isa.hpp; CNCLAB_ISA forces one).
+  const char* forced = std::getenv("CNCLAB_ISA");
+  std::string compiled;
+  for (const IsaLevel l : compiled_isa_levels())
+    compiled += (compiled.empty() ? "" : ", ") + std::string(to_string(l));
+  out << "kernels: " << describe(active_isa())
+      << (forced && *forced ? ", set by CNCLAB_ISA" : ", the widest this CPU supports")
+      << " (compiled: " << compiled << ")\n";
   for (const auto& [name, version] : p.libraries) out << "  " << name << " " << version << "\n";
   // Where shared configs, experiments and reference numbers come from
   // after the project's own (core/share_paths.hpp).

@@ -14,6 +14,7 @@
 #include "cli/cli_wiring.hpp"
 #include "cli/init_command.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/isa.hpp"
 
 namespace {
 
@@ -57,6 +58,7 @@ int main(int argc, char** argv) {
   if (!action) return kExitUsage;
   if (parse_only) return 0;
   try {
+    cnclab::active_isa();  // CNCLAB_ISA that cannot be honoured: exit 2 before any work
     return action();
   } catch (const cnclab::ConfigError& e) {
     std::cerr << "cnclab: error: " << e.what() << "\n";

@@ -1,102 +1,51 @@
 #include "cli/sweep_command.hpp"
 
-#include <map>
-#include <set>
-
 #include "cnclab/core/error.hpp"
 #include "cnclab/data/dataset_cache.hpp"
-#include "cnclab/experiment/experiment_graph.hpp"
-#include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/experiment/profiles.hpp"
-#include "cnclab/experiment/upstream.hpp"
 #include "cnclab/io/atomic_file.hpp"
-#include "cnclab/nn/metrics.hpp"
 #include "cnclab/report/sweep_report.hpp"
-#include "cnclab/sweep/sweep_job.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 #include "cnclab/sweep/sweep_summary.hpp"
-#include "cnclab/sweep/trial_pool.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-// What `cnclab sweep FILE` sweeps: FILE (a training experiment and its
-// optional `sweep:` block), or for a `kind: sweep` job file the experiment it
-// names, with the job's overrides and sweep block, into the job's folder
-// results/<job name>/sweep-<plan hash> (so `reproduce` finds the trials).
-struct SweepTarget {
-  fs::path experiment;
-  std::vector<std::string> overrides;  // the job's, then the command line's
-  SweepSpec spec;                      // before the command line's changes
-  std::string folder;                  // results/<folder>/; empty: the plan's experiment
-  std::size_t jobs = 0;
-};
-
-SweepTarget sweep_target(const fs::path& file, const SweepArguments& args,
-                         const SweepCommandOptions& o) {
-  check_profile(file, o.common.profile);
-  SweepTarget t;
-  if (experiment_kind(file) == "sweep") {
-    const SweepJob job = load_sweep_job(file, {}, o.common.profile);
-    t.experiment = job.experiment;
-    t.overrides = job.overrides;
-    t.spec = job.sweep;
-    t.folder = job.name;
-    t.jobs = job.jobs;
-  } else {
-    t.experiment = file;
-    t.spec = read_sweep_block(file, args.overrides, o.common.profile);
-  }
-  t.overrides.insert(t.overrides.end(), args.overrides.begin(), args.overrides.end());
-  return t;
-}
-
-SweepSpec resolve_spec(SweepSpec spec, const SweepArguments& args, const SweepCommandOptions& o) {
-  // A plain command-line value fixes a key the block sweeps.
-  for (const auto& text : args.overrides) {
-    const std::string key = parse_override(text).dotted_key();
-    std::erase_if(spec.parameters, [&](const SweepParameter& p) { return p.key == key; });
-  }
-  for (const auto& p : args.parameters) spec.set(p);
-  if (o.repeats) spec.repeats = *o.repeats;
-  if (o.trials) spec.trials = *o.trials;
-  if (o.sweep_seed) spec.seed = *o.sweep_seed;
-  if (o.objective) spec.objective = parse_objective(*o.objective);
-  if (o.method) {
-    if (*o.method != "grid" && *o.method != "random") {
-      throw ConfigError("--method " + *o.method + ": must be one of: grid, random");
-    }
-    spec.method = *o.method == "grid" ? SweepMethod::grid : SweepMethod::random;
-  }
-  return spec;
-}
-
 int summary_exit_code(const SweepSummary& s) {
   return s.failed + s.errors + s.missing == 0 ? 0 : 1;
 }
 
-}  // namespace
-
-PreparedSweep prepare_sweep(const fs::path& experiment, const std::vector<std::string>& words,
-                            std::optional<std::uint64_t> seed, const SweepCommandOptions& o) {
-  const SweepArguments args = split_sweep_arguments(words);
-  const SweepTarget target = sweep_target(experiment, args, o);
-  const SweepSpec spec = resolve_spec(target.spec, args, o);
-  SweepExecuteOptions exec;
-  exec.common = o.common;
-  exec.jobs = o.jobs != 0 ? o.jobs : target.jobs;
-  exec.trial_timeout = o.trial_timeout;
-  exec.retry_failed = o.retry_failed;
-  exec.rerun = o.rerun;
-  exec.trial_ids = o.trial_ids;
-  if (!o.shard.empty()) std::tie(exec.shard, exec.shards) = parse_shard(o.shard);
-  SweepPlan plan = plan_sweep(target.experiment, target.overrides, seed, spec, o.common.profile);
-  const std::string folder = target.folder.empty() ? plan.experiment : target.folder;
-  fs::path dir =
-      o.dir.empty() ? o.common.results_dir / folder / ("sweep-" + plan.hash().substr(0, 8)) : o.dir;
-  return {std::move(plan), std::move(dir), std::move(exec), target.folder};
+// A model-based sweep (model_search.hpp): the study runs to its count; exit 0
+// when it has it, 1 otherwise.
+int model_search_command(const PreparedSweep& prepared, const SweepCommandOptions& o,
+                         std::ostream& out, std::ostream& log) {
+  if (prepared.exec.shards > 1 || !o.trial_ids.empty()) {
+    throw ConfigError("sweep method " + prepared.plan.method +
+                      ": --shard and --trial-ids split a fixed plan; a study's workers share its "
+                      "journal instead (run the same command in each, e.g. as Slurm array tasks)");
+  }
+  store_plan(prepared.dir, prepared.plan);
+  clean_stale_partials({o.common.results_dir, prepared.dir, o.common.datasets_dir}, log);
+  const ModelSearch s =
+      run_model_search(prepared.plan, prepared.spec, prepared.source, prepared.dir, prepared.exec,
+                       o.common.quiet ? nullptr : &log);
+  if (s.stopped != 0) {
+    out << "interrupted by signal " << s.stopped
+        << "; run the same command again to continue the study (finished trials are kept)\n";
+    return 128 + s.stopped;
+  }
+  const SweepSummary summary = summarize(s.plan, s.outcomes);
+  write_summary(prepared.dir / "summary.h5", s.plan, s.outcomes, summary, &s.findings);
+  print_summary(out, s.plan, s.outcomes, summary, prepared.dir, prepared.name);
+  print_search_findings(out, s.findings);
+  out << "study: " << s.finished << " of " << prepared.spec.trials << " trials complete or pruned ("
+      << summary.pruned << " pruned, not ranked); " << s.ran << " point(s) trained now, "
+      << s.reused << " reused\n";
+  out << "summary: " << (prepared.dir / "summary.h5").string() << "\n";
+  return s.finished >= prepared.spec.trials ? 0 : 1;
 }
+
+}  // namespace
 
 int sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
                   std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
@@ -105,6 +54,7 @@ int sweep_command(const fs::path& experiment, const std::vector<std::string>& wo
   const SweepPlan& plan = prepared.plan;
   const fs::path& dir = prepared.dir;
   const std::size_t shard = prepared.exec.shard, shards = prepared.exec.shards;
+  if (model_based(plan)) return model_search_command(prepared, o, out, log);
   store_plan(dir, plan);
   clean_stale_partials({o.common.results_dir, dir, o.common.datasets_dir}, log);
 

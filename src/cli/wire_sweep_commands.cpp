@@ -53,7 +53,9 @@ void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
       ->check(count_validator());
   sweep.add_option("--trials", o.trials, "Random search: number of points")
       ->check(count_validator());
-  sweep.add_option("--method", o.method, "grid or random");
+  sweep.add_option("--method", o.method,
+                   "grid, random, or an Optuna sampler: tpe, cmaes, nsga2, qmc (a study in the "
+                   "sweep folder; needs python3-optuna)");
   sweep.add_option("--objective", o.objective,
                    "METRIC[:min|max] to rank trials by, e.g. validation.rmse (a name without "
                    "split: its validation value; default: the validation value of the first "

@@ -1,5 +1,5 @@
 // Our three YAML surfaces written as STEP and IGES B-spline faces and read
-// back give the same step-error datasets as the YAML (issue 19 item 4), and
+// back give the same step-error datasets as the YAML, and
 // the dataset's identity is the file's content, not its path.
 #include <gtest/gtest.h>
 

@@ -88,7 +88,7 @@ TEST_F(Cli, WrongTypeIsUsageError) {
                         "trainer.epochs = many: expected a non-negative integer");
 }
 
-// Issue 22 item 1: an experiment whose dataset include was forgotten trains
+// An experiment whose dataset include was forgotten trains
 // on nothing: exit 2 naming the missing key and the fragments that provide it,
 // and no result written.
 TEST_F(Cli, ExperimentWithoutDatasetIsUsageErrorNamingTheFragments) {
@@ -111,7 +111,7 @@ TEST_F(Cli, OutOfRangeNamesValueAndRule) {
   EXPECT_TRUE(outputs().empty());
 }
 
-// Issue 22 item 6: CLI11's own errors take the one error form too.
+// CLI11's own errors take the one error form too.
 TEST_F(Cli, MissingExperimentFileIsUsageError) {
   expect_one_line_error(cnclab("run does_not_exist.yaml"), 2,
                         "cnclab: error: experiment: File does not exist: does_not_exist.yaml");
@@ -274,8 +274,8 @@ TEST_F(Cli, TrainbrExperimentValidatesWithMatlabDefaultsAndRuns) {
   EXPECT_EQ(shown.code, 0) << shown.err;
   EXPECT_NE(shown.out.find("gamma "), std::string::npos) << shown.out;
   EXPECT_NE(shown.out.find("validation   " + note), std::string::npos) << shown.out;
-  expect_one_line_error(cnclab("run " + exp + " trainer.type=adam --quiet"), 2,
-                        "trainer.type = adam: must be one of: sgdm, lm, trainbr");
+  expect_one_line_error(cnclab("run " + exp + " trainer.type=rprop --quiet"), 2,
+                        "trainer.type = rprop: must be one of: sgdm, lm, trainbr");
   expect_one_line_error(cnclab("run " + exp + " trainer.mu_dec=2 --quiet"), 2,
                         "trainer.mu_dec = 2: must be in (0, 1)");
 }
@@ -313,7 +313,7 @@ TEST_F(Cli, RunWritesCompleteResultReadableByShowAndH5dump) {
   EXPECT_NE(dump.out.find("\"test.rmse\""), std::string::npos);
 }
 
-// Issue 22 item 5: an inlined NURBS surface (step-error datasets) prints as
+// An inlined NURBS surface (step-error datasets) prints as
 // shapes and hashes in `validate` and `show`; --full prints it all, and that
 // text is an experiment that resolves to the same config.
 TEST_F(Cli, ValidateAndShowAbbreviateLargeArraysFullPrintsThem) {
@@ -359,7 +359,7 @@ TEST_F(Cli, ValidateAndShowAbbreviateLargeArraysFullPrintsThem) {
   EXPECT_EQ(shown.out.find("(test split, µm)"), std::string::npos) << shown.out;
 }
 
-// Issue 22 item 4: a network that provably predicts a constant (no training
+// A network that provably predicts a constant (no training
 // step, all weights 0) is complete, and `run`, `show`, `compare` and
 // `reproduce` say "constant predictions".
 TEST_F(Cli, ConstantNetworkIsWarnedInRunShowCompareAndReproduce) {
@@ -770,7 +770,7 @@ TEST_F(Cli, ReproduceIkAndGcodeThenTablesIk) {
             std::string::npos)
       << c.out;
 
-  // One rule for results folders (issue 21 item 4): `--results ROOT --profile
+  // One rule for results folders: `--results ROOT --profile
   // P` reads ROOT/P, as `reproduce --out ROOT --profile P` writes; a folder
   // in the layout that wrote ROOT itself still works, with a note.
   const std::string tables_quick =

@@ -1,4 +1,4 @@
-"""Smoke test of scripts/figures (issue 22 item 8): on small result files this
+"""Smoke test of scripts/figures: on small result files this
 test writes itself (the layouts the scripts read: step-error results named by
 configs/studies/step_error_tables.yaml, a contour-error sweep with a
 two-stage NARX trial and its following-error dataset), `scripts/figures/run`

@@ -1,5 +1,5 @@
-"""An installed cnclab with a project folder, the repository out of reach
-(issue 21 item 6): `cmake --install BUILD --prefix P` into a temporary
+"""An installed cnclab with a project folder, the repository out of reach:
+`cmake --install BUILD --prefix P` into a temporary
 prefix, then, from another temporary folder with an environment that names
 neither the source nor the build tree:
 

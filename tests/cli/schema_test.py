@@ -315,7 +315,7 @@ for row in readme.splitlines():
     if not row.startswith("| `"):
         continue
     previous = ""
-    for key in re.findall(r"`([a-z_.]+)`", row.split("|")[1]):
+    for key in re.findall(r"`([a-z0-9_.]+)`", row.split("|")[1]):
         if key.startswith(".") and previous:  # `.validation_count` after `split.train_count`
             key = previous.rsplit(".", 1)[0] + key
         listed.append(key)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every script under scripts/ (and scripts/figures/) answers --help: exit 0,
-# a description on stdout, and nothing run or written (issue 22: `figures/run
+# a description on stdout, and nothing run or written (`figures/run
 # --help` used to create a folder named --help and draw into it).
 # Usage: scripts_help_test.sh SOURCE_DIR
 set -uo pipefail

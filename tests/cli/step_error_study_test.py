@@ -1,6 +1,7 @@
 """End-to-end test of seed 000's study in its quick profile: `cnclab
 reproduce --quick experiments/step_error` into a temporary folder, then
-`cnclab tables step-error` in every format, then the figures, then
+`cnclab tables step-error` in every format, then the figures and the
+study's report (figures embedded, opened in Chromium), then
 `--check` against the declared targets (passing, and failing for a copy of
 the manifest with a target beyond the measured value).
 
@@ -14,6 +15,7 @@ margin.
 
 Usage: /usr/bin/python3 step_error_study_test.py CNCLAB SOURCE_DIR
 """
+import base64
 import csv
 import glob
 import io
@@ -27,9 +29,12 @@ import tempfile
 import h5py
 import numpy as np
 import yaml
+from PIL import Image
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "report"))
 from machine_tables import check_machine_tables, csv_tables  # noqa: E402
+
+import chromium_page  # noqa: E402  (beside this file)
 
 PAPER_TEST_SIZES = [19800, 19602, 18810, 17820, 16830]
 # "Wide margin": the network's test MSE below this share of the MSE of
@@ -77,7 +82,7 @@ def main():
               "reproduce --check: the quick profile's declared targets pass")
         tables_results = os.path.join(results, "quick")
         check(os.path.isdir(tables_results), "reproduce --out ROOT --quick wrote ROOT/quick")
-        # One rule (issue 21 item 4): --results names the root, --profile its subfolder.
+        # One rule: --results names the root, --profile its subfolder.
         common = ["tables", "step-error", "--results", results, "--profile", "quick"]
         texts = {f: run([cnclab] + common + ["--format", f], source)
                  for f in ("text", "md", "csv", "latex", "json")}
@@ -99,6 +104,7 @@ def main():
         pngs = glob.glob(os.path.join(tables_results, "figures", "step_error", "*.png"))
         names = {os.path.basename(p).split("_")[0] for p in pngs}
         check({"fig5", "fig6", "fig7", "fig8"} <= names, f"figures written: {sorted(pngs)}")
+        check_report(cnclab, source, results, pngs, tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     if failures:
@@ -106,6 +112,38 @@ def main():
         return 1
     print("step-error study: all checks passed")
     return 0
+
+
+def check_report(cnclab, source, results, pngs, tmp):
+    """`cnclab report step-error`: the study's figures embedded byte for byte
+    (base64 decoded here) at 1.5x the size they were drawn for (PIL reads
+    the PNG's pixels and dpi), and the page passes the file and browser
+    checks of chromium_page.py (no console error, no request leaving it)."""
+    html = os.path.join(tmp, "report-step-error.html")
+    run([cnclab, "report", "step-error", "--results", results, "--profile", "quick",
+         "-o", html], source)
+    for problem in chromium_page.file_problems(html):
+        check(False, f"report: {problem}")
+    text = open(html, encoding="utf-8").read()
+    images = {}
+    for attrs in re.findall(r"<img ([^>]*)>", text):
+        data = re.search(r'src="data:image/png;base64,([^"]*)"', attrs)
+        images[base64.b64decode(data[1])] = attrs
+    for png in pngs:
+        with open(png, "rb") as f:
+            attrs = images.get(f.read())
+        check(attrs is not None, f"report: {os.path.basename(png)} embedded as it is")
+        if attrs:
+            with Image.open(png) as im:
+                width = round(im.size[0] * 144 / im.info["dpi"][0])
+            check(f'width="{width}"' in attrs, f"report: {png} shown {width} px wide: {attrs[-60:]}")
+    chromium_page.require_chromium()
+    dom, console, leaving = chromium_page.open_in_chromium(
+        "file://" + html, os.path.join(tmp, "chromium-profile"), tmp)
+    check(dom.count("<img ") == len(pngs), f"report: {len(pngs)} figures in the DOM")
+    check("Table 2" in dom and "PASS" in dom, "report: tables and targets in the DOM")
+    check(not console and not leaving, f"report: no console message {console[:3]}, "
+                                       f"no request leaving {leaving[:3]}")
 
 
 def check_sources(text, source):

@@ -118,7 +118,7 @@ TEST(SweepCli, TwoJobsGiveBitIdenticalTrialsToOneJob) {
   EXPECT_NE(one.out.find("6 complete, 0 failed"), std::string::npos) << one.out;
 }
 
-// Issue 22 item 3: config groups. `trainer=NAME` replaces the block with
+// Config groups. `trainer=NAME` replaces the block with
 // configs/trainers/NAME.yaml (finer overrides apply after it, wherever they
 // stand), so a sweep can compare trainers; a missing group name is exit 2
 // naming the fragments there are.
@@ -414,10 +414,10 @@ TEST(SweepCli, ShardsThenMergeEqualAnUnshardedSweep) {
       << c.out;
 }
 
-// Issue 22 item 5: `cnclab show summary.h5` prints the ranking as `sweep
+// `cnclab show summary.h5` prints the ranking as `sweep
 // merge` prints it (without the merge's "summary:" line), rewriting nothing.
 // One point has all weights 0 and no training step: its trials are complete
-// and warned (issue 22 item 4).
+// and warned.
 TEST(SweepCli, ShowSummaryPrintsTheMergeRankingAndWritesNothing) {
   TempDir dir;
   const Result sweep = sh(dir.path(), kCnclab + " sweep " + kExperiment +
@@ -698,7 +698,7 @@ TEST(GraphCli, ReproduceRunsUpstreamFirstAndReusesUntilUpstreamChanges) {
 // every result equals the one-job run bit for bit, and d records the results
 // of b and c it started from.
 // A `kind: sweep` job runs after the graph, but its dataset is generated
-// in a free slot while the graph trains (issue 21 item 2): the log says so
+// in a free slot while the graph trains: the log says so
 // before the graph's run ends, the job then finds it cached, and the
 // results equal a --jobs 1 run's.
 TEST(GraphCli, ReproduceGeneratesAJobsDatasetBesideTheTraining) {

@@ -1,7 +1,7 @@
 #pragma once
 // The scalar keys of field declarations (core/fields.hpp) with a valid value
 // other than each one's default: for tests that change every declared key in
-// turn (issue 16 item 6: every key is part of the identity).
+// turn (every key is part of the identity).
 #include <string>
 #include <vector>
 

@@ -33,7 +33,7 @@ TEST(Override, MessageNamesTheOverride) {
   }
 }
 
-// Issue 22 item 6: `model.hidden=[16, 8]` unquoted reaches us as
+// `model.hidden=[16, 8]` unquoted reaches us as
 // `model.hidden=[16,`; the message says the shell split it.
 TEST(Override, UnclosedBracketSuggestsQuoting) {
   const auto message = [](const char* text) {

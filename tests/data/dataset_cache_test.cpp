@@ -33,7 +33,7 @@ std::size_t files_in(const fs::path& dir) {
   return n;
 }
 
-// Issue 22: a generator that ignores its seed (step_error: pure geometry)
+// A generator that ignores its seed (step_error: pure geometry)
 // has one cache file whatever the seed; one that uses it (friedman1) has one
 // per seed.
 TEST(DatasetCache, SeedIsPartOfTheKeyOnlyForGeneratorsThatUseIt) {

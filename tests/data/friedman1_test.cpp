@@ -138,7 +138,7 @@ TEST(Friedman1, RegistryRejectsUnknownGeneratorsAndOptions) {
             std::string::npos);
   EXPECT_NE(message("generator: friedman1\noptions: {sample: 3}\n").find("unknown key"),
             std::string::npos);
-  // No default generator (issue 22): a forgotten one is an error, not friedman1.
+  // No default generator: a forgotten one is an error, not friedman1.
   EXPECT_NE(message("options: {samples: 3}\n").find("generator: is required (one of: friedman1"),
             std::string::npos);
 }

@@ -1,9 +1,8 @@
-// Issue 17 on seed 002's kind of path: the 1 ms reference of the random NURBS
-// tool path, and of the following_error generator's output, holds v, a and j
-// per axis within 0.5 %, checked by forward differences of the sampled
-// positions (tests/motion/difference_peaks.hpp: a difference is a positive
-// weighted average of the true derivative, so it is an independent lower
-// bound of the true peak).
+// Limit refinement (docs/motion.md) on seed 002's kind of path: the 1 ms reference of the random
+// NURBS tool path, and of the following_error generator's output, holds v, a and j per axis within
+// 0.5 %, checked by forward differences of the sampled positions
+// (tests/motion/difference_peaks.hpp: a difference is a positive weighted average of the true
+// derivative, so it is an independent lower bound of the true peak).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -23,7 +22,7 @@ namespace {
 using testing::difference_peaks;
 using testing::DifferencePeaks;
 
-constexpr double kTolerance = 0.005;  // issue 17: every limit within 0.5 %
+constexpr double kTolerance = 0.005;  // docs/motion.md: every limit within 0.5 %
 constexpr std::size_t kControlPoints = 30;
 constexpr int kSeed = 2;
 

@@ -21,7 +21,7 @@ TEST(JobResult, RoundTripsThroughTheResultReaders) {
   TempDir dir;
   const ResultKey key{"groove", std::nullopt, "kind: gcode\nname: groove\nstep: 1.5\n",
                       dir / "groove.yaml", false};
-  RunRecord r = make_job_record("gcode", key);
+  RunRecord r = make_job_record("gcode", key, {{"step=1.5"}, "quick"});
   r.metrics = {{"points", 1234}, {"max_engagement_deg", 97.5}};
   r.outputs = {{"program", "groove.nc"}, {"report", "groove-report.txt"}};
   r.upstream = {{"up.yaml", "results/up/up-seed1-0123abcd.h5", "fedcba9876543210"}};
@@ -46,6 +46,8 @@ TEST(JobResult, RoundTripsThroughTheResultReaders) {
   ASSERT_EQ(back.upstream.size(), 1u);
   EXPECT_EQ(back.upstream[0].identity, "fedcba9876543210");
   EXPECT_EQ(back.facts, r.facts);
+  EXPECT_EQ(back.provenance.overrides, std::vector<std::string>{"step=1.5"});
+  EXPECT_EQ(back.provenance.profile, "quick");
 
   const ResultStatus status = read_result_status(file);
   EXPECT_EQ(status.status, "complete");
@@ -54,7 +56,8 @@ TEST(JobResult, RoundTripsThroughTheResultReaders) {
   std::ostringstream shown;
   print_result(back, shown);
   for (const char* part : {"experiment   groove (kind: gcode)", "output       program: groove.nc",
-                           "  points", "  step: 1.5", "fact         selected_trial: t0003"}) {
+                           "  points", "  step: 1.5", "fact         selected_trial: t0003",
+                           "override     step=1.5", "profile      quick"}) {
     EXPECT_NE(shown.str().find(part), std::string::npos) << part << "\n" << shown.str();
   }
 

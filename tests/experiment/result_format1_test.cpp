@@ -131,7 +131,8 @@ TEST_F(Format1, StoreDoesNotReuseIt) {
 // metrics it carries (a sweep job's selected trial's) get today's names.
 TEST(Format1Names, JobResultsRenameOnlyTheTrainingMetricsTheyCarry) {
   TempDir dir;
-  RunRecord job = make_job_record("sweep", {"search", std::nullopt, "name: search\n", {}, false});
+  RunRecord job =
+      make_job_record("sweep", {"search", std::nullopt, "name: search\n", {}, false}, {});
   job.metrics = {{"rmse", 1.0}};  // replaced below by the format-1 layout
   const fs::path file = dir / "job.h5";
   write_job_result(file, job);

@@ -9,6 +9,7 @@
 #include <regex>
 #include <sstream>
 
+#include "cnclab/core/isa.hpp"
 #include "cnclab/io/h5.hpp"
 #include "common/temp_dir.hpp"
 
@@ -36,12 +37,38 @@ TEST(Provenance, RoundTripsThroughAGroup) {
   EXPECT_EQ(r.master_seed, p.master_seed);
   EXPECT_EQ(r.derived_seeds, p.derived_seeds);
   EXPECT_EQ(r.host, p.host);
+  EXPECT_EQ(r.isa, p.isa);
   EXPECT_EQ(r.start_utc, p.start_utc);
   EXPECT_EQ(r.end_utc, p.end_utc);
   EXPECT_EQ(r.wall_seconds, p.wall_seconds);
   EXPECT_EQ(r.libraries, p.libraries);
   EXPECT_EQ(r.status, p.status);
   EXPECT_EQ(r.failure_reason, p.failure_reason);
+}
+
+TEST(Provenance, RecordsTheKernelLevelAndReadsFilesWithoutOne) {
+  const Provenance p = make_provenance(3);
+  EXPECT_EQ(p.isa, to_string(active_isa()));
+  EXPECT_FALSE(p.isa.empty());
+  // A file written before the level was recorded: every attribute but isa.
+  TempDir dir;
+  {
+    H5File f = H5File::create(dir / "old.h5");
+    f.create_group("/provenance");
+    for (const char* attr : {"cnclab_version", "git_commit", "host", "start_utc", "end_utc",
+                             "status", "failure_reason"}) {
+      f.set_attribute("/provenance", attr, "x");
+    }
+    f.set_attribute("/provenance", "master_seed", "5");
+    f.set_attribute("/provenance", "wall_seconds", 1.5);
+    f.create_group("/provenance/seeds");
+    f.create_group("/provenance/libraries");
+    f.close();
+  }
+  const Provenance r = read_provenance(H5File::open_read(dir / "old.h5"), "/provenance");
+  EXPECT_EQ(r.isa, "");
+  EXPECT_EQ(r.master_seed, 5u);
+  EXPECT_EQ(r.host, "x");
 }
 
 TEST(Provenance, VersionMatchesTheProjectVersionInCMakeLists) {

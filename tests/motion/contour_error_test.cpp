@@ -151,7 +151,7 @@ TEST(ContourError, TaylorOnACircleInsideAndOutsideIsTheClosedForm) {
       }
     }
   }
-  // The check (r = 10, 0.1 mm inside, 0.1 mm along the path): the
+  // A point 0.1 mm inside and 0.1 mm along a circle of r = 10: the
   // bound is a^4 / (8 (r - b)^3) = 1.3e-8 mm; the printed minus sign would be
   // off by kappa^2 a^2 b = 1.0e-5 mm.
   const CirclePath circle(Vec2(0, 0), 10.0, 0.0, 2 * kPi);

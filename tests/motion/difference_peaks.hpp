@@ -1,7 +1,7 @@
 #pragma once
 // Peak axis velocity, acceleration and jerk of a sampled reference by forward
 // differences of its positions, the independent check of the planner's
-// limits (issue 17). With h the sample period,
+// limits (docs/motion.md). With h the sample period,
 //   v_k = (p_k+1 - p_k) / h,
 //   a_k = (p_k+2 - 2 p_k+1 + p_k) / h^2,
 //   j_k = (p_k+3 - 3 p_k+2 + 3 p_k+1 - p_k) / h^3,

@@ -15,7 +15,7 @@
 namespace cnclab {
 namespace {
 
-constexpr double kSCurveTolerance = 0.005;  // issue 9: within 0.5 %
+constexpr double kSCurveTolerance = 0.005;  // docs/motion.md: within 0.5 %
 
 TEST(FeedratePlanner, StraightLineMatchesSCurve) {
   // Lines along x, at 30 degrees (x axis binds: path limits = axis / cos 30),

@@ -1,5 +1,5 @@
 // The 1 ms reference differentiated numerically: every axis limit holds
-// within 0.5 % (issues 9, 17), and the analytic derivatives agree with the
+// within 0.5 % (docs/motion.md), and the analytic derivatives agree with the
 // differences.
 #include "cnclab/motion/interpolator.hpp"
 
@@ -17,7 +17,7 @@
 namespace cnclab {
 namespace {
 
-// Issue 17: the limits hold within 0.5 % on the 1 ms reference (the planner
+// The limits hold within 0.5 % on the 1 ms reference (the planner
 // refines its grid where they would not, feedrate_planner.hpp).
 constexpr double kInterpolatorLimitTolerance = 0.005;
 

@@ -1,4 +1,4 @@
-// Limit refinement (issue 17): between grid nodes the planned motion can
+// Limit refinement (docs/motion.md): between grid nodes the planned motion can
 // exceed the limits imposed at the nodes; the planner bisects the grid there
 // and replans. Checked here by forward differences of the sampled 1 ms
 // positions (difference_peaks.hpp), independent of the planner's own check,
@@ -23,7 +23,7 @@ namespace {
 using testing::difference_peaks;
 using testing::DifferencePeaks;
 
-constexpr double kTolerance = 0.005;  // issue 17: every limit within 0.5 %
+constexpr double kTolerance = 0.005;  // docs/motion.md: every limit within 0.5 %
 
 // Difference peaks divided by the limits, as LimitRatios.
 LimitRatios ratios_of(const DifferencePeaks& p, const PlanarLimits& limits) {

@@ -17,7 +17,7 @@
 namespace cnclab {
 namespace {
 
-constexpr double kPlanTolerance = 0.005;  // planner vs S-curve on a line (issue 9)
+constexpr double kPlanTolerance = 0.005;  // planner vs S-curve on a line (docs/motion.md)
 // Between nodes the cubic motion may exceed a cap imposed at the nodes: where
 // the cap binds the plan rides it node to node with alternating path
 // acceleration (measured: 42.96 mm/s on a 40 mm/s cap at the 1 mm grid, 7.4 %).

@@ -1,5 +1,5 @@
 """Checks that `cnclab tables NAME --format csv` and `--format json` carry
-numbers only (issue 21 item 5), reading them with Python's own csv and json
+numbers only, reading them with Python's own csv and json
 modules:
 
 - json: a document {"name", "profile", "tables": [{"title", "columns",

@@ -13,7 +13,7 @@ namespace cnclab {
 namespace {
 using namespace sweep_fixtures;
 
-// Issue 22's case: the best trial is the median repeat of the best point,
+// The case of a lucky seed: the best trial is the median repeat of the best point,
 // and its line names the rule.
 TEST(SweepReport, BestTrialLineNamesTheRule) {
   const SweepPlan plan = plan_of(false);
@@ -38,7 +38,7 @@ TEST(SweepReport, RankedMeanStdAndFailedTrials) {
   EXPECT_LT(text.find("0.01 "), text.find("0.1 ")) << text;  // ranked
 }
 
-// Issue 22 item 4: a complete trial with a warning is counted in its point's
+// A complete trial with a warning is counted in its point's
 // row and listed under the table; the best trial's line carries its warning.
 TEST(SweepReport, WarnedTrialsAreMarkedAndListed) {
   const SweepPlan plan = plan_of(false);

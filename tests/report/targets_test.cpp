@@ -68,7 +68,7 @@ TEST(Targets, ReadsEntriesAndProfileValues) {
   write(file,
         "variants: {}\n"
         "targets:\n"
-        "  - {name: a.b, op: \">=\", value: 99.5, source: \"issue 5\"}\n"
+        "  - {name: a.b, op: \">=\", value: 99.5, source: \"seed 000\"}\n"
         "  - name: c\n"
         "    op: \"==\"\n"
         "    value: 5940\n"
@@ -133,7 +133,7 @@ TEST(Targets, TablesCheckPassesAndFailsWithExitCode) {
   // Both measured values on the passing side of their bound.
   write(manifest,
         "targets:\n"
-        "  - {name: fake.surface1.share_below_0.5um, op: \">=\", value: 99.5, source: issue}\n"
+        "  - {name: fake.surface1.share_below_0.5um, op: \">=\", value: 99.5, source: seed 000}\n"
         "  - {name: fake.surface1.test_samples, op: \"==\", value: 5940, source: paper}\n");
   std::ostringstream pass;
   EXPECT_EQ(tables_command(table.name, options, pass), 0);
@@ -145,7 +145,7 @@ TEST(Targets, TablesCheckPassesAndFailsWithExitCode) {
   // A target beyond the measured value (99.71 < 99.8): FAIL and exit 1.
   write(manifest,
         "targets:\n"
-        "  - {name: fake.surface1.share_below_0.5um, op: \">=\", value: 99.8, source: issue}\n"
+        "  - {name: fake.surface1.share_below_0.5um, op: \">=\", value: 99.8, source: seed 000}\n"
         "  - {name: fake.surface1.test_samples, op: \"==\", value: 5940, source: paper}\n");
   std::ostringstream fail;
   EXPECT_EQ(tables_command(table.name, options, fail), 1);
@@ -164,7 +164,7 @@ TEST(Targets, ProfileChecksOnlyItsDeclaredValues) {
   const TableEntry& table = fake_table();
   write(dir / "studies/fake.yaml",
         "targets:\n"
-        "  - {name: fake.surface1.share_below_0.5um, op: \">=\", value: 99.9, source: issue}\n"
+        "  - {name: fake.surface1.share_below_0.5um, op: \">=\", value: 99.9, source: seed 000}\n"
         "  - {name: fake.surface1.test_samples, op: \"==\", value: 5940, profiles: {quick: 5940}, "
         "source: paper}\n");
   TablesOptions options;

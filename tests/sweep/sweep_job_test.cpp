@@ -19,6 +19,7 @@
 #include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/io/h5.hpp"
+#include "cnclab/train/sgdm.hpp"
 #include "common/temp_dir.hpp"
 
 namespace cnclab {
@@ -114,9 +115,9 @@ TEST_F(SweepJobTest, SelectsTheTrialWithTheLeastValidationMse) {
   EXPECT_EQ(sel["selected"]["trial"].as<std::string>(), best_id);
   EXPECT_EQ(sel["selected"]["metrics"]["validation.normalised_mse"].as<double>(), best);
   const RunRecord chosen = read_result(s.selected_result());
-  EXPECT_EQ(
-      sel["selected"]["parameters"]["trainer.learning_rate"].as<double>(),
-      std::get<SgdmOptions>(s.plan.trials[*s.selected].experiment->spec.trainer).learning_rate);
+  EXPECT_EQ(sel["selected"]["parameters"]["trainer.learning_rate"].as<double>(),
+            trainer_options<SgdmOptions>(s.plan.trials[*s.selected].experiment->spec.trainer)
+                .learning_rate);
   EXPECT_EQ(sel["selected"]["parameters"]["model.hidden"].as<std::vector<std::size_t>>(),
             chosen.model.hidden);
   // The fixed override reached every trial.

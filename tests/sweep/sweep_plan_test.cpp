@@ -10,6 +10,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
+#include "cnclab/train/sgdm.hpp"
 #include "common/expect_error.hpp"
 #include "common/temp_dir.hpp"
 
@@ -98,7 +99,7 @@ TEST(SweepPlan, LinkedKeysSetEveryKeyToTheSameValue) {
   ASSERT_EQ(plan.trials.size(), 3u);  // a grid of 3 points, not 9
   EXPECT_EQ(plan.keys, std::vector<std::string>{"trainer.learning_rate+trainer.momentum"});
   for (const auto& t : plan.trials) {
-    const auto& sgdm = std::get<SgdmOptions>(t.experiment->spec.trainer);
+    const auto& sgdm = trainer_options<SgdmOptions>(t.experiment->spec.trainer);
     EXPECT_EQ(sgdm.learning_rate, std::stod(t.values[0]));
     EXPECT_EQ(sgdm.momentum, std::stod(t.values[0]));
   }
@@ -177,7 +178,7 @@ TEST(SweepPlan, RandomSearchIsDeterministicForASeedAndWithinBounds) {
     EXPECT_LE(batch, 64);
     activations.insert(t.values[3]);
     // The sampled value is the one in the trial's config.
-    EXPECT_DOUBLE_EQ(std::get<SgdmOptions>(t.experiment->spec.trainer).learning_rate, lr);
+    EXPECT_DOUBLE_EQ(trainer_options<SgdmOptions>(t.experiment->spec.trainer).learning_rate, lr);
   }
   EXPECT_EQ(activations, (std::set<std::string>{"relu", "tanh"}));
   // log-uniform: half the mass below the geometric midpoint (binomial(40, .5):

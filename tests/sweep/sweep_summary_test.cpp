@@ -42,7 +42,7 @@ TEST(SweepSummary, MeanAndSampleStdOverRepeatsAndRanking) {
   EXPECT_EQ(max.best_trial, 1);        // rmse 4.0
 }
 
-// Issue 22's case: the best single trial (0.030) is a lucky repeat of the
+// The case of a lucky seed: the best single trial (0.030) is a lucky repeat of the
 // worse point (mean 4.83); the best trial must be a repeat of the best point.
 TEST(SweepSummary, BestTrialIsOfTheBestPointNotTheBestSingleTrial) {
   const SweepPlan plan = plan_of(false);
@@ -97,7 +97,7 @@ TEST(SweepSummary, FileHoldsTheTableInPlanAndRankOrder) {
   EXPECT_NEAR(f.read_vector("/points/metrics/rmse/std")[1], std::sqrt(2.0), kTol);
 }
 
-// Issue 22 item 5: `cnclab show summary.h5` reads the summary back alone:
+// `cnclab show summary.h5` reads the summary back alone:
 // the plan and every trial's outcome as written (warnings included), so
 // summarize() gives the same ranking and best trial.
 TEST(SweepSummary, ReadBackGivesThePlanOutcomesAndRanking) {
@@ -146,6 +146,39 @@ TEST(SweepSummary, SummariesWithoutWarningsStillReadAndResultsAreNotSummaries) {
   }
   EXPECT_FALSE(is_sweep_summary(dir / "other.h5"));
   EXPECT_THROW(read_summary(dir / "other.h5"), IoError);
+}
+
+}  // namespace
+}  // namespace cnclab
+
+namespace cnclab {
+namespace {
+
+using namespace sweep_fixtures;
+
+// A pruned trial (a model-based sweep's pruner stopped it) is done but never
+// ranked, even when its numbers look better: its point ranks by its complete
+// repeats only, and a point with only pruned trials ranks last.
+TEST(SweepSummary, PrunedTrialsAreExcludedFromRankings) {
+  const SweepPlan plan = plan_of(false);
+  TrialOutcome pruned;
+  pruned.status = TrialOutcome::Status::pruned;
+  pruned.metrics = {{"rmse", 0.001}, {"mae", 0.001}};
+  EXPECT_TRUE(pruned.done());
+  // point 0: pruned + 3.0; point 1: 2.0 + 2.0; point 2: pruned only.
+  const std::vector<TrialOutcome> o = {pruned,           complete(3.0, 0), complete(2.0, 0),
+                                       complete(2.0, 0), pruned,           pruned};
+  const SweepSummary s = summarize(plan, o);
+  EXPECT_EQ(s.pruned, 3u);
+  EXPECT_EQ(s.complete, 3u);
+  ASSERT_EQ(s.points.size(), 3u);
+  EXPECT_EQ(s.points[0].point, 1u);
+  EXPECT_EQ(s.points[1].point, 0u);
+  EXPECT_NEAR(s.points[1].mean.at("rmse"), 3.0, 1e-12);  // the pruned 0.001 left out
+  EXPECT_EQ(s.points[2].point, 2u);
+  EXPECT_EQ(s.points[2].pruned, 2u);
+  EXPECT_EQ(s.best_trial, 2);
+  EXPECT_EQ(to_string(TrialOutcome::Status::pruned), "pruned");
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 #pragma once
-// CAD files (issue 19): STEP (ISO 10303-21) and IGES 5.3 parts read and
+// CAD files: STEP (ISO 10303-21) and IGES 5.3 parts read and
 // written through Open CASCADE Technology (OCCT 7.6). The build enables them
 // when CMake finds OCCT (CNCLAB_WITH_OCCT); without it every reading or
 // writing function of this module throws the ConfigError of

@@ -41,7 +41,7 @@ Dataset generate_dataset(const DatasetSpec& spec, std::uint64_t seed,
 }
 
 // The cache key's text; a generator that ignores its seed gets none, so every
-// seed shares one cached dataset (issue 22: identical data cached twice).
+// seed shares one cached dataset (not identical data cached once per seed).
 std::string dataset_config_text(const DatasetGenerator& generator, std::uint64_t seed) {
   return generator.options_yaml() + "generator_version: " + std::to_string(generator.version()) +
          "\n" + (generator.uses_seed() ? "seed: " + std::to_string(seed) + "\n" : "");

@@ -1,5 +1,7 @@
 #include "cnclab/data/dataset_spec.hpp"
 
+#include "cnclab/data/generator_registry.hpp"
+
 namespace cnclab {
 namespace {
 
@@ -9,7 +11,7 @@ FieldInfo generator_info() {
   i.doc = "the dataset generator (required; fragments in configs/datasets/)";
   i.kind = FieldKind::string;
   std::vector<std::string> names;
-  for (const auto& g : builtin_generators()) names.push_back(g.name);
+  for (const auto& g : known_generators()) names.push_back(g.name);
   i.rule = Rule::one_of(names);
   i.required = true;
   return i;

@@ -135,7 +135,7 @@ class FollowingErrorGenerator : public DatasetGenerator {
  public:
   explicit FollowingErrorGenerator(FollowingErrorOptions options);  // validates
   std::string name() const override { return "following_error"; }
-  // 2: the planner's limit refinement (issue 17) changes the reference, so
+  // 2: the planner's limit refinement (docs/motion.md) changes the reference, so
   // datasets cached by version 1 are regenerated. 3: the Taylor estimate's
   // denominator sign (motion/contour_error.hpp) changes contour_taylor.
   int version() const override { return 3; }

@@ -1,12 +1,25 @@
 #include "cnclab/data/generator.hpp"
 
+#include <stdexcept>
+#include <utility>
+
 #include "cnclab/core/suggest.hpp"
 #include "cnclab/data/following_error.hpp"
 #include "cnclab/data/friedman1.hpp"
+#include "cnclab/data/generator_registry.hpp"
 #include "cnclab/data/ik_samples.hpp"
 #include "cnclab/data/step_error.hpp"
 
 namespace cnclab {
+namespace {
+
+// The generators studies registered (register_generator), in order.
+std::vector<GeneratorEntry>& registered_generators() {
+  static std::vector<GeneratorEntry> entries;
+  return entries;
+}
+
+}  // namespace
 
 std::vector<GeneratorEntry> builtin_generators() {
   return {
@@ -25,10 +38,26 @@ std::vector<GeneratorEntry> builtin_generators() {
   };
 }
 
+void register_generator(GeneratorEntry entry) {
+  for (const auto& known : known_generators()) {
+    if (known.name == entry.name) {
+      throw std::logic_error("dataset generator '" + entry.name + "' registered twice");
+    }
+  }
+  registered_generators().push_back(std::move(entry));
+}
+
+std::vector<GeneratorEntry> known_generators() {
+  std::vector<GeneratorEntry> all = builtin_generators();
+  all.insert(all.end(), registered_generators().begin(), registered_generators().end());
+  return all;
+}
+
 std::shared_ptr<const DatasetGenerator> read_generator(const ConfigReader& dataset_section) {
   std::string known;
   std::vector<std::string> names;
-  for (const auto& entry : builtin_generators()) {
+  const std::vector<GeneratorEntry> generators = known_generators();
+  for (const auto& entry : generators) {
     known += (known.empty() ? "" : ", ") + entry.name;
     names.push_back(entry.name);
   }
@@ -38,7 +67,7 @@ std::shared_ptr<const DatasetGenerator> read_generator(const ConfigReader& datas
     dataset_section.fail("generator", "is required (one of: " + known + ")");
   }
   const auto name = dataset_section.require<std::string>("generator");
-  for (const auto& entry : builtin_generators()) {
+  for (const auto& entry : generators) {
     if (entry.name == name) return entry.read(dataset_section.section("options"));
   }
   dataset_section.fail("generator", "must be one of: " + known + did_you_mean(name, names));

@@ -2,7 +2,7 @@
 // A planar NURBS curve (geometry module) as a motion::PlanarPath, and seed
 // 002's random NURBS tool path ("a randomly generated NURBS toolpath",
 // Sec. II, Fig. 4). Lives in data because geometry and motion are siblings
-// under core (DESIGN.md: core <- geometry <- data, core <- motion <- data).
+// under core (docs/architecture.md: core <- geometry <- data, core <- motion <- data).
 #include <cstddef>
 
 #include "cnclab/core/rng.hpp"

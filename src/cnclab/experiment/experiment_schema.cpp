@@ -1,7 +1,10 @@
 #include "cnclab/experiment/experiment_schema.hpp"
 
+#include <stdexcept>
+
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/field_schema.hpp"
+#include "cnclab/data/generator_registry.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
 #include "cnclab/experiment/model_spec.hpp"
 #include "cnclab/experiment/narx_spec.hpp"
@@ -16,27 +19,34 @@ using nlohmann::json;
 
 constexpr const char* kDraft = "https://json-schema.org/draft/2020-12/schema";
 
+// One schema per registered trainer that passes `allowed`, each with the
+// keys `head` before its own.
+std::vector<TaggedVariant> trainer_variants(const std::vector<FieldInfo>& head,
+                                            bool (*allowed)(const TrainerDef&)) {
+  std::vector<TaggedVariant> variants;
+  for (const auto& d : trainers().all()) {
+    if (allowed && !allowed(d)) continue;
+    std::vector<FieldInfo> fields = head;
+    const auto own = d.fields();
+    fields.insert(fields.end(), own.begin(), own.end());
+    variants.push_back({d.name, object_schema(fields)});
+  }
+  return variants;
+}
+
 // One entry of trainer.stages: its own keys (mode) and those of its type.
 json stage_schema() {
-  const auto with_head = [](const std::vector<FieldInfo>& trainer) {
-    std::vector<FieldInfo> fields = stage_fields().info();
-    fields.insert(fields.end(), trainer.begin(), trainer.end());
-    return object_schema(fields);
-  };
-  return tagged_schema("type", "",
-                       {{"lm", with_head(lm_fields().info())},
-                        {"trainbr", with_head(trainbr_fields().info(TrainbrOptions{}))}},
-                       "one training stage (lm or trainbr), from the previous stage's weights");
+  const auto residual = [](const TrainerDef& d) { return d.capabilities.needs_jacobian; };
+  const auto names = trainer_names(residual);
+  return tagged_schema(
+      "type", "", trainer_variants(stage_fields().info(), residual),
+      "one training stage (" + join(names, " or ") + "), from the previous stage's weights");
 }
 
 // trainer: {type, ...} or, for model.type narx, {stages: [...]} alone (the
 // if/then of train_file_schema says which one a file needs).
 json trainer_schema(const std::string& doc) {
-  json s = tagged_schema("type", "",
-                         {{"sgdm", object_schema(sgdm_fields().info())},
-                          {"lm", object_schema(lm_fields().info())},
-                          {"trainbr", object_schema(trainbr_fields().info(TrainbrOptions{}))}},
-                         doc);
+  json s = tagged_schema("type", "", trainer_variants({}, nullptr), doc);
   s.erase("required");
   // Without a type (stages, or a type from an include) the keys of every
   // type are checked: stages is one of them.
@@ -92,16 +102,38 @@ void add_model_rules(json& s) {
   s["properties"]["metrics"]["items"]["enum"] = all;
 }
 
+// model: {type, ...}; without a type each key is checked against every
+// type's (a file whose include sets the type, e.g. a narx variant giving
+// model.inputs only), and a file without include: reads a missing type as
+// mlp (train_file_schema adds that rule).
 json model_schema(const std::string& doc) {
   std::vector<TaggedVariant> variants;
   for (const auto& m : model_types()) variants.push_back({m.type, object_schema(m.fields())});
-  return tagged_schema("type", "mlp", variants, doc);
+  json s = tagged_schema("type", "", variants, doc);
+  s.erase("required");
+  s["properties"]["type"]["default"] = "mlp";
+  return s;
+}
+
+// The default model type of a file without include: (the reader's default).
+json default_model_rule() {
+  for (const auto& m : model_types()) {
+    if (m.type != "mlp") continue;
+    json model;
+    model["if"] = {{"not", {{"required", {"type"}}}}};
+    model["then"] = object_schema(m.fields());
+    json rule;
+    rule["if"] = {{"not", {{"required", {"include"}}}}};
+    rule["then"]["properties"]["model"] = model;
+    return rule;
+  }
+  throw std::logic_error("model_types() lists no mlp");
 }
 
 // dataset: the generator picks the schema of `options`.
 json dataset_schema(const std::vector<FieldInfo>& dataset_info, const std::string& doc) {
   std::vector<TaggedVariant> variants;
-  for (const auto& g : builtin_generators()) {
+  for (const auto& g : known_generators()) {
     std::vector<FieldInfo> fields = dataset_info;
     for (auto& f : fields) {
       if (f.key != "options") continue;
@@ -172,6 +204,7 @@ json train_file_schema(const std::vector<FieldInfo>& sweep_block,
   }
   // The reader requires what the experiment is about (no silent defaults).
   for (const char* key : {"dataset", "model", "trainer"}) s["required"].push_back(key);
+  s["allOf"].push_back(default_model_rule());
   add_model_rules(s);
   add_loader_keys(s);
   return s;

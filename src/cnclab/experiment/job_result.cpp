@@ -17,7 +17,8 @@
 namespace cnclab {
 namespace fs = std::filesystem;
 
-RunRecord make_job_record(const std::string& kind, const ResultKey& key) {
+RunRecord make_job_record(const std::string& kind, const ResultKey& key,
+                          const JobRequest& request) {
   RunRecord r;
   r.kind = kind;
   r.experiment = key.name;
@@ -25,6 +26,8 @@ RunRecord make_job_record(const std::string& kind, const ResultKey& key) {
   r.config_hash = hash_hex(key.resolved_yaml);
   r.provenance = make_provenance(key.seed.value_or(0));
   r.provenance.status = "complete";
+  r.provenance.overrides = request.overrides;
+  r.provenance.profile = request.profile;
   if (!key.source_file.empty()) set_project(r.provenance, key.source_file.parent_path());
   return r;
 }

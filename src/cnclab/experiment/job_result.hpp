@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/experiment/run_record.hpp"
@@ -23,9 +24,18 @@ namespace cnclab {
 class H5File;
 struct ShowOptions;
 
+// How a job was asked for: the command's `key=value` overrides and its
+// --profile, as its loader was given them (provenance, not identity: the
+// resolved config already holds their effect).
+struct JobRequest {
+  std::vector<std::string> overrides;
+  std::string profile;
+};
+
 // A job record: kind, name, resolved config and its hash, provenance
-// (version, host, start time; status complete) filled in.
-RunRecord make_job_record(const std::string& kind, const ResultKey& key);
+// (version, host, start time, the request's overrides and profile; status
+// complete) filled in.
+RunRecord make_job_record(const std::string& kind, const ResultKey& key, const JobRequest& request);
 
 // Writes atomically; std::logic_error for record.kind "train".
 void write_job_result(const std::filesystem::path& path, const RunRecord& record);

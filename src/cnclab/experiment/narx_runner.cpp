@@ -101,10 +101,7 @@ Summary train_stage(const Narx& narx, const TrainingStage& stage, const Eigen::M
     return true;
   };
   const auto train = [&](ResidualObjective& objective) {
-    if (const auto* br = std::get_if<TrainbrOptions>(&stage.trainer)) {
-      return train_trainbr(objective, params, *br, hooks);
-    }
-    return train_lm(objective, params, std::get<LmOptions>(stage.trainer), hooks);
+    return stage.trainer.def->train_residual(stage.trainer.options, objective, params, hooks);
   };
   if (stage.mode == StageMode::open_loop) {
     NarxOpenLoopObjective open(narx, v, e, starts);
@@ -138,7 +135,7 @@ Termination retry_stage(const TrainingStage& stage, const Eigen::VectorXd& start
   params = start;
   const std::size_t epochs = trainer_epochs(stage.trainer);
   const auto with_epochs = [](TrainingStage s, std::size_t n) {
-    std::visit([n](auto& o) { o.epochs = n; }, s.trainer);
+    s.trainer.options = s.trainer.def->with_epochs(s.trainer.options, n);
     return s;
   };
   TrainingStage windowed = with_epochs(stage, (epochs + 1) / 2);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "cnclab/core/fields.hpp"
+#include "cnclab/core/format.hpp"
 #include "cnclab/core/suggest.hpp"
 #include "cnclab/experiment/spec_text.hpp"
 
@@ -102,10 +103,19 @@ YAML::Node narx_model_to_node(const NarxModelSpec& model) {
 
 namespace {
 
+bool needs_jacobian(const TrainerDef& d) {
+  return d.capabilities.needs_jacobian;
+}
+
 TrainingStage read_stage(const ConfigReader& s) {
   std::vector<std::string> allowed = stage_fields().keys();
   allowed.push_back("type");
-  for (const auto& k : lm_fields().keys()) allowed.push_back(k);
+  for (const auto& d : trainers().all()) {
+    if (!needs_jacobian(d)) continue;
+    for (const auto& k : d.keys()) {
+      if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) allowed.push_back(k);
+    }
+  }
   for (const auto& key : s.keys()) {
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
       std::string list;
@@ -119,8 +129,8 @@ TrainingStage read_stage(const ConfigReader& s) {
   StageHead head;
   stage_fields().read(s, head);
   s.validate([&] { stage_fields().check(head); });
-  if (!s.has("type")) s.fail("type", "is required (lm or trainbr)");
-  choice(s, "type", "trainbr", {"lm", "trainbr"});
+  const auto residual = trainer_names(needs_jacobian);
+  if (!s.has("type")) s.fail("type", "is required (" + join(residual, " or ") + ")");
   TrainingStage stage;
   stage.mode = head.mode == "closed_loop" ? StageMode::closed_loop : StageMode::open_loop;
   if (head.horizon != 0 && stage.mode == StageMode::open_loop) {
@@ -132,7 +142,7 @@ TrainingStage read_stage(const ConfigReader& s) {
            "applies to closed_loop stages on the whole series only (horizon 0)");
   }
   stage.fallback_horizon = head.fallback_horizon;
-  stage.trainer = read_trainer(s);
+  stage.trainer = read_trainer(s, nullptr, needs_jacobian);
   return stage;
 }
 

@@ -65,7 +65,7 @@ std::string to_string(StageMode mode);
 
 struct TrainingStage {
   StageMode mode = StageMode::open_loop;
-  TrainerSpec trainer = TrainbrOptions{};  // lm or trainbr
+  TrainerSpec trainer;  // a trainer that needs_jacobian (read_stages)
   // closed_loop: the series is predicted in windows of `horizon` steps, each
   // started from measured states (NarxClosedLoopObjective); 0 = one window,
   // the whole series (seed 002's parallel training).

@@ -99,7 +99,8 @@ void write_mlp_sections(H5File& f, const RunRecord& r) {
   f.write_vector("/history/validation_loss", val, "normalised MSE");
   f.write_vector("/history/test_loss", r.test_loss, "normalised MSE");
   f.write_vector("/history/wall_seconds", wall, "s");
-  if (r.trainer != "sgdm") {
+  const TrainerDef* trainer = trainers().find(r.trainer);
+  if (trainer && trainer->history != TrainerHistory::epochs) {
     f.set_attribute("/training", "beta_guard_count",
                     static_cast<std::int64_t>(r.training.beta_guard_count));
     write_lm_history(f, "/history", r.training);
@@ -382,9 +383,8 @@ void read_mlp_sections(const H5File& f, RunRecord& r) {
     bad("/training: unknown termination '" + termination + "'");
   }
   r.trainer = f.attribute_string("/training", "trainer");
-  if (!is_trainer_name(r.trainer)) {
-    bad("/training: unknown trainer '" + r.trainer + "'");
-  }
+  const TrainerDef* trainer = trainers().find(r.trainer);
+  if (trainer == nullptr) bad("/training: unknown trainer '" + r.trainer + "'");
   r.training.message = f.attribute_string("/training", "message");
   r.training.best_epoch = static_cast<std::size_t>(f.attribute_int("/training", "best_epoch"));
   const auto epoch = f.read_vector("/history/epoch");
@@ -397,7 +397,7 @@ void read_mlp_sections(const H5File& f, RunRecord& r) {
   for (std::size_t i = 0; i < epoch.size(); ++i) {
     r.training.history.push_back({static_cast<std::size_t>(epoch[i]), train[i], val[i], wall[i]});
   }
-  if (r.trainer != "sgdm") {
+  if (trainer->history != TrainerHistory::epochs) {
     r.training.beta_guard_count =
         static_cast<std::size_t>(f.attribute_int("/training", "beta_guard_count"));
     read_lm_history(f, "/history", epoch.size(), r.training);

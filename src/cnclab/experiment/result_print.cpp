@@ -9,6 +9,7 @@
 #include "cnclab/experiment/result_narx.hpp"
 #include "cnclab/experiment/run_warnings.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/train/trainer_registry.hpp"
 
 namespace cnclab {
 
@@ -32,7 +33,8 @@ void print_mlp_model(const RunRecord& r, std::ostream& out) {
     const auto& lm = r.training.lm_history.back();
     out << "             final SSE " << format_metric(lm.sse) << ", SSW " << format_metric(lm.ssw)
         << ", mu " << format_metric(lm.mu) << ", gradient " << format_metric(lm.gradient) << "\n";
-    if (r.trainer == "trainbr") {
+    const TrainerDef* trainer = trainers().find(r.trainer);
+    if (trainer && trainer->history == TrainerHistory::bayesian) {
       out << "             alpha " << format_metric(lm.alpha) << ", beta " << format_metric(lm.beta)
           << ", gamma " << format_metric(lm.gamma) << " of " << r.parameters.size()
           << " parameters effective";
@@ -55,16 +57,22 @@ std::vector<std::string> validation_notes(const RunRecord& r) {
                 (r.narx ? " steps of the validation half" : " validation samples") +
                 " are held out of training and only scored (validation.*)";
   if (r.narx) {
-    bool trainbr = false;
+    // The first stage trainer without a validation stop, named with its reason.
+    std::string without;
     for (const auto& net : r.narx->networks) {
-      for (const auto& st : net.stages) trainbr = trainbr || st.trainer == "trainbr";
+      for (const auto& st : net.stages) {
+        const TrainerDef* t = trainers().find(st.trainer);
+        if (without.empty() && t && !t->capabilities.validation_stop) {
+          without = " (" + t->name + " has no validation stop, " + t->without_validation_stop + ")";
+        }
+      }
     }
-    return {"no training stage stops on the validation half" +
-            std::string(trainbr ? " (trainbr has no validation stop, as MATLAB's trainbr)" : "") +
-            held_out};
+    return {"no training stage stops on the validation half" + without + held_out};
   }
-  if (r.trainer == "trainbr") {
-    return {"trainbr has no validation stop (as MATLAB's trainbr)" + held_out};
+  const TrainerDef* trainer = trainers().find(r.trainer);
+  if (trainer && !trainer->capabilities.validation_stop) {
+    return {trainer->name + " has no validation stop (" + trainer->without_validation_stop + ")" +
+            held_out};
   }
   return {};
 }

@@ -42,7 +42,7 @@ struct OtherInference {
 // One trained network of a narx run (model.type narx): one target.
 struct NarxStageRecord {
   std::string mode;     // open_loop | closed_loop
-  std::string trainer;  // lm | trainbr
+  std::string trainer;  // the stage's trainer.type
   Summary summary;
   std::size_t horizon = 0;           // closed_loop window length (0: the whole series)
   bool fallback = false;             // a second try of the stage before it (fallback_horizon)
@@ -90,7 +90,7 @@ struct RunRecord {
   Eigen::VectorXd parameters;
   ScalingRecord input_scaling, target_scaling;
 
-  std::string trainer = "sgdm";  // trainer type (trainer_spec.hpp)
+  std::string trainer;  // trainer.type (trainer_spec.hpp; train/trainer_registry.hpp)
   Summary training;
   std::vector<double> test_loss;  // per epoch, MSE in normalised units (NaN if no test set)
 

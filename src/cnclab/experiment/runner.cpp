@@ -180,12 +180,29 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   if (!rec.split.validation.empty()) {
     hooks.validation_loss = [&](const Eigen::VectorXd& p) { return mse(p, xn_val, yn_val); };
   }
+  std::size_t pruned_at = 0;  // the epoch options.report stopped training at
+  const auto report = [&](const EpochRecord& e, const Eigen::VectorXd& p) {
+    if (!options.report || e.epoch % options.report_every != 0) return true;
+    std::map<std::string, SplitData> split;
+    if (!rec.split.validation.empty()) {
+      SplitData& d = split["validation"];
+      d.outputs = mlp.predict(p, xn_val);
+      d.scaled_targets = yn_val;
+      d.predictions = rec.target_scaling.inverse_transform(d.outputs);
+      d.targets = y_val;
+    }
+    const auto m = evaluation_metrics(split, {options.report_metric});
+    const auto it = m.find(options.report_metric);
+    if (options.report(e.epoch, it == m.end() ? std::nan("") : it->second)) return true;
+    pruned_at = e.epoch;
+    return false;
+  };
   hooks.on_epoch = [&](const EpochRecord& e, const Eigen::VectorXd& p) {
     rec.test_loss.push_back(mse(p, xn_test, yn_test));
     std::ostringstream status;
     status << "train loss " << e.train_loss << "  test loss " << rec.test_loss.back();
     progress.update(e.epoch, status.str());
-    return true;
+    return report(e, p);
   };
   if (trainer_epochs(spec.trainer) == 0) {
     // trainer.epochs 0: evaluate the starting network as it is.
@@ -241,10 +258,13 @@ RunOutcome run_experiment(const LoadedExperiment& experiment, const RunOptions& 
   finish_provenance(rec.provenance);
   rec.provenance.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  rec.provenance.status = ok ? "complete" : "failed";
+  rec.provenance.status = !ok ? "failed" : pruned_at > 0 ? "pruned" : "complete";
   if (ok) rec.warnings = prediction_warnings(rec);
   if (ok && !target_warning.empty()) rec.warnings.push_back(target_warning);
-  rec.provenance.failure_reason = ok ? "" : rec.training.message;
+  rec.provenance.failure_reason =
+      !ok             ? rec.training.message
+      : pruned_at > 0 ? "pruned by the sweep's pruner after epoch " + std::to_string(pruned_at)
+                      : "";
 
   RunOutcome outcome;
   outcome.result_file = options.result_file.empty() ? result_path(experiment, options.results_dir)

@@ -2,6 +2,7 @@
 // The experiment pipeline: dataset -> split -> normalise -> model -> train ->
 // evaluate -> metrics -> result file (written atomically).
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <ostream>
 #include <string>
@@ -24,6 +25,15 @@ struct RunOptions {
   // Where to write the result; empty = result_path(experiment, results_dir).
   // Upstream results (needs, init_from) are always looked up in results_dir.
   std::filesystem::path result_file;
+  // Intermediate reports (a sweep's pruner, sweep/model_search.hpp): every
+  // `report_every` epochs the trainer's current network is evaluated on the
+  // validation split and `report(epoch, metric)` is called with metric
+  // `report_metric` ("validation.rmse", in physical units as stored; NaN
+  // when the split is empty); returning false stops training, and the
+  // result is written with status "pruned" (history and metrics kept).
+  std::function<bool(std::size_t epoch, double value)> report;
+  std::string report_metric;
+  std::size_t report_every = 1;
 };
 
 struct RunOutcome {

@@ -160,8 +160,8 @@ void require_subject(const ConfigReader& root, const std::filesystem::path& base
     root.fail("model", "is required (the network, e.g. model: {type: mlp, hidden: [28, 20]})");
   }
   if (!root.section("trainer").has("type") && !root.section("trainer").has("stages")) {
-    root.section("trainer").fail(
-        "type", "is required (sgdm, lm or trainbr)" + fragment_hint(base, "trainers"));
+    root.section("trainer").fail("type", "is required (" + join(trainer_names(), ", ") + ")" +
+                                             fragment_hint(base, "trainers"));
   }
 }
 
@@ -188,10 +188,10 @@ void check_experiment(const ConfigReader& root, const std::filesystem::path& bas
     validate_split(root.section("split"), spec.split, spec.dataset.generator->shape().samples);
   }
   if (!spec.narx) validate_mlp_model(root.section("model"), spec.model);
-  if (is_levenberg_marquardt(spec.trainer) && spec.model.dropout_keep_probability < 1.0) {
+  if (!trainer_capabilities(spec.trainer).dropout && spec.model.dropout_keep_probability < 1.0) {
     root.section("model").section("dropout").fail(
         "keep_probability", "must be 1 with trainer " + trainer_name(spec.trainer) +
-                                " (Levenberg-Marquardt needs a deterministic network)");
+                                " (it trains a deterministic network, without dropout)");
   }
   const auto known = spec.narx ? metric_selection_names(sequence_metric_names(), {"validation"})
                                : metric_selection_names(base_metrics(), metric_splits());

@@ -65,7 +65,7 @@ struct ExperimentSpec {
   NormalisationSpec normalisation;
   // model: type mlp; `inputs`/`outputs` come from the dataset at run time.
   MlpOptions model;
-  TrainerSpec trainer;  // trainer: type sgdm | lm | trainbr (trainer_spec.hpp)
+  TrainerSpec trainer;  // trainer: {type: a registered trainer, ...} (trainer_spec.hpp)
   // model.type narx (narx_spec.hpp): one NARX network per target, trained in
   // `stages` (trainer.stages); `model` and `trainer` are then unused. A narx
   // experiment needs split.mode sequential_halves and normalisation none (the

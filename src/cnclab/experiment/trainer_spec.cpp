@@ -1,55 +1,25 @@
 #include "cnclab/experiment/trainer_spec.hpp"
 
 #include <algorithm>
-#include <iterator>
-#include <type_traits>
 
-#include "cnclab/core/fields.hpp"
-#include "cnclab/core/format.hpp"
 #include "cnclab/experiment/spec_text.hpp"
 
 namespace cnclab {
 namespace {
 
-// In the order of TrainerSpec's alternatives.
-constexpr const char* kTrainerNames[] = {"sgdm", "lm", "trainbr"};
-
-SgdmOptions read_sgdm(const ConfigReader& r) {
-  SgdmOptions t;
-  sgdm_fields().read(r, t);
-  r.validate([&] { t.validate(); });
-  return t;
-}
-
-// lm and trainbr: their fields (trainbr's lack max_fail).
-const FieldList<LmOptions>& fields_of(const std::string& type) {
-  return type == "lm" ? lm_fields() : trainbr_fields();
-}
-
-template <class Options>
-Options read_lm(const ConfigReader& r, Options t = {}) {
-  fields_of(std::is_same_v<Options, TrainbrOptions> ? "trainbr" : "lm").read(r, t);
-  r.validate([&] { t.validate(); });
-  return t;
-}
-
-std::vector<std::string> trainer_keys(const std::string& type) {
-  return type == "sgdm" ? sgdm_fields().keys() : fields_of(type).keys();
-}
-
 // Keys that the chosen trainer lacks but another trainer has, set in another
 // place (file or override) than `type`: consumed and named in one note (what a
 // switch of trainer.type leaves behind). Written next to the type they do not
 // belong to, they stay unknown keys.
-void drop_keys_of_other_trainers(const ConfigReader& r, const std::string& type,
+void drop_keys_of_other_trainers(const ConfigReader& r, const TrainerDef& chosen,
                                  std::vector<std::string>* notes) {
-  const auto own = trainer_keys(type);
+  const auto own = chosen.keys();
   std::string dropped;
   for (const auto& key : r.keys()) {
     if (key == "type" || std::find(own.begin(), own.end(), key) != own.end()) continue;
     if (r.location(key).file == r.location("type").file) continue;
-    for (const char* other : kTrainerNames) {
-      const auto theirs = trainer_keys(other);
+    for (const auto& other : trainers().all()) {
+      const auto theirs = other.keys();
       if (std::find(theirs.begin(), theirs.end(), key) != theirs.end()) {
         r.raw(key);  // consumed: not an unknown key
         dropped += (dropped.empty() ? "" : ", ") + key;
@@ -58,55 +28,50 @@ void drop_keys_of_other_trainers(const ConfigReader& r, const std::string& type,
     }
   }
   if (!dropped.empty() && notes) {
-    notes->push_back(r.dotted("type") + " is " + type + ": dropped " + dropped +
+    notes->push_back(r.dotted("type") + " is " + chosen.name + ": dropped " + dropped +
                      " (keys of another trainer)");
   }
 }
 
 }  // namespace
 
-std::string trainer_name(const TrainerSpec& trainer) {
-  return kTrainerNames[trainer.index()];
-}
+TrainerSpec::TrainerSpec() : def(&trainers().all().front()), options(def->defaults()) {}
 
-bool is_trainer_name(const std::string& name) {
-  return std::find(std::begin(kTrainerNames), std::end(kTrainerNames), name) !=
-         std::end(kTrainerNames);
+TrainerSpec::TrainerSpec(const TrainerDef& d, std::any o) : def(&d), options(std::move(o)) {}
+
+std::string trainer_name(const TrainerSpec& trainer) {
+  return trainer.def->name;
 }
 
 std::size_t trainer_epochs(const TrainerSpec& trainer) {
-  return std::visit([](const auto& t) { return t.epochs; }, trainer);
+  return trainer.def->epochs(trainer.options);
 }
 
-bool is_levenberg_marquardt(const TrainerSpec& trainer) {
-  return !std::holds_alternative<SgdmOptions>(trainer);
+const TrainerCapabilities& trainer_capabilities(const TrainerSpec& trainer) {
+  return trainer.def->capabilities;
 }
 
-TrainerSpec read_trainer(const ConfigReader& r, std::vector<std::string>* notes) {
-  const auto type =
-      choice(r, "type", "sgdm",
-             std::vector<std::string>(std::begin(kTrainerNames), std::end(kTrainerNames)));
-  drop_keys_of_other_trainers(r, type, notes);
-  if (type == "lm") return read_lm<LmOptions>(r);
-  if (type == "trainbr") return read_lm<TrainbrOptions>(r);
-  return read_sgdm(r);
+std::vector<std::string> trainer_names(const TrainerFilter& allowed) {
+  std::vector<std::string> names;
+  for (const auto& d : trainers().all()) {
+    if (!allowed || allowed(d)) names.push_back(d.name);
+  }
+  return names;
+}
+
+TrainerSpec read_trainer(const ConfigReader& r, std::vector<std::string>* notes,
+                         const TrainerFilter& allowed) {
+  const auto names = trainer_names(allowed);
+  const auto type = choice(r, "type", names.front(), names);
+  const TrainerDef& def = *trainers().find(type);
+  drop_keys_of_other_trainers(r, def, notes);
+  return TrainerSpec(def, def.read(r));
 }
 
 YAML::Node trainer_to_node(const TrainerSpec& trainer) {
   YAML::Node n(YAML::NodeType::Map);
   n["type"] = trainer_name(trainer);
-  std::visit(
-      [&](const auto& t) {
-        using T = std::decay_t<decltype(t)>;
-        YAML::Node fields;
-        if constexpr (std::is_same_v<T, SgdmOptions>) {
-          fields = sgdm_fields().to_node(t);
-        } else {
-          fields = fields_of(std::is_same_v<T, TrainbrOptions> ? "trainbr" : "lm").to_node(t);
-        }
-        for (const auto& kv : fields) n[kv.first.Scalar()] = kv.second;
-      },
-      trainer);
+  for (const auto& kv : trainer.def->to_node(trainer.options)) n[kv.first.Scalar()] = kv.second;
   return n;
 }
 

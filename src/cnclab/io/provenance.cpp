@@ -14,6 +14,7 @@
 
 #include "cnclab/build_info.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/isa.hpp"
 #include "cnclab/io/h5.hpp"
 
 namespace cnclab {
@@ -49,6 +50,7 @@ Provenance make_provenance(std::uint64_t master_seed) {
   p.git_commit = build::kGitCommit;
   p.master_seed = master_seed;
   p.host = host_name();
+  p.isa = to_string(active_isa());
   p.start_utc = utc_now_iso8601();
   p.libraries = library_versions();
   p.command_line = process_command_line();
@@ -145,7 +147,8 @@ std::string seconds_text(double s) {
 
 std::vector<std::pair<std::string, std::string>> provenance_lines(const Provenance& p) {
   std::vector<std::pair<std::string, std::string>> lines;
-  lines.emplace_back("cnclab", p.cnclab_version + " (git " + p.git_commit + ")");
+  lines.emplace_back("cnclab", p.cnclab_version + " (git " + p.git_commit +
+                                   (p.isa.empty() ? "" : ", kernels " + p.isa) + ")");
   lines.emplace_back("run", p.start_utc + " -> " + p.end_utc + " on " + p.host);
   std::string time = "wall " + seconds_text(p.wall_seconds);
   if (p.cpu_seconds >= 0) time += ", CPU " + seconds_text(p.cpu_seconds);
@@ -170,6 +173,7 @@ void write_provenance(H5File& f, const std::string& g, const Provenance& p) {
   f.set_attribute(g, "git_commit", p.git_commit);
   f.set_attribute(g, "master_seed", std::to_string(p.master_seed));
   f.set_attribute(g, "host", p.host);
+  f.set_attribute(g, "isa", p.isa);
   f.set_attribute(g, "start_utc", p.start_utc);
   f.set_attribute(g, "end_utc", p.end_utc);
   f.set_attribute(g, "wall_seconds", p.wall_seconds);
@@ -210,6 +214,7 @@ Provenance read_provenance(const H5File& f, const std::string& g) {
   p.git_commit = f.attribute_string(g, "git_commit");
   p.master_seed = parse_seed(f, g, "master_seed");
   p.host = f.attribute_string(g, "host");
+  if (f.has_attribute(g, "isa")) p.isa = f.attribute_string(g, "isa");
   p.start_utc = f.attribute_string(g, "start_utc");
   p.end_utc = f.attribute_string(g, "end_utc");
   p.wall_seconds = f.attribute_double(g, "wall_seconds");

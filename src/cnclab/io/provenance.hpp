@@ -3,7 +3,7 @@
 //
 // Layout under `group` (all scalar string attributes unless noted):
 //   <group>            cnclab_version, git_commit, master_seed (decimal text),
-//                      host, start_utc, end_utc, wall_seconds (float64),
+//                      host, isa, start_utc, end_utc, wall_seconds (float64),
 //                      status, failure_reason
 //                      and, when known (absent in older files):
 //                      command_line, overrides (one `key=value` a line),
@@ -30,6 +30,12 @@ struct Provenance {
   std::uint64_t master_seed = 0;
   std::map<std::string, std::uint64_t> derived_seeds;  // stream name -> seed
   std::string host;
+  // The instruction-set level the hot kernels ran at (core/isa.hpp:
+  // baseline, v3, v4 or native): results of one level agree bit for bit
+  // across machines, of different levels to rounding. Empty when read from
+  // a file written before the level was recorded (those ran the baseline's
+  // kernels, or native ones in a CNCLAB_NATIVE_ARCH build).
+  std::string isa;
   std::string start_utc;  // ISO 8601, e.g. 2026-11-24T19:30:00Z
   std::string end_utc;
   double wall_seconds = 0;
@@ -69,11 +75,12 @@ double process_cpu_seconds();
 // end_utc = now, cpu_seconds = CPU time since make_provenance.
 void finish_provenance(Provenance& p);
 // What `show` and reports print of a provenance: (label, text) in order;
-// fields that are unknown are left out.
+// fields that are unknown are left out. The first is ("cnclab",
+// "0.1.0 (git 1a2b3c4d5e6f, kernels v4)"), no kernel level for files without one.
 std::vector<std::pair<std::string, std::string>> provenance_lines(const Provenance& p);
 
-// Version, commit, host, libraries, start time, command line and the
-// CPU time so far filled in.
+// Version, commit, host, kernel level, libraries, start time, command line
+// and the CPU time so far filled in.
 Provenance make_provenance(std::uint64_t master_seed);
 
 std::string utc_now_iso8601();

@@ -2,6 +2,7 @@
 
 #include "cnclab/core/enum_names.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/nn/kernels.hpp"
 
 namespace cnclab {
 namespace {
@@ -23,37 +24,25 @@ std::string to_string(Activation a) {
 }
 
 void apply_activation(Activation f, Eigen::Ref<Eigen::MatrixXd> z) {
-  switch (f) {
-    case Activation::relu:
-      z = z.cwiseMax(0.0);
-      break;
-    case Activation::tanh:
-      z = z.array().tanh();
-      break;
-    case Activation::sigmoid:
-      z = (1.0 + (-z.array()).exp()).inverse();
-      break;
-    case Activation::linear:
-      break;
-  }
+  kernels::active().dactivate(static_cast<kernels::ActivationCode>(f), z.rows(), z.cols(), z.data(),
+                              z.outerStride());
 }
 
-// delta *= f'(z), written with the activation value a = f(z).
+void apply_activation(Activation f, Eigen::Ref<Eigen::MatrixXf> z) {
+  kernels::active().sactivate(static_cast<kernels::ActivationCode>(f), z.rows(), z.cols(), z.data(),
+                              z.outerStride());
+}
+
 void multiply_derivative(Activation f, const Eigen::Ref<const Eigen::MatrixXd>& a,
                          Eigen::Ref<Eigen::MatrixXd> delta) {
-  switch (f) {
-    case Activation::relu:
-      delta = (a.array() > 0.0).select(delta, 0.0);
-      break;
-    case Activation::tanh:
-      delta.array() *= 1.0 - a.array().square();
-      break;
-    case Activation::sigmoid:
-      delta.array() *= a.array() * (1.0 - a.array());
-      break;
-    case Activation::linear:
-      break;
-  }
+  kernels::active().dderivative(static_cast<kernels::ActivationCode>(f), a.rows(), a.cols(),
+                                a.data(), a.outerStride(), delta.data(), delta.outerStride());
+}
+
+void multiply_derivative(Activation f, const Eigen::Ref<const Eigen::MatrixXf>& a,
+                         Eigen::Ref<Eigen::MatrixXf> delta) {
+  kernels::active().sderivative(static_cast<kernels::ActivationCode>(f), a.rows(), a.cols(),
+                                a.data(), a.outerStride(), delta.data(), delta.outerStride());
 }
 
 }  // namespace cnclab

@@ -11,10 +11,14 @@ enum class Activation { relu, tanh, sigmoid, linear };
 Activation parse_activation(const std::string& name);
 std::string to_string(Activation a);
 
-// z <- f(z), elementwise.
+// z <- f(z), elementwise (at this process's instruction-set level,
+// nn/kernels.hpp).
 void apply_activation(Activation f, Eigen::Ref<Eigen::MatrixXd> z);
+void apply_activation(Activation f, Eigen::Ref<Eigen::MatrixXf> z);
 // delta *= f'(z), written with the activation value a = f(z).
 void multiply_derivative(Activation f, const Eigen::Ref<const Eigen::MatrixXd>& a,
                          Eigen::Ref<Eigen::MatrixXd> delta);
+void multiply_derivative(Activation f, const Eigen::Ref<const Eigen::MatrixXf>& a,
+                         Eigen::Ref<Eigen::MatrixXf> delta);
 
 }  // namespace cnclab

@@ -4,12 +4,17 @@
 #include <cmath>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/nn/kernels.hpp"
 
 namespace cnclab {
 namespace {
 
 using MapMatrix = Eigen::Map<const Eigen::MatrixXd>;
 using MapVector = Eigen::Map<const Eigen::VectorXd>;
+template <class T>
+using Matrix = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
+template <class T>
+using Vector = Eigen::Matrix<T, Eigen::Dynamic, 1>;
 
 }  // namespace
 
@@ -84,16 +89,17 @@ Eigen::MatrixXd Mlp::predict(const Eigen::VectorXd& params, const Eigen::MatrixX
     const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
     const MapMatrix w(params.data() + weight_offset(l - 1), out, in);
     const MapVector b(params.data() + weight_offset(l - 1) + in * out, out);
-    Eigen::MatrixXd z = w * a;
+    Eigen::MatrixXd z(out, a.cols());
+    kernels::multiply(kernels::active(), w, false, a, false, z);
     z.colwise() += b;
-    apply_activation(l == num_layers() ? options_.output_activation : options_.hidden_activation,
-                     z);
+    apply_activation(activation(l), z);
     a = std::move(z);
   }
   return a;
 }
 
-void Mlp::prepare(Workspace& ws, Eigen::Index batch) const {
+template <class T>
+void Mlp::prepare_impl(MlpWorkspace<T>& ws, Eigen::Index batch) const {
   if (ws.batch == batch && ws.a.size() == sizes_.size()) return;
   const std::size_t n = sizes_.size();
   ws.a.resize(n);
@@ -111,46 +117,64 @@ void Mlp::prepare(Workspace& ws, Eigen::Index batch) const {
   ws.batch = batch;
 }
 
-void Mlp::draw_dropout_masks(Workspace& ws, Rng& rng) const {
+void Mlp::prepare(Workspace& ws, Eigen::Index batch) const {
+  prepare_impl(ws, batch);
+}
+
+void Mlp::prepare(Workspace32& ws, Eigen::Index batch) const {
+  prepare_impl(ws, batch);
+}
+
+template <class T>
+void Mlp::draw_masks_impl(MlpWorkspace<T>& ws, Rng& rng) const {
   const double p = options_.dropout_keep_probability;
-  const double scale = 1.0 / p;
+  const T scale = static_cast<T>(1.0 / p);
   for (std::size_t l = 0; l < sizes_.size(); ++l) {
     if (!dropout_[l]) continue;
-    double* m = ws.mask[l].data();
-    for (Eigen::Index i = 0; i < ws.mask[l].size(); ++i) m[i] = rng.uniform() < p ? scale : 0.0;
+    T* m = ws.mask[l].data();
+    for (Eigen::Index i = 0; i < ws.mask[l].size(); ++i) m[i] = rng.uniform() < p ? scale : T(0);
   }
 }
 
-double Mlp::loss_and_gradient(const Eigen::VectorXd& params,
-                              const Eigen::Ref<const Eigen::MatrixXd>& x,
-                              const Eigen::Ref<const Eigen::MatrixXd>& y, Workspace& ws,
-                              Eigen::VectorXd& gradient) const {
+void Mlp::draw_dropout_masks(Workspace& ws, Rng& rng) const {
+  draw_masks_impl(ws, rng);
+}
+
+void Mlp::draw_dropout_masks(Workspace32& ws, Rng& rng) const {
+  draw_masks_impl(ws, rng);
+}
+
+template <class T>
+T Mlp::loss_and_gradient_impl(const Vector<T>& params, const Eigen::Ref<const Matrix<T>>& x,
+                              const Eigen::Ref<const Matrix<T>>& y, MlpWorkspace<T>& ws,
+                              Vector<T>& gradient) const {
+  using ConstMap = Eigen::Map<const Matrix<T>>;
+  const kernels::Table& k = kernels::active();
   const std::size_t L = num_layers();
   const Eigen::Index batch = x.cols();
-  prepare(ws, batch);
+  prepare_impl(ws, batch);
   gradient.resize(static_cast<Eigen::Index>(num_parameters_));
 
-  forward(params, x, ws, true);
+  forward_impl<T>(params, x, ws, true);
 
   // Loss and output error: dMSE/da_L = 2 (a_L - y) / (n_L * batch).
   ws.delta[L] = ws.a[L] - y;
-  const double count = static_cast<double>(ws.delta[L].size());
-  const double loss = ws.delta[L].squaredNorm() / count;
-  ws.delta[L] *= 2.0 / count;
+  const T count = static_cast<T>(ws.delta[L].size());
+  const T loss = ws.delta[L].squaredNorm() / count;
+  ws.delta[L] *= T(2) / count;
 
   // Backward.
   for (std::size_t l = L; l >= 1; --l) {
-    multiply_derivative(l == L ? options_.output_activation : options_.hidden_activation, ws.a[l],
-                        ws.delta[l]);
+    multiply_derivative(activation(l), ws.a[l], ws.delta[l]);
     const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
-    const MapMatrix w(params.data() + weight_offset(l - 1), out, in);
-    Eigen::Map<Eigen::MatrixXd> gw(gradient.data() + weight_offset(l - 1), out, in);
-    Eigen::Map<Eigen::VectorXd> gb(gradient.data() + weight_offset(l - 1) + in * out, out);
-    const Eigen::MatrixXd& input = dropout_[l - 1] ? ws.d[l - 1] : ws.a[l - 1];
-    gw.noalias() = ws.delta[l] * input.transpose();
+    const ConstMap w(params.data() + weight_offset(l - 1), out, in);
+    Eigen::Map<Matrix<T>> gw(gradient.data() + weight_offset(l - 1), out, in);
+    Eigen::Map<Vector<T>> gb(gradient.data() + weight_offset(l - 1) + in * out, out);
+    const Matrix<T>& input = dropout_[l - 1] ? ws.d[l - 1] : ws.a[l - 1];
+    kernels::multiply(k, ws.delta[l], false, input, true, gw);
     gb.noalias() = ws.delta[l].rowwise().sum();
     if (l > 1) {
-      ws.delta[l - 1].noalias() = w.transpose() * ws.delta[l];
+      kernels::multiply(k, w, true, ws.delta[l], false, ws.delta[l - 1]);
       if (dropout_[l - 1]) ws.delta[l - 1].array() *= ws.mask[l - 1].array();
     }
   }
@@ -189,20 +213,42 @@ Eigen::MatrixXd Mlp::infer(const Eigen::VectorXd& params, const Eigen::MatrixXd&
                                            : predict(params, x);
 }
 
-void Mlp::forward(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
-                  Workspace& ws, bool masked) const {
-  const std::size_t L = num_layers();
+double Mlp::loss_and_gradient(const Eigen::VectorXd& params,
+                              const Eigen::Ref<const Eigen::MatrixXd>& x,
+                              const Eigen::Ref<const Eigen::MatrixXd>& y, Workspace& ws,
+                              Eigen::VectorXd& gradient) const {
+  return loss_and_gradient_impl<double>(params, x, y, ws, gradient);
+}
+
+float Mlp::loss_and_gradient(const Eigen::VectorXf& params,
+                             const Eigen::Ref<const Eigen::MatrixXf>& x,
+                             const Eigen::Ref<const Eigen::MatrixXf>& y, Workspace32& ws,
+                             Eigen::VectorXf& gradient) const {
+  return loss_and_gradient_impl<float>(params, x, y, ws, gradient);
+}
+
+template <class T>
+void Mlp::forward_impl(const Vector<T>& params, const Eigen::Ref<const Matrix<T>>& x,
+                       MlpWorkspace<T>& ws, bool masked) const {
+  using ConstMap = Eigen::Map<const Matrix<T>>;
+  using ConstVectorMap = Eigen::Map<const Vector<T>>;
+  const kernels::Table& k = kernels::active();
   ws.a[0] = x;
-  for (std::size_t l = 1; l <= L; ++l) {
+  for (std::size_t l = 1; l <= num_layers(); ++l) {
     const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
-    const MapMatrix w(params.data() + weight_offset(l - 1), out, in);
-    const MapVector b(params.data() + weight_offset(l - 1) + in * out, out);
-    const Eigen::MatrixXd& input = masked && dropout_[l - 1] ? ws.d[l - 1] : ws.a[l - 1];
-    ws.a[l].noalias() = w * input;
+    const ConstMap w(params.data() + weight_offset(l - 1), out, in);
+    const ConstVectorMap b(params.data() + weight_offset(l - 1) + in * out, out);
+    const Matrix<T>& input = masked && dropout_[l - 1] ? ws.d[l - 1] : ws.a[l - 1];
+    kernels::multiply(k, w, false, input, false, ws.a[l]);
     ws.a[l].colwise() += b;
-    apply_activation(l == L ? options_.output_activation : options_.hidden_activation, ws.a[l]);
+    apply_activation(activation(l), ws.a[l]);
     if (masked && dropout_[l]) ws.d[l] = ws.a[l].cwiseProduct(ws.mask[l]);
   }
+}
+
+void Mlp::forward(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                  Workspace& ws, bool masked) const {
+  forward_impl<double>(params, x, ws, masked);
 }
 
 void Mlp::output_jacobian(const Eigen::VectorXd& params, const Eigen::Ref<const Eigen::MatrixXd>& x,
@@ -223,7 +269,7 @@ void Mlp::output_jacobian(const Eigen::VectorXd& params, const Eigen::Ref<const 
   std::vector<Eigen::MatrixXd> a_t(L);
   for (std::size_t l = 0; l < L; ++l) a_t[l] = ws.a[l].transpose();
   Eigen::MatrixXd delta_t;
-  using Strided = Eigen::Map<Eigen::VectorXd, 0, Eigen::InnerStride<>>;
+  const kernels::Table& kernel = kernels::active();
   for (Eigen::Index k = 0; k < n_out; ++k) {
     // delta_L = e_k f_L'(z_L): the derivative of output k alone.
     ws.delta[L].setZero();
@@ -233,21 +279,11 @@ void Mlp::output_jacobian(const Eigen::VectorXd& params, const Eigen::Ref<const 
       const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
       const Eigen::Index offset = weight_offset(l - 1);
       delta_t = ws.delta[l].transpose();
-      for (Eigen::Index j = 0; j < in; ++j) {
-        for (Eigen::Index i = 0; i < out; ++i) {
-          Strided col(jacobian.col(offset + j * out + i).data() + k, batch,
-                      Eigen::InnerStride<>(n_out));
-          col = delta_t.col(i).cwiseProduct(a_t[l - 1].col(j));
-        }
-      }
-      for (Eigen::Index i = 0; i < out; ++i) {
-        Strided col(jacobian.col(offset + in * out + i).data() + k, batch,
-                    Eigen::InnerStride<>(n_out));
-        col = delta_t.col(i);
-      }
+      kernel.mlp_jacobian_columns(batch, in, out, n_out, k, delta_t.data(), a_t[l - 1].data(),
+                                  jacobian.data(), jacobian.outerStride(), offset);
       if (l > 1) {
         const MapMatrix w(params.data() + offset, out, in);
-        ws.delta[l - 1].noalias() = w.transpose() * ws.delta[l];
+        kernels::multiply(kernel, w, true, ws.delta[l], false, ws.delta[l - 1]);
         multiply_derivative(options_.hidden_activation, ws.a[l - 1], ws.delta[l - 1]);
       }
     }

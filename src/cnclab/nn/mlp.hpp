@@ -70,17 +70,25 @@ struct MlpOptions {
   void validate() const;
 };
 
+// Buffers of an Mlp for one batch size, in double or float (float32
+// training, sgdm.hpp); reused across mini-batches (no allocation in the
+// training loop).
+template <class T>
+struct MlpWorkspace {
+  using Matrix = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
+  std::vector<Matrix> a;     // activations a_l (pre-dropout), l = 0..L
+  std::vector<Matrix> d;     // dropped-out activations d_l (hidden layers with dropout)
+  std::vector<Matrix> mask;  // r_l / p, same shape as d_l
+  std::vector<Matrix> delta;
+  Eigen::Index batch = 0;
+};
+
+// The products and activations run through nn/kernels.hpp, at this
+// process's instruction-set level.
 class Mlp {
  public:
-  // Buffers for one batch size; reused across mini-batches (no allocation in
-  // the training loop).
-  struct Workspace {
-    std::vector<Eigen::MatrixXd> a;     // activations a_l (pre-dropout), l = 0..L
-    std::vector<Eigen::MatrixXd> d;     // dropped-out activations d_l (hidden layers with dropout)
-    std::vector<Eigen::MatrixXd> mask;  // r_l / p, same shape as d_l
-    std::vector<Eigen::MatrixXd> delta;
-    Eigen::Index batch = 0;
-  };
+  using Workspace = MlpWorkspace<double>;
+  using Workspace32 = MlpWorkspace<float>;
 
   explicit Mlp(MlpOptions options);  // validates
 
@@ -114,15 +122,21 @@ class Mlp {
 
   // Sizes the workspace for batches of `batch` samples.
   void prepare(Workspace& ws, Eigen::Index batch) const;
+  void prepare(Workspace32& ws, Eigen::Index batch) const;
   // New inverted-dropout masks in ws (entries 0 or 1/p), for the batch size
-  // ws was prepared for.
+  // ws was prepared for. Both precisions draw the same numbers from `rng`.
   void draw_dropout_masks(Workspace& ws, Rng& rng) const;
+  void draw_dropout_masks(Workspace32& ws, Rng& rng) const;
   // Training-mode MSE and its gradient (overwritten) for the batch x, y,
   // using the masks currently in ws. x: inputs x batch, y: outputs x batch.
+  // The float overload computes in float throughout (float32 training).
   double loss_and_gradient(const Eigen::VectorXd& params,
                            const Eigen::Ref<const Eigen::MatrixXd>& x,
                            const Eigen::Ref<const Eigen::MatrixXd>& y, Workspace& ws,
                            Eigen::VectorXd& gradient) const;
+  float loss_and_gradient(const Eigen::VectorXf& params, const Eigen::Ref<const Eigen::MatrixXf>& x,
+                          const Eigen::Ref<const Eigen::MatrixXf>& y, Workspace32& ws,
+                          Eigen::VectorXf& gradient) const;
 
   // Evaluation-mode outputs of the batch x (written to `outputs`, n_L x b) and
   // the exact Jacobian of every output with respect to the parameters, by one
@@ -139,6 +153,23 @@ class Mlp {
                Workspace& ws, bool masked) const;
 
   Eigen::Index weight_offset(std::size_t layer) const { return offsets_[layer]; }
+  Activation activation(std::size_t layer) const {
+    return layer == num_layers() ? options_.output_activation : options_.hidden_activation;
+  }
+  template <class T>
+  void forward_impl(const Eigen::Matrix<T, Eigen::Dynamic, 1>& params,
+                    const Eigen::Ref<const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>>& x,
+                    MlpWorkspace<T>& ws, bool masked) const;
+  template <class T>
+  void prepare_impl(MlpWorkspace<T>& ws, Eigen::Index batch) const;
+  template <class T>
+  void draw_masks_impl(MlpWorkspace<T>& ws, Rng& rng) const;
+  template <class T>
+  T loss_and_gradient_impl(
+      const Eigen::Matrix<T, Eigen::Dynamic, 1>& params,
+      const Eigen::Ref<const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>>& x,
+      const Eigen::Ref<const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>>& y,
+      MlpWorkspace<T>& ws, Eigen::Matrix<T, Eigen::Dynamic, 1>& gradient) const;
 
   MlpOptions options_;
   std::vector<Eigen::Index> sizes_;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/nn/kernels.hpp"
 
 namespace cnclab {
 namespace {
@@ -43,7 +44,9 @@ void NarxOptions::validate() const {
 }
 
 Narx::Narx(NarxOptions options)
-    : options_((options.validate(), std::move(options))), mlp_(static_network(options_)) {}
+    : options_((options.validate(), std::move(options))), mlp_(static_network(options_)) {
+  kernels::active();  // a CNCLAB_ISA that cannot be honoured fails here, not in step() (noexcept)
+}
 
 Eigen::Index Narx::first_step() const {
   const auto last_input = options_.first_input_delay + options_.input_delays - 1;
@@ -98,24 +101,31 @@ Eigen::VectorXd Narx::simulate_closed_loop(const Eigen::VectorXd& params, const 
     throw Error("NARX parameters: " + std::to_string(w_count) + " values, the network has " +
                 std::to_string(num_parameters()));
   }
-  const Eigen::Map<const Eigen::MatrixXd> w1(params.data(), h, n);  // Mlp layout
   const Eigen::Map<const Eigen::VectorXd> w2(params.data() + h * n + h, h);
 
   // e_full(t): initial states then predictions.
   Eigen::VectorXd e_full(v.rows());
   e_full.head(t0) = e_initial.head(t0);
   Eigen::VectorXd x(n), a(h), delta(h);  // delta_i = w2_i f'(z_i)
-  // RTRL rows are built in a row-major scratch (each step's row contiguous,
-  // the recursion reads the de rows before it) and copied to the
-  // column-major Jacobian kBlock rows at a time: writing and re-reading
-  // rows of a (steps x W) column-major matrix directly strides by `steps`
-  // doubles per entry: 1.4x the CPU time at 87,000 steps (12 neurons, 4/4).
+  // The predictions step through Narx::step (as the real-time predictor).
+  // The RTRL rows are computed kBlock steps at a time by the kernel
+  // (nn/kernels.hpp, rtrl_block: its formula) from each step's regressor,
+  // hidden activations and delta, in a row-major scratch (each step's row
+  // contiguous, the recursion reads the de rows before it) and copied to
+  // the column-major Jacobian a block at a time: writing and re-reading rows
+  // of a (steps x W) column-major matrix directly strides by `steps` doubles
+  // per entry: 1.4x the CPU time at 87,000 steps (12 neurons, 4/4).
   constexpr Eigen::Index kBlock = 64;
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   RowMajor sens;  // rows [0, de): the de rows before the block; [de, de + kBlock): the block
+  Eigen::MatrixXd block_x, block_a, block_delta;  // one column per step of the block
+  const kernels::Table& kernel = kernels::active();
   if (jacobian != nullptr) {
     jacobian->resize(steps, w_count);
-    sens.setZero(de + kBlock, w_count);
+    sens.setZero(de + kBlock, w_count);  // S = 0 on the initial states
+    block_x.resize(n, kBlock);
+    block_a.resize(h, kBlock);
+    block_delta.resize(h, kBlock);
   }
   for (Eigen::Index s = 0; s < steps; ++s) {
     const Eigen::Index t = t0 + s;
@@ -127,21 +137,24 @@ Eigen::VectorXd Narx::simulate_closed_loop(const Eigen::VectorXd& params, const 
     if (jacobian == nullptr) continue;
     delta = w2;
     multiply_derivative(options_.hidden_activation, a, delta);
-    const Eigen::Index r = de + s % kBlock;
-    auto row = sens.row(r);
-    // Direct term df/dw at x(t).
-    for (Eigen::Index j = 0; j < n; ++j) row.segment(j * h, h) = delta.transpose() * x[j];
-    row.segment(h * n, h) = delta.transpose();
-    row.segment(h * n + h, h) = a.transpose();
-    row[h * n + 2 * h] = 1.0;
-    // Through the fed-back predictions: df/de(t-k) = sum_i delta_i W1(i, dv+k-1);
-    // S = 0 on the initial states (the zero rows before the first block).
-    for (Eigen::Index k = 1; k <= de; ++k) row += delta.dot(w1.col(dv + k - 1)) * sens.row(r - k);
-    const bool block_full = s % kBlock == kBlock - 1 || s == steps - 1;
-    if (!block_full) continue;
-    const Eigen::Index rows = s % kBlock + 1;
-    jacobian->middleRows(s + 1 - rows, rows) = sens.middleRows(de, rows);
-    sens.topRows(de) = sens.middleRows(rows, de).eval();  // the last de rows
+    const Eigen::Index c = s % kBlock;
+    block_x.col(c) = x;
+    block_a.col(c) = a;
+    block_delta.col(c) = delta;
+    if (c != kBlock - 1 && s != steps - 1) continue;
+    kernels::RtrlBlock b;
+    b.rows = c + 1;
+    b.hidden = h;
+    b.input_delays = dv;
+    b.feedback_delays = de;
+    b.w1 = params.data();
+    b.x = block_x.data();
+    b.a = block_a.data();
+    b.delta = block_delta.data();
+    b.sens = sens.data();
+    b.jacobian = jacobian->data() + (s + 1 - b.rows);
+    b.ld_jacobian = jacobian->outerStride();
+    kernel.rtrl_block(b);
   }
   return e_full.tail(steps);
 }

@@ -15,6 +15,8 @@ namespace {
 
 // Screen and print: system fonts, tables that break across pages by row,
 // figures kept whole, no colours needed to read PASS/FAIL (the words say it).
+// Printed, numbers do not break inside a cell (7.5 pt, narrow padding: a
+// paper table of 11 columns fits a portrait page).
 constexpr const char* kStyle = R"(
 body{font:15px/1.45 system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;color:#222;max-width:1180px;margin:0 auto;padding:1em 1.5em}
 h1{font-size:1.6em;border-bottom:2px solid #444}h2{font-size:1.3em;margin-top:2em;border-bottom:1px solid #bbb}h3{font-size:1.1em}
@@ -23,18 +25,12 @@ table.data th,table.data td{border:1px solid #ccc;padding:.25em .55em;text-align
 table.data th{background:#f0f0f0}table.data td:first-child,table.data th:first-child{text-align:left}
 table.data caption{caption-side:top;text-align:left;font-weight:600;padding:.2em 0}
 td.pass{background:#e3f4e3;font-weight:600}td.fail{background:#f9dede;font-weight:600}
-figure{margin:1em 0}figcaption{font-size:.85em;color:#555}svg{max-width:100%;height:auto}
+figure{margin:1em 0}figcaption{font-size:.85em;color:#555}svg,img.figure{max-width:100%;height:auto}
 dl{display:grid;grid-template-columns:max-content auto;gap:.15em 1em;font-size:.9em}dt{font-weight:600}dd{margin:0;word-break:break-all}
 p.note{font-size:.85em;color:#555}
 @media print{body{max-width:none;font-size:10.5pt;padding:0}h2{break-after:avoid}figure,tr{break-inside:avoid}
-table.data{font-size:8.5pt}td.pass,td.fail{-webkit-print-color-adjust:exact;print-color-adjust:exact}a{color:inherit}}
+table.data{font-size:7.5pt}table.data th,table.data td{padding:.1em .3em}table.data td{white-space:nowrap}table.data td:first-child{white-space:normal}td.pass,td.fail{-webkit-print-color-adjust:exact;print-color-adjust:exact}a{color:inherit}}
 )";
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", v);
-  return buf;
-}
 
 std::string tick_text(double v) {
   char buf[32];
@@ -94,29 +90,31 @@ std::string svg_line_chart(const std::vector<ChartSeries>& series, const ChartOp
       "aria-label=\"" +
       html_escape(o.title) + "\" width=\"640\" height=\"300\">";
   svg += "<rect width=\"640\" height=\"300\" fill=\"#fff\"/>";
-  svg += "<text x=\"" + num(L) + "\" y=\"18\" font-size=\"13\" font-weight=\"600\">" +
+  svg += "<text x=\"" + fixed_decimals(L, 1) + "\" y=\"18\" font-size=\"13\" font-weight=\"600\">" +
          html_escape(o.title) + "</text>";
   if (!std::isfinite(x0)) return svg + "<text x=\"70\" y=\"150\">no finite values</text></svg>";
   if (x1 == x0) x1 = x0 + 1;
   if (y1 == y0) y1 = y0 + 1;
   const auto px = [&](double x) { return L + (x - x0) / (x1 - x0) * (W - L - R); };
   const auto py = [&](double y) { return H - B - (Y(y) - y0) / (y1 - y0) * (H - T - B); };
-  svg += "<g stroke=\"#999\" stroke-width=\"1\"><line x1=\"" + num(L) + "\" y1=\"" + num(H - B) +
-         "\" x2=\"" + num(W - R) + "\" y2=\"" + num(H - B) + "\"/><line x1=\"" + num(L) +
-         "\" y1=\"" + num(T) + "\" x2=\"" + num(L) + "\" y2=\"" + num(H - B) + "\"/></g>";
+  svg += "<g stroke=\"#999\" stroke-width=\"1\"><line x1=\"" + fixed_decimals(L, 1) + "\" y1=\"" +
+         fixed_decimals(H - B, 1) + "\" x2=\"" + fixed_decimals(W - R, 1) + "\" y2=\"" +
+         fixed_decimals(H - B, 1) + "\"/><line x1=\"" + fixed_decimals(L, 1) + "\" y1=\"" +
+         fixed_decimals(T, 1) + "\" x2=\"" + fixed_decimals(L, 1) + "\" y2=\"" +
+         fixed_decimals(H - B, 1) + "\"/></g>";
   svg += "<g font-size=\"10\" fill=\"#444\">";
   for (int i = 0; i <= 4; ++i) {
     const double fx = x0 + (x1 - x0) * i / 4, fy = y0 + (y1 - y0) * i / 4;
     const double yv = log_y ? std::pow(10.0, fy) : fy;
-    svg += "<text x=\"" + num(px(fx)) + "\" y=\"" + num(H - B + 14) + "\" text-anchor=\"middle\">" +
-           tick_text(fx) + "</text>";
-    svg += "<text x=\"" + num(L - 5) + "\" y=\"" +
-           num(H - B - (fy - y0) / (y1 - y0) * (H - T - B) + 3) + "\" text-anchor=\"end\">" +
-           tick_text(yv) + "</text>";
+    svg += "<text x=\"" + fixed_decimals(px(fx), 1) + "\" y=\"" + fixed_decimals(H - B + 14, 1) +
+           "\" text-anchor=\"middle\">" + tick_text(fx) + "</text>";
+    svg += "<text x=\"" + fixed_decimals(L - 5, 1) + "\" y=\"" +
+           fixed_decimals(H - B - (fy - y0) / (y1 - y0) * (H - T - B) + 3, 1) +
+           "\" text-anchor=\"end\">" + tick_text(yv) + "</text>";
   }
-  svg += "<text x=\"" + num((L + W - R) / 2) + "\" y=\"" + num(H - 8) +
+  svg += "<text x=\"" + fixed_decimals((L + W - R) / 2, 1) + "\" y=\"" + fixed_decimals(H - 8, 1) +
          "\" text-anchor=\"middle\">" + html_escape(o.x_label) + "</text>";
-  svg += "<text transform=\"translate(14 " + num((T + H - B) / 2) +
+  svg += "<text transform=\"translate(14 " + fixed_decimals((T + H - B) / 2, 1) +
          ") rotate(-90)\" text-anchor=\"middle\">" +
          html_escape(o.y_label + (log_y ? " (log scale)" : "")) + "</text></g>";
   for (std::size_t k = 0; k < series.size(); ++k) {
@@ -136,15 +134,19 @@ std::string svg_line_chart(const std::vector<ChartSeries>& series, const ChartOp
         pen = false;
         continue;
       }
-      path.append(pen ? "L" : "M").append(num(px(x))).append(" ").append(num(py(y)));
+      path.append(pen ? "L" : "M")
+          .append(fixed_decimals(px(x), 1))
+          .append(" ")
+          .append(fixed_decimals(py(y), 1));
       pen = true;
     }
     svg +=
         "<path d=\"" + path + "\" fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"1.6\"/>";
-    svg += "<rect x=\"" + num(W - R + 10) + "\" y=\"" + num(T + 16 * k) +
-           "\" width=\"12\" height=\"3\" fill=\"" + colour + "\"/><text x=\"" + num(W - R + 26) +
-           "\" y=\"" + num(T + 16 * k + 5) + "\" font-size=\"11\">" + html_escape(series[k].name) +
-           "</text>";
+    svg += "<rect x=\"" + fixed_decimals(W - R + 10, 1) + "\" y=\"" +
+           fixed_decimals(T + 16 * k, 1) + "\" width=\"12\" height=\"3\" fill=\"" + colour +
+           "\"/><text x=\"" + fixed_decimals(W - R + 26, 1) + "\" y=\"" +
+           fixed_decimals(T + 16 * k + 5, 1) + "\" font-size=\"11\">" +
+           html_escape(series[k].name) + "</text>";
   }
   return svg + "</svg>";
 }
@@ -207,7 +209,10 @@ std::string svg_parallel_coordinates(const std::vector<std::string>& axes,
         pen = false;
         continue;
       }
-      path.append(pen ? "L" : "M").append(num(ax(a))).append(" ").append(num(*y));
+      path.append(pen ? "L" : "M")
+          .append(fixed_decimals(ax(a), 1))
+          .append(" ")
+          .append(fixed_decimals(*y, 1));
       pen = true;
     }
     // The first rows (best ranked) drawn darkest.
@@ -215,20 +220,21 @@ std::string svg_parallel_coordinates(const std::vector<std::string>& axes,
   }
   svg += "</g><g font-size=\"10\" fill=\"#333\" stroke=\"none\">";
   for (std::size_t a = 0; a < n; ++a) {
-    svg += "<line x1=\"" + num(ax(a)) + "\" y1=\"" + num(T) + "\" x2=\"" + num(ax(a)) + "\" y2=\"" +
-           num(H - B) + "\" stroke=\"#666\"/>";
-    svg += "<text x=\"" + num(ax(a)) + "\" y=\"" + num(H - B + 16) + "\" text-anchor=\"middle\">" +
-           html_escape(axes[a]) + "</text>";
+    svg += "<line x1=\"" + fixed_decimals(ax(a), 1) + "\" y1=\"" + fixed_decimals(T, 1) +
+           "\" x2=\"" + fixed_decimals(ax(a), 1) + "\" y2=\"" + fixed_decimals(H - B, 1) +
+           "\" stroke=\"#666\"/>";
+    svg += "<text x=\"" + fixed_decimals(ax(a), 1) + "\" y=\"" + fixed_decimals(H - B + 16, 1) +
+           "\" text-anchor=\"middle\">" + html_escape(axes[a]) + "</text>";
     const std::string lo = range[a] ? tick_text(range[a]->first)
                                     : (category[a].empty() ? "" : category[a].begin()->first);
     std::string hi = range[a] ? tick_text(range[a]->second) : "";
     for (const auto& [text, index] : category[a]) {
       if (!range[a] && index + 1 == category[a].size() && index > 0) hi = text;
     }
-    svg += "<text x=\"" + num(ax(a) + 3) + "\" y=\"" + num(H - B - 2) + "\">" + html_escape(lo) +
-           "</text>";
-    svg += "<text x=\"" + num(ax(a) + 3) + "\" y=\"" + num(T + 8) + "\">" + html_escape(hi) +
-           "</text>";
+    svg += "<text x=\"" + fixed_decimals(ax(a) + 3, 1) + "\" y=\"" + fixed_decimals(H - B - 2, 1) +
+           "\">" + html_escape(lo) + "</text>";
+    svg += "<text x=\"" + fixed_decimals(ax(a) + 3, 1) + "\" y=\"" + fixed_decimals(T + 8, 1) +
+           "\">" + html_escape(hi) + "</text>";
   }
   return svg + "</g></svg>";
 }

@@ -1,7 +1,7 @@
 #pragma once
 // A self-contained HTML page for `cnclab report`: one <style> (screen and
 // print), no script, no external resource; figures are inline SVG drawn
-// here. Text is escaped on the way in.
+// here or PNG data URIs (study_figures.hpp). Text is escaped on the way in.
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,7 +41,7 @@ class HtmlPage {
   void paragraph(const std::string& text, const std::string& css_class = "");
   // A <table> (class "data"); cells "PASS"/"FAIL" get classes pass/fail.
   void table(const TextTable& table, const std::string& caption = "");
-  // Raw markup made by this module (SVG figures): inside a <figure>.
+  // Raw markup made by this module (SVG, or an <img> of a data URI): inside a <figure>.
   void figure(const std::string& svg, const std::string& caption);
   void definitions(const std::vector<std::pair<std::string, std::string>>& items);
   std::string html() const;

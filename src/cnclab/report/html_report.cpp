@@ -13,6 +13,8 @@
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/report/html_page.hpp"
+#include "cnclab/report/parameter_importance.hpp"
+#include "cnclab/report/study_figures.hpp"
 #include "cnclab/report/targets.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 #include "cnclab/sweep/sweep_summary.hpp"
@@ -169,6 +171,18 @@ void add_study(Builder& b, const TableEntry& entry, const ReportOptions& o) {
     }
     b.page.table(check, "declared targets (" + manifest.filename().string() + ")");
   }
+  StudyFigureOptions figures;
+  figures.figures_dir = t.results_dir / "figures";
+  figures.topics = entry.figure_topics;
+  figures.anchor = "figures-" + entry.name;
+  figures.draw_command = "bash scripts/figures/run " + t.results_dir.string();
+  for (const auto& f : sources) {
+    std::error_code ec;
+    const auto time = fs::last_write_time(f, ec);
+    if (!ec && (!figures.newest_source || time > *figures.newest_source))
+      figures.newest_source = time;
+  }
+  add_study_figures(b.page, figures);
   if (!sources.empty()) b.page.heading(3, "Runs behind these numbers", "");
   for (const auto& f : sources) add_run(b, f, 4);
 }
@@ -207,6 +221,7 @@ void add_sweep(Builder& b, const fs::path& dir) {
   axes.push_back(objective);
   b.page.figure(svg_parallel_coordinates(axes, lines, "parallel coordinates: " + plan.experiment),
                 "one line per point, the best in red; the last axis is the objective");
+  add_parameter_importance(b.page, dir / "summary.h5");
   if (s.best_trial >= 0) {
     const auto& best = outcomes[static_cast<std::size_t>(s.best_trial)];
     if (!best.result_file.empty()) add_run(b, dir / best.result_file, 3);

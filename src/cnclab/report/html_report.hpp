@@ -4,10 +4,11 @@
 // to share from a machine without network:
 //   STUDY (a `cnclab tables` name): its tables beside the paper's numbers
 //     (the Markdown rendering of `tables`), its declared targets with
-//     PASS/FAIL, and for each result file a table read: provenance,
-//     metrics and training history;
+//     PASS/FAIL, its figures (study_figures.hpp), and for each result
+//     file a table read: provenance, metrics and training history;
 //   SWEEP_DIR: the ranking (best first), parallel coordinates of the swept
-//     keys and the objective, and the best trial's run;
+//     keys and the objective, the parameter importance its summary.h5
+//     records (parameter_importance.hpp), and the best trial's run;
 //   RESULT: its provenance, metrics and training history.
 #include <filesystem>
 #include <ostream>

@@ -70,6 +70,9 @@ struct TableEntry {
   // (experiment/profiles.hpp), and `reproduce` prints the tables only of the
   // studies whose files it ran.
   std::function<std::vector<std::filesystem::path>(const TablesOptions&)> experiment_files = {};
+  // Optional: the folders under RESULTS/figures/ that scripts/figures/ draws
+  // for this study ("step_error"); `cnclab report` embeds their PNG files.
+  std::vector<std::string> figure_topics = {};
 };
 
 // Test MSE in the normalised units the network was trained in: the mean of

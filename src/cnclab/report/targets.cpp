@@ -47,7 +47,8 @@ Target read_target(const ConfigReader& r, std::string where) {
     t.profiles[p] = profiles.require<double>(p);
   }
   t.source = r.require<std::string>("source");
-  r.check(!t.source.empty(), "source", "must say where the target comes from (paper, issue)");
+  r.check(!t.source.empty(), "source",
+          "must say where the target comes from (a paper, a section, or a measurement in docs/)");
   return t;
 }
 

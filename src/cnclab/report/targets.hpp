@@ -8,7 +8,7 @@
 //       op: ">="                                     # >=, <=, ==, <, >
 //       value: 99.5                                  # for results made without --profile
 //       profiles: {quick: 5940}                      # optional: values for named profiles
-//       source: "issue 9: >= 99.5 % of |e| < 0.5 µm" # where the target comes from
+//       source: "seed 000, below Fig. 6: 99.71 %"    # where the target comes from
 //
 // `value` applies to the full study (results made without a profile). A
 // profile's results (`reproduce --quick`) are checked only against the
@@ -39,8 +39,8 @@ struct Target {
   TargetOp op = TargetOp::ge;
   double value = 0;                        // the full profile's
   std::map<std::string, double> profiles;  // profile name -> value
-  std::string source;                      // paper, issue or measurement it comes from
-  std::string where;                       // "<file>:<line>:<col>: targets[i]" for messages
+  std::string source;  // the paper, section or measurement (docs/) it comes from
+  std::string where;   // "<file>:<line>:<col>: targets[i]" for messages
 
   // The value for results made with `profile` ("" = full); nullopt: not
   // declared for that profile.

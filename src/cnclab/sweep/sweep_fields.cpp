@@ -8,10 +8,6 @@
 namespace cnclab {
 namespace {
 
-const char* method_name(SweepMethod m) {
-  return m == SweepMethod::grid ? "grid" : "random";
-}
-
 const FieldList<Objective>& objective_fields() {
   static const auto fields =
       FieldList<Objective>()
@@ -38,8 +34,88 @@ FieldInfo objective_info() {
 void read_method(const ConfigReader& s, SweepSpec& spec) {
   if (!s.has("method")) return;
   const auto m = s.require<std::string>("method");
-  if (m != "grid" && m != "random") s.fail("method", "must be one of: grid, random");
-  spec.method = m == "grid" ? SweepMethod::grid : SweepMethod::random;
+  const auto method = parse_sweep_method(m);
+  if (!method) s.fail("method", "must be one of: grid, random, tpe, cmaes, nsga2, qmc");
+  spec.method = *method;
+}
+
+constexpr const char* kPruners[] = {"none", "median", "successive_halving", "hyperband"};
+
+// pruner: NAME, or {name: NAME, OPTION: integer, ...} (SweepPruner).
+void read_pruner(const ConfigReader& s, SweepSpec& spec) {
+  if (!s.has("pruner")) return;
+  const YAML::Node node = s.raw("pruner");
+  SweepPruner p;
+  try {
+    if (node.IsScalar()) {
+      p.name = node.Scalar();
+    } else if (node.IsMap() && node["name"]) {
+      for (const auto& kv : node) {
+        const auto key = kv.first.as<std::string>();
+        if (key == "name") {
+          p.name = kv.second.as<std::string>();
+        } else {
+          p.options[key] = kv.second.as<std::int64_t>();
+        }
+      }
+    } else {
+      s.fail("pruner", "expected a pruner name or {name: NAME, option: integer, ...}");
+    }
+  } catch (const YAML::Exception&) {
+    s.fail("pruner", "pruner options are integers (e.g. {name: median, n_startup_trials: 5})");
+  }
+  bool known = false;
+  for (const char* k : kPruners) known = known || p.name == k;
+  if (!known) {
+    s.fail("pruner",
+           "'" + p.name + "' must be one of: none, median, successive_halving, hyperband");
+  }
+  spec.pruner = std::move(p);
+}
+
+YAML::Node pruner_node(const SweepSpec& w) {
+  if (w.pruner.options.empty()) return YAML::Node(w.pruner.name);
+  YAML::Node n(YAML::NodeType::Map);
+  n["name"] = w.pruner.name;
+  for (const auto& [k, v] : w.pruner.options) n[k] = v;
+  n.SetStyle(YAML::EmitterStyle::Flow);
+  return n;
+}
+
+// objectives: [{metric: M, mode: min|max}, ...] or ["M:min", ...].
+void read_objectives(const ConfigReader& s, SweepSpec& spec) {
+  if (!s.has("objectives")) return;
+  const YAML::Node node = s.raw("objectives");
+  if (!node.IsSequence() || node.size() == 0) {
+    s.fail("objectives", "expected a list of {metric, mode} or \"metric:mode\" entries");
+  }
+  for (const auto& item : node) {
+    try {
+      if (item.IsScalar()) {
+        spec.objectives.push_back(parse_objective(item.Scalar()));
+      } else if (item.IsMap() && item["metric"]) {
+        const std::string mode = item["mode"] ? item["mode"].as<std::string>() : "min";
+        spec.objectives.push_back(parse_objective(item["metric"].as<std::string>() + ":" + mode));
+        for (const auto& kv : item) {
+          const auto k = kv.first.as<std::string>();
+          if (k != "metric" && k != "mode") throw ConfigError("unknown key '" + k + "'");
+        }
+      } else {
+        throw ConfigError("expected {metric, mode} or \"metric:mode\"");
+      }
+    } catch (const ConfigError& e) {
+      s.fail("objectives", e.what());
+    } catch (const YAML::Exception& e) {
+      s.fail("objectives", e.msg);
+    }
+  }
+}
+
+YAML::Node objectives_node(const SweepSpec& w) {
+  YAML::Node n(YAML::NodeType::Sequence);
+  for (const auto& o : w.objectives) n.push_back(o.metric + (o.maximize ? ":max" : ":min"));
+  n.SetStyle(YAML::EmitterStyle::Flow);
+  return n;
 }
 
 void read_objective(const ConfigReader& s, SweepSpec& spec) {
@@ -85,13 +161,19 @@ const FieldList<SweepSpec>& sweep_fields() {
       FieldList<S>()
           .custom(custom_info("method",
                               "grid: every combination; random: `trials` samples (default: grid, "
-                              "random when trials is given or a parameter is continuous)",
-                              FieldKind::string, Rule::one_of({"grid", "random"})),
+                              "random when trials is given or a parameter is continuous); tpe, "
+                              "cmaes, nsga2, qmc: Optuna's samplers, trials asked one by one of a "
+                              "study in the sweep folder (needs python3-optuna)",
+                              FieldKind::string,
+                              Rule::one_of({"grid", "random", "tpe", "cmaes", "nsga2", "qmc"})),
                   read_method,
-                  [](const S& w) { return YAML::Node(method_name(w.resolved_method())); })
-          .field("trials", &S::trials, "random search: number of points (0 with a grid)")
+                  [](const S& w) { return YAML::Node(to_string(w.resolved_method())); })
+          .field("trials", &S::trials,
+                 "random search: number of points (0 with a grid); model-based: the study's "
+                 "number of complete or pruned trials")
           .omit_default()
-          .field("seed", &S::seed, "random search: sampling seed (default: the experiment seed)")
+          .field("seed", &S::seed,
+                 "random search and model-based: sampling seed (default: the experiment seed)")
           .field("repeats", &S::repeats,
                  "runs of each point with seeds seed, seed+1, ... (the objective takes the median)",
                  Rule::at_least(1))
@@ -101,7 +183,27 @@ const FieldList<SweepSpec>& sweep_fields() {
                               "dotted config key (k1+k2 links keys) -> a list of values, a text "
                               "v1,v2,... or choice(...), int_range(a, b[, step]), uniform(lo, hi), "
                               "log_uniform(lo, hi)"),
-                  read_parameters, parameters_node);
+                  read_parameters, parameters_node)
+          .custom(custom_info("pruner",
+                              "model-based methods: none | median | successive_halving | "
+                              "hyperband, or {name: NAME, OPTION: integer} with Optuna's "
+                              "arguments (median: n_startup_trials, n_warmup_steps, "
+                              "interval_steps; successive_halving: min_resource, "
+                              "reduction_factor, min_early_stopping_rate; hyperband: "
+                              "min_resource, max_resource, reduction_factor)"),
+                  read_pruner, pruner_node,
+                  [](const S& w) { return w.pruner.name != "none" || !w.pruner.options.empty(); })
+          .field("report_every", &S::report_every,
+                 "model-based methods: epochs between reports of the validation objective to "
+                 "the pruner",
+                 Rule::at_least(1))
+          .omit_default()
+          .custom(custom_info("objectives",
+                              "model-based methods: several objectives ([metric:mode, ...] or "
+                              "[{metric, mode}, ...]); the summary lists their Pareto front, the "
+                              "first ranks the points"),
+                  read_objectives, objectives_node,
+                  [](const S& w) { return !w.objectives.empty(); });
   return fields;
 }
 

@@ -17,6 +17,7 @@
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/sweep/model_search.hpp"
 #include "cnclab/sweep/sweep_execute.hpp"
 #include "cnclab/sweep/sweep_fields.hpp"
 
@@ -60,7 +61,7 @@ std::string selection_yaml(const SweepJob& job, const SweepJobState& s) {
 // The selection as a standard result (sweep_job.hpp, "Result").
 RunRecord selection_record(const SweepJob& job, const SweepJobState& s, const fs::path& file,
                            double wall_seconds) {
-  RunRecord rec = make_job_record("sweep", sweep_job_key(job, s.plan));
+  RunRecord rec = make_job_record("sweep", sweep_job_key(job, s.plan), job.request);
   rec.provenance.end_utc = utc_now_iso8601();
   rec.provenance.wall_seconds = wall_seconds;
   const auto beside = [&](const fs::path& p) {
@@ -111,6 +112,7 @@ SweepJob load_sweep_job(const fs::path& file, const std::vector<std::string>& ov
   if (root.get<std::string>("kind", "sweep") != "sweep") root.fail("kind", "must be sweep");
   SweepJob job;
   job.source_file = file;
+  job.request = {overrides, profile};
   job.profile = profile;
   job.name = read_experiment_name(root);
   job.description = root.get<std::string>("description", "");
@@ -163,6 +165,12 @@ SweepJobState sweep_job_state(const SweepJob& job, const fs::path& results_dir) 
   SweepJobState s;
   s.plan = plan_sweep(job.experiment, job.overrides, std::nullopt, job.sweep, job.profile);
   s.dir = results_dir / job.name / ("sweep-" + s.plan.hash().substr(0, 8));
+  std::error_code ec;
+  if (model_based(s.plan) && fs::exists(s.dir / "summary.h5", ec)) {
+    // A study's trials are in its summary (its plan is only the header).
+    StoredSummary stored = read_summary(s.dir / "summary.h5");
+    s.plan.trials = std::move(stored.plan.trials);
+  }
   s.outcomes = read_trial_outcomes(s.dir, s.plan);
   s.summary = summarize(s.plan, s.outcomes);
   if (s.summary.best_trial >= 0) s.selected = static_cast<std::size_t>(s.summary.best_trial);
@@ -180,10 +188,22 @@ SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options
   exec.common = options;
   exec.jobs = job.jobs;
   exec.rerun = options.force;
-  SweepExecution ex = execute_sweep(s.plan, s.dir, exec, log);
-  r.ran = ex.ran;
-  r.stopped = ex.stopped;
-  s.outcomes = std::move(ex.outcomes);
+  std::optional<SearchFindings> findings;
+  if (model_based(s.plan)) {
+    ModelSearch m = run_model_search(s.plan, job.sweep,
+                                     {job.experiment, job.overrides, std::nullopt, job.profile},
+                                     s.dir, exec, log);
+    r.ran = m.ran;
+    r.stopped = m.stopped;
+    s.plan = std::move(m.plan);
+    s.outcomes = std::move(m.outcomes);
+    findings = std::move(m.findings);
+  } else {
+    SweepExecution ex = execute_sweep(s.plan, s.dir, exec, log);
+    r.ran = ex.ran;
+    r.stopped = ex.stopped;
+    s.outcomes = std::move(ex.outcomes);
+  }
   s.summary = summarize(s.plan, s.outcomes);
   s.selected.reset();
   if (s.summary.best_trial >= 0) s.selected = static_cast<std::size_t>(s.summary.best_trial);
@@ -194,7 +214,8 @@ SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (r.stopped == 0 && (r.ran > 0 || !fs::exists(s.dir / "summary.h5", ec) ||
                          !fs::exists(selection, ec) || !fs::exists(result, ec))) {
-    write_summary(s.dir / "summary.h5", s.plan, s.outcomes, s.summary);
+    write_summary(s.dir / "summary.h5", s.plan, s.outcomes, s.summary,
+                  findings ? &*findings : nullptr);
     write_text_atomically(selection, selection_yaml(job, s));
     write_job_result(result, selection_record(job, s, result, r.wall_seconds));
   }

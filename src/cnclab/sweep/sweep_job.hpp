@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 #include "cnclab/sweep/sweep_spec.hpp"
@@ -48,6 +49,7 @@ struct SweepJob {
   std::string name;
   std::string description;
   std::filesystem::path source_file;
+  JobRequest request;                  // the command's overrides and --profile (provenance only)
   std::filesystem::path experiment;    // resolved, must exist
   std::string experiment_as_written;   // as in the file (the identity holds this)
   std::vector<std::string> overrides;  // plain key=value settings of every trial

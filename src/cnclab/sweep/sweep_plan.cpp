@@ -85,6 +85,17 @@ std::string SweepPlan::to_yaml() const {
   out << Key << "keys" << Value << YAML::Flow << keys;
   out << Key << "metrics" << Value << YAML::Flow << metrics;
   out << Key << "merged_duplicates" << Value << merged_duplicates;
+  if (model_based(*this)) {
+    out << Key << "space" << Value << YAML::Flow << YAML::DoubleQuoted << space;
+    out << Key << "sampler_seed" << Value << sampler_seed;
+    out << Key << "pruner" << Value << pruner;
+    out << Key << "report_every" << Value << report_every;
+    if (!objectives.empty()) {
+      out << Key << "objectives" << Value << YAML::Flow << YAML::BeginSeq;
+      for (const auto& o : objectives) out << o.metric + (o.maximize ? ":max" : ":min");
+      out << YAML::EndSeq;
+    }
+  }
   out << Key << "trials" << Value << YAML::BeginSeq;
   for (const auto& t : trials) {
     out << YAML::Flow << BeginMap;
@@ -97,6 +108,11 @@ std::string SweepPlan::to_yaml() const {
   }
   out << YAML::EndSeq << EndMap;
   return std::string(out.c_str()) + "\n";
+}
+
+bool model_based(const SweepPlan& plan) {
+  const auto m = parse_sweep_method(plan.method);
+  return m && model_based(*m);
 }
 
 std::string SweepPlan::hash() const {
@@ -135,10 +151,21 @@ SweepPlan plan_sweep(const fs::path& file, const std::vector<std::string>& overr
   const LoadedExperiment base = load_experiment(file, overrides, seed, profile);
   SweepPlan plan;
   plan.experiment = base.spec.name;
-  plan.method = spec.resolved_method() == SweepMethod::grid ? "grid" : "random";
+  plan.method = to_string(spec.resolved_method());
   plan.repeats = spec.repeats;
   plan.metrics = stored_metrics(base.spec);
-  plan.objective = resolve_objective(spec.objective, base.spec.metrics);
+  plan.objective = resolve_objective(
+      spec.objectives.empty() ? spec.objective : spec.objectives.front(), base.spec.metrics);
+  if (spec.objectives.size() > 1) {
+    for (const auto& o : spec.objectives) {
+      plan.objectives.push_back(resolve_objective(o, base.spec.metrics));
+      const std::string& m = plan.objectives.back().metric;
+      if (std::find(plan.metrics.begin(), plan.metrics.end(), m) == plan.metrics.end()) {
+        throw ConfigError("sweep: objectives: metric '" + m +
+                          "' is not among the experiment's metrics");
+      }
+    }
+  }
   if (std::find(plan.metrics.begin(), plan.metrics.end(), plan.objective.metric) ==
       plan.metrics.end()) {
     std::string known;
@@ -158,53 +185,74 @@ SweepPlan plan_sweep(const fs::path& file, const std::vector<std::string>& overr
                   : ""));
   }
   for (const auto& p : spec.parameters) plan.keys.push_back(p.key);
+  if (model_based(spec.resolved_method())) {
+    // The study asks the points (model_search.hpp); the plan is its header.
+    for (const auto& p : spec.parameters) plan.space.push_back(p.key + "=" + p.text);
+    plan.sampler_seed = spec.seed.value_or(base.spec.seed);
+    plan.pruner = spec.pruner.name;
+    for (const auto& [k, v] : spec.pruner.options) plan.pruner += " " + k + "=" + std::to_string(v);
+    plan.report_every = spec.report_every;
+    return plan;
+  }
 
   const std::vector<Point> points = spec.resolved_method() == SweepMethod::grid
                                         ? grid_points(spec)
                                         : random_points(spec, spec.seed.value_or(base.spec.seed));
-  std::vector<Override> base_overrides;
-  for (const auto& text : overrides) base_overrides.push_back(parse_override(text));
-
   std::set<std::string> ids;
   std::size_t next_point = 0;
   for (const Point& point : points) {
-    std::vector<Override> trial_overrides = base_overrides;
-    std::vector<std::string> values;
-    for (std::size_t k = 0; k < point.size(); ++k) {
-      for (const auto& key : linked_keys(plan.keys[k])) {
-        trial_overrides.push_back(override_of(key, point[k]));
-      }
-      values.push_back(node_text(point[k]));
-    }
-    const auto load = [&](std::optional<std::uint64_t> trial_seed) {
-      try {
-        return load_experiment(file, trial_overrides, trial_seed, profile);
-      } catch (const ConfigError& e) {
-        throw ConfigError("sweep trial " + point_text(plan.keys, values) + ": " + e.what());
-      }
-    };
-    LoadedExperiment first = load(seed);
-    const std::uint64_t point_seed = first.spec.seed;
     bool kept = false;
-    for (std::size_t r = 0; r < spec.repeats; ++r) {
-      PlannedTrial t;
-      t.point = next_point;
-      t.repeat = r;
-      t.values = values;
-      t.experiment =
-          r == 0 ? std::move(first) : load(derive_seed(point_seed, "repeat/" + std::to_string(r)));
-      t.seed = t.experiment->spec.seed;
-      t.id = hash_hex(t.experiment->resolved_yaml);
+    for (PlannedTrial& t :
+         resolve_point(file, overrides, seed, plan.keys, point, spec.repeats, profile)) {
       if (!ids.insert(t.id).second) {
         ++plan.merged_duplicates;
         continue;
       }
       kept = true;
+      t.point = next_point;
       plan.trials.push_back(std::move(t));
     }
     if (kept) ++next_point;
   }
   return plan;
+}
+
+std::vector<PlannedTrial> resolve_point(const fs::path& file,
+                                        const std::vector<std::string>& overrides,
+                                        std::optional<std::uint64_t> seed,
+                                        const std::vector<std::string>& keys,
+                                        const std::vector<YAML::Node>& point, std::size_t repeats,
+                                        const std::string& profile) {
+  std::vector<Override> trial_overrides;
+  for (const auto& text : overrides) trial_overrides.push_back(parse_override(text));
+  std::vector<std::string> values;
+  for (std::size_t k = 0; k < point.size(); ++k) {
+    for (const auto& key : linked_keys(keys[k])) {
+      trial_overrides.push_back(override_of(key, point[k]));
+    }
+    values.push_back(node_text(point[k]));
+  }
+  const auto load = [&](std::optional<std::uint64_t> trial_seed) {
+    try {
+      return load_experiment(file, trial_overrides, trial_seed, profile);
+    } catch (const ConfigError& e) {
+      throw ConfigError("sweep trial " + point_text(keys, values) + ": " + e.what());
+    }
+  };
+  std::vector<PlannedTrial> trials;
+  std::uint64_t point_seed = 0;
+  for (std::size_t r = 0; r < repeats; ++r) {
+    PlannedTrial t;
+    t.repeat = r;
+    t.values = values;
+    t.experiment =
+        r == 0 ? load(seed) : load(derive_seed(point_seed, "repeat/" + std::to_string(r)));
+    if (r == 0) point_seed = t.experiment->spec.seed;
+    t.seed = t.experiment->spec.seed;
+    t.id = hash_hex(t.experiment->resolved_yaml);
+    trials.push_back(std::move(t));
+  }
+  return trials;
 }
 
 std::vector<std::size_t> shard_trials(std::size_t trial_count, std::size_t shard,
@@ -290,6 +338,14 @@ SweepPlan plan_from(const ConfigDocument& doc, const std::string& origin) {
     plan.keys = r.require<std::vector<std::string>>("keys");
     plan.metrics = r.require<std::vector<std::string>>("metrics");
     plan.merged_duplicates = r.require<std::size_t>("merged_duplicates");
+    if (model_based(plan)) {
+      plan.space = r.require<std::vector<std::string>>("space");
+      plan.sampler_seed = r.require<std::uint64_t>("sampler_seed");
+      plan.pruner = r.require<std::string>("pruner");
+      plan.report_every = r.require<std::size_t>("report_every");
+      for (const auto& o : r.get<std::vector<std::string>>("objectives", {}))
+        plan.objectives.push_back(parse_objective(o));
+    }
     if (version == 1) {
       plan.objective.metric = format1_metric_name(plan.objective.metric);
       for (auto& m : plan.metrics) m = format1_metric_name(m);

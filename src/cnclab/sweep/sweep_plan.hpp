@@ -13,6 +13,8 @@
 //   summary.h5          parameters -> metrics -> status table (sweep_summary.hpp)
 // A complete trial is also the result store's result of its config (hard
 // link; sweep_execute.cpp, "Trials share results with the result store").
+#include <yaml-cpp/yaml.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -43,12 +45,36 @@ struct SweepPlan {
   std::vector<std::string> metrics;   // the experiment's stored metrics (stored_metrics)
   std::vector<PlannedTrial> trials;   // points in order, repeats within a point
   std::size_t merged_duplicates = 0;  // samples whose config equalled an earlier trial's
+  // Model-based methods (tpe, cmaes, nsga2, qmc; model_search.hpp) only, and
+  // only then written to sweep.yaml (grid and random plans keep their text
+  // and hash): the search space ("key=text" per parameter), the sampler's
+  // seed, the pruner (as written in the sweep block) and report interval,
+  // and every objective when there are several (the first is `objective`).
+  // The trials of such a plan are the study's, in trial-number order.
+  std::vector<std::string> space;
+  std::uint64_t sampler_seed = 0;
+  std::string pruner;
+  std::size_t report_every = 1;
+  std::vector<Objective> objectives;
 
   // The plan as YAML (sweep.yaml); no times or hosts: equal plans, equal text.
   std::string to_yaml() const;
   // 16 hex digits of to_yaml().
   std::string hash() const;
 };
+
+bool model_based(const SweepPlan& plan);
+
+// The trials of one point (`values`: YAML text per key of `keys`): repeat 0
+// with `seed` (the --seed option; nullopt: the experiment's), repeat r >= 1
+// with derive_seed(that seed, "repeat/<r>"), each loaded (validated) and
+// identified by its resolved config's hash. ConfigError naming the point.
+std::vector<PlannedTrial> resolve_point(const std::filesystem::path& experiment_file,
+                                        const std::vector<std::string>& overrides,
+                                        std::optional<std::uint64_t> seed,
+                                        const std::vector<std::string>& keys,
+                                        const std::vector<YAML::Node>& values, std::size_t repeats,
+                                        const std::string& profile);
 
 // "key=value key=value": a point's swept values (keys and values in plan order).
 std::string point_text(const std::vector<std::string>& keys,

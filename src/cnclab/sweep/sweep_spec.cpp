@@ -201,6 +201,36 @@ std::optional<SweepParameter> parse_sweep_values(const std::string& key, const s
   }
 }
 
+const char* to_string(SweepMethod method) {
+  switch (method) {
+    case SweepMethod::grid:
+      return "grid";
+    case SweepMethod::random:
+      return "random";
+    case SweepMethod::tpe:
+      return "tpe";
+    case SweepMethod::cmaes:
+      return "cmaes";
+    case SweepMethod::nsga2:
+      return "nsga2";
+    case SweepMethod::qmc:
+      return "qmc";
+  }
+  return "?";
+}
+
+std::optional<SweepMethod> parse_sweep_method(const std::string& name) {
+  for (const auto m : {SweepMethod::grid, SweepMethod::random, SweepMethod::tpe, SweepMethod::cmaes,
+                       SweepMethod::nsga2, SweepMethod::qmc}) {
+    if (name == to_string(m)) return m;
+  }
+  return std::nullopt;
+}
+
+bool model_based(SweepMethod method) {
+  return method != SweepMethod::grid && method != SweepMethod::random;
+}
+
 SweepMethod SweepSpec::resolved_method() const {
   if (method) return *method;
   if (trials > 0) return SweepMethod::random;
@@ -217,7 +247,25 @@ void SweepSpec::validate() const {
         "log_uniform(1e-4,1e-1)) on the command line or a sweep.parameters block");
   }
   if (repeats < 1) throw ConfigError("sweep: repeats = 0: must be at least 1");
-  if (resolved_method() == SweepMethod::random) {
+  const SweepMethod m = resolved_method();
+  if (!model_based(m) && (pruner.name != "none" || !objectives.empty())) {
+    throw ConfigError(std::string("sweep: ") +
+                      (objectives.empty() ? "pruner " + pruner.name : std::string("objectives")) +
+                      " needs a model-based method (tpe, cmaes, nsga2, qmc), not " + to_string(m));
+  }
+  if (model_based(m)) {
+    if (trials < 1) {
+      throw ConfigError(std::string("sweep: method ") + to_string(m) +
+                        " needs a number of trials (--trials N or sweep.trials)");
+    }
+    if (report_every < 1) throw ConfigError("sweep: report_every = 0: must be at least 1");
+    if (objectives.size() > 1 && pruner.name != "none") {
+      throw ConfigError("sweep: pruner " + pruner.name +
+                        " with several objectives: Optuna prunes single-objective studies only");
+    }
+    return;
+  }
+  if (m == SweepMethod::random) {
     if (trials < 1) {
       throw ConfigError(
           "sweep: random search needs a number of trials (--trials N or sweep.trials)");

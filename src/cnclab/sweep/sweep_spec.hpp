@@ -6,8 +6,13 @@
 //   v1,v2,...            a list: every value in a grid, one of them at random
 //   choice(v1,v2,...)    the same, written as a function
 //   int_range(lo,hi)     integers lo..hi inclusive; int_range(lo,hi,step)
-//   uniform(lo,hi)       a real number drawn uniformly from [lo, hi)   (random only)
-//   log_uniform(lo,hi)   exp(uniform(ln lo, ln hi)), 0 < lo < hi      (random only)
+//   uniform(lo,hi)       a real number drawn uniformly from [lo, hi)   (not in a grid)
+//   log_uniform(lo,hi)   exp(uniform(ln lo, ln hi)), 0 < lo < hi      (not in a grid)
+//
+// The model-based methods (tpe, cmaes, nsga2, qmc: Optuna's samplers,
+// model_search.hpp) take the same grammar: a list or choice() is Optuna's
+// categorical, int_range its int (with step), uniform and log_uniform its
+// float (log = true).
 //
 // Each value is YAML (as for overrides): 1e-4 is a number, [28,20] a list.
 // Commas inside [...], {...}, (...) or quotes do not separate values, so
@@ -23,6 +28,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,7 +61,23 @@ struct SweepParameter {
 // function, bad bounds (log range with lo <= 0, lo >= hi, step < 1).
 std::optional<SweepParameter> parse_sweep_values(const std::string& key, const std::string& text);
 
-enum class SweepMethod { grid, random };
+enum class SweepMethod { grid, random, tpe, cmaes, nsga2, qmc };
+// "grid", "random", "tpe", ...; and back (nullopt for another name).
+const char* to_string(SweepMethod method);
+std::optional<SweepMethod> parse_sweep_method(const std::string& name);
+// tpe, cmaes, nsga2, qmc: trials asked of Optuna one by one (model_search.hpp).
+bool model_based(SweepMethod method);
+
+// Early stopping of hopeless trials (model-based methods only): Optuna's
+// pruner of that name, given the validation objective every `report_every`
+// epochs. options: the pruner's integer arguments by name (median:
+// n_startup_trials, n_warmup_steps, interval_steps; successive_halving:
+// min_resource, reduction_factor, min_early_stopping_rate; hyperband:
+// min_resource, max_resource, reduction_factor); Optuna's defaults otherwise.
+struct SweepPruner {
+  std::string name = "none";  // none | median | successive_halving | hyperband
+  std::map<std::string, std::int64_t> options;
+};
 
 // The quantity a sweep ranks trials by.
 struct Objective {
@@ -80,6 +102,14 @@ struct SweepSpec {
   // maximised if it is r2 (resolve_objective, sweep_plan.hpp).
   std::optional<Objective> objective;
   std::vector<SweepParameter> parameters;  // in order of appearance
+  // Model-based methods only. `trials` is the study's number of complete or
+  // pruned trials; `seed` the sampler's seed.
+  SweepPruner pruner;
+  std::size_t report_every = 1;  // epochs between reports to the pruner (>= 1)
+  // Several objectives (metric and mode each): Optuna optimises them
+  // together (nsga2, tpe) and the summary lists the Pareto front; the first
+  // ranks the points. Empty: `objective` alone.
+  std::vector<Objective> objectives;
 
   SweepMethod resolved_method() const;
   // ConfigError on: no parameters, repeats 0, random without trials, a

@@ -131,6 +131,8 @@ std::string to_string(TrialOutcome::Status status) {
       return "error";
     case TrialOutcome::Status::missing:
       return "missing";
+    case TrialOutcome::Status::pruned:
+      return "pruned";
   }
   return "?";
 }
@@ -149,6 +151,9 @@ TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) 
         o.metrics = std::move(r.metrics);
         o.metric_units = std::move(r.metric_units);
         o.warnings = std::move(r.warnings);
+      } else if (r.status == "pruned") {
+        o.status = TrialOutcome::Status::pruned;
+        o.reason = r.failure_reason;
       } else {
         o.status = TrialOutcome::Status::failed;
         o.reason = r.failure_reason;
@@ -199,6 +204,9 @@ SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& o
       case TrialOutcome::Status::missing:
         ++s.missing, ++p.missing;
         break;
+      case TrialOutcome::Status::pruned:
+        ++s.pruned, ++p.pruned;
+        break;
     }
   }
   for (auto& [index, p] : points) {
@@ -234,7 +242,8 @@ SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& o
 }
 
 void write_summary(const fs::path& file, const SweepPlan& plan,
-                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& s) {
+                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& s,
+                   const SearchFindings* search) {
   AtomicOutput out(file);
   try {
     H5File f = H5File::create(out.temp_path());
@@ -250,6 +259,7 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
     f.set_attribute("/", "failed", static_cast<std::int64_t>(s.failed));
     f.set_attribute("/", "errors", static_cast<std::int64_t>(s.errors));
     f.set_attribute("/", "missing", static_cast<std::int64_t>(s.missing));
+    f.set_attribute("/", "pruned", static_cast<std::int64_t>(s.pruned));
     if (s.best_trial >= 0) {
       f.set_attribute("/", "best_trial", plan.trials[static_cast<std::size_t>(s.best_trial)].id);
       f.set_attribute("/", "best_trial_rule", std::string(kBestTrialRule));
@@ -329,6 +339,7 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
         f.set_attribute("/selected/units", metric, unit_of(metric));
       }
     }
+    if (search) write_search_findings(f, *search);
     mark_complete(f);  // last
     f.close();
     out.commit();
@@ -340,8 +351,9 @@ void write_summary(const fs::path& file, const SweepPlan& plan,
 namespace {
 
 TrialOutcome::Status parse_status(const std::string& text, const fs::path& file) {
-  for (const auto s : {TrialOutcome::Status::complete, TrialOutcome::Status::failed,
-                       TrialOutcome::Status::error, TrialOutcome::Status::missing}) {
+  for (const auto s :
+       {TrialOutcome::Status::complete, TrialOutcome::Status::failed, TrialOutcome::Status::error,
+        TrialOutcome::Status::missing, TrialOutcome::Status::pruned}) {
     if (to_string(s) == text) return s;
   }
   throw IoError(file.string() + ": /trials/status: unknown status '" + text + "'");
@@ -399,6 +411,7 @@ StoredSummary read_summary_in_process(const fs::path& file) {
     s.outcomes.push_back(std::move(o));
   }
   if (f.has_attribute("/", "best_trial")) s.best_trial = f.attribute_string("/", "best_trial");
+  s.search = read_search_findings(f);
   return s;
 }
 

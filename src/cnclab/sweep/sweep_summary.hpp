@@ -7,7 +7,7 @@
 //   /                  attrs format = "cnclab-sweep-summary", format_version = 2,
 //                      experiment, method, repeats, objective_metric,
 //                      objective_mode (min|max), plan_hash, counts trials,
-//                      complete_trials, failed, errors, missing; best_trial (id, when
+//                      complete_trials, failed, errors, missing, pruned; best_trial (id, when
 //                      any trial completed) and best_trial_rule (text); complete = 1
 //                      (written last)
 //   /plan              the sweep plan (sweep.yaml text)
@@ -30,16 +30,19 @@
 //                      the test numbers of the point the objective chose,
 //                      reported after the choice (none without a test split:
 //                      attr note says so)
+//   /importance, /pareto   model-based sweeps (search_findings.hpp)
 // Metric names as in result files (validation.rmse, nn/metrics.hpp); version 1
 // summaries (rmse, normalised_validation_mse, ...) are read under today's names.
 #include <cstddef>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "cnclab/experiment/run_record.hpp"
+#include "cnclab/sweep/search_findings.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 
 namespace cnclab {
@@ -49,7 +52,9 @@ struct TrialOutcome {
   // killed by the trial timeout (its note starts with "timeout:"); error: no
   // result but a note why (exception, crash); missing: not run yet (or
   // unreadable).
-  enum class Status { complete, failed, error, missing };
+  // pruned: stopped early by a model-based sweep's pruner (model_search.hpp);
+  // its result keeps the history, it is done but never ranked.
+  enum class Status { complete, failed, error, missing, pruned };
   Status status = Status::missing;
   std::string reason;                               // failed/error: why; missing: unreadable result
   std::map<std::string, double> metrics;            // complete only
@@ -60,7 +65,9 @@ struct TrialOutcome {
 
   // Complete or failed: resume skips it (failed ones run again with
   // --retry-failed).
-  bool done() const { return status == Status::complete || status == Status::failed; }
+  bool done() const {
+    return status == Status::complete || status == Status::failed || status == Status::pruned;
+  }
 };
 std::string to_string(TrialOutcome::Status status);
 
@@ -75,12 +82,14 @@ struct PointStats {
   std::vector<std::string> values;                    // per swept key
   std::vector<std::size_t> trials;                    // indices into plan.trials
   std::size_t complete = 0, failed = 0, missing = 0;  // failed includes errors
-  std::map<std::string, double> mean, std;            // over complete repeats
+  std::size_t pruned = 0;
+  std::map<std::string, double> mean, std;  // over complete repeats
 };
 
 struct SweepSummary {
   std::vector<PointStats> points;  // best first; points without results last
   std::size_t complete = 0, failed = 0, errors = 0, missing = 0;
+  std::size_t pruned = 0;  // not ranked: only complete trials are
   // The best point is the first of `points` (best objective mean over its
   // complete repeats); the best trial is its median repeat by the objective
   // (of n ranked best first, the one at (n - 1) / 2), never a lucky repeat of a
@@ -108,9 +117,11 @@ inline constexpr const char* kNoTestSplitNote =
 
 SweepSummary summarize(const SweepPlan& plan, const std::vector<TrialOutcome>& outcomes);
 
-// Written atomically (layout above).
+// Written atomically (layout above); `search`: a model-based sweep's
+// importance and Pareto front (search_findings.hpp).
 void write_summary(const std::filesystem::path& file, const SweepPlan& plan,
-                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary);
+                   const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary,
+                   const SearchFindings* search = nullptr);
 
 // What a summary.h5 records, read back without touching the sweep folder:
 // the plan and each trial's outcome as the summary saw it (status, reason,
@@ -119,7 +130,8 @@ void write_summary(const std::filesystem::path& file, const SweepPlan& plan,
 struct StoredSummary {
   SweepPlan plan;
   std::vector<TrialOutcome> outcomes;
-  std::string best_trial;  // the recorded best trial's id ("" if none)
+  std::string best_trial;                // the recorded best trial's id ("" if none)
+  std::optional<SearchFindings> search;  // a model-based sweep's
 };
 inline constexpr const char* kSummaryFormat = "cnclab-sweep-summary";
 // IoError naming the file when it is not a complete summary or its trials do

@@ -1,6 +1,5 @@
 // train_lm and train_trainbr: one damped Gauss-Newton loop; trainbr adds the
 // alpha/beta re-estimation after every accepted step (formulas in trainbr.hpp).
-#include <Eigen/Cholesky>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -8,7 +7,6 @@
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/fields.hpp"
 #include "cnclab/train/lm.hpp"
-#include "cnclab/train/normal_equations.hpp"
 #include "cnclab/train/trainbr.hpp"
 
 namespace cnclab {
@@ -34,10 +32,10 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
   const auto start = std::chrono::steady_clock::now();
   const Eigen::Index nw = objective.num_parameters();
   const double n = static_cast<double>(objective.num_residuals());
-  NormalEquationBuilder builder(objective, static_cast<Eigen::Index>(o.block_rows));
-  NormalEquations ne;
+  DampedGaussNewton system(objective, o.form, o.decomposition,
+                           static_cast<Eigen::Index>(o.block_rows));
   Summary summary;
-  if (!params.allFinite() || !builder.build(params, ne)) {
+  if (!params.allFinite() || !system.build(params)) {
     summary.termination = Termination::diverged;
     summary.message = "residuals or Jacobian not finite at the initial parameters";
     return summary;
@@ -46,25 +44,25 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
   BayesianHyperparameters reg;  // lm: alpha 0, beta 1 throughout
   reg.gamma = static_cast<double>(nw);
   if (bayesian) {
-    reg.beta = ne.sse == 0 ? 1.0 : (n - reg.gamma) / (2.0 * ne.sse);
+    reg.beta = system.sse() == 0 ? 1.0 : (n - reg.gamma) / (2.0 * system.sse());
     if (!(reg.beta > 0)) reg.beta = 1.0;
     reg.alpha = ssw == 0 ? 1.0 : reg.gamma / (2.0 * ssw);
   }
-  double f = reg.beta * ne.sse + reg.alpha * ssw;
+  double f = reg.beta * system.sse() + reg.alpha * ssw;
   double mu = o.mu;
   // MATLAB's performance and gradient (lm.hpp): mse for trainlm, sse for trainbr.
   const double per_residual = bayesian ? 1.0 : 1.0 / n;
-  const auto gradient_now = [&] { return 2.0 * ne.jte.norm() * per_residual; };
+  const auto gradient_now = [&] { return 2.0 * system.jte().norm() * per_residual; };
   const auto snapshot = [&] {
     LmEpochRecord lm;
-    lm.sse = ne.sse;
+    lm.sse = system.sse();
     lm.ssw = ssw;
     lm.alpha = reg.alpha;
     lm.beta = reg.beta;
     lm.gamma = reg.gamma;
     lm.mu = mu;
     lm.gradient = gradient_now();
-    lm.curvature = reg.beta * ne.jtj.diagonal().maxCoeff();
+    lm.curvature = reg.beta * system.max_jtj_diagonal();
     return lm;
   };
   summary.lm_initial = snapshot();
@@ -80,9 +78,7 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
     best_params = params;
   }
 
-  Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(nw);
-  Eigen::MatrixXd damped(nw, nw);
-  Eigen::VectorXd rhs(nw), step(nw), trial(nw);
+  Eigen::VectorXd step(nw), trial(nw);
   std::size_t epochs_done = 0;
   const auto stop = [&](Termination t, std::string message) {
     summary.termination = t;
@@ -97,7 +93,7 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
 
   for (std::size_t epoch = 1;; ++epoch) {
     const std::string after = " after " + std::to_string(epoch - 1) + " epochs";
-    if (ne.sse * per_residual <= o.goal) {
+    if (system.sse() * per_residual <= o.goal) {
       return stop(Termination::goal, "performance goal met" + after);
     }
     if (gradient_now() <= o.min_gradient) {
@@ -110,24 +106,17 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
     }
 
     // One accepted step, raising mu until F decreases.
-    rhs = -(reg.beta * ne.jte + reg.alpha * params);
     bool accepted = false;
     double sse_new = 0, ssw_new = 0;
     while (mu <= o.mu_max) {
-      damped.triangularView<Eigen::Lower>() = reg.beta * ne.jtj;
-      damped.diagonal().array() += mu + reg.alpha;
-      llt.compute(damped);
-      if (llt.info() == Eigen::Success) {
-        step = llt.solve(rhs);
-        if (step.allFinite()) {
-          trial = params + step;
-          sse_new = builder.sum_of_squares(trial);
-          ssw_new = trial.squaredNorm();
-          const double f_new = reg.beta * sse_new + reg.alpha * ssw_new;
-          if (std::isfinite(f_new) && f_new < f) {
-            accepted = true;
-            break;
-          }
+      if (system.step(reg.alpha, reg.beta, mu, params, step)) {
+        trial = params + step;
+        sse_new = system.sum_of_squares(trial);
+        ssw_new = trial.squaredNorm();
+        const double f_new = reg.beta * sse_new + reg.alpha * ssw_new;
+        if (std::isfinite(f_new) && f_new < f) {
+          accepted = true;
+          break;
         }
       }
       mu *= o.mu_inc;
@@ -140,17 +129,19 @@ Summary levenberg_marquardt(ResidualObjective& objective, Eigen::VectorXd& param
     epochs_done = epoch;
     ssw = ssw_new;
     mu = std::max(mu * o.mu_dec, kMuFloor);
-    if (!builder.build(params, ne)) {
+    if (!system.build(params)) {
       return stop(Termination::diverged, "Jacobian not finite in epoch " + std::to_string(epoch));
     }
-    if (bayesian && !reestimate_hyperparameters(reg, ne.jtj, ne.sse, ssw, n)) {
+    if (bayesian &&
+        !reestimate_hyperparameters(reg, system.effective_parameters(reg.alpha, reg.beta),
+                                    static_cast<double>(nw), system.sse(), ssw, n)) {
       ++summary.beta_guard_count;
     }
-    f = reg.beta * ne.sse + reg.alpha * ssw;
+    f = reg.beta * system.sse() + reg.alpha * ssw;
 
     EpochRecord record;
     record.epoch = epoch;
-    record.train_loss = ne.sse / n;
+    record.train_loss = system.sse() / n;
     record.validation_loss = hooks.validation_loss ? hooks.validation_loss(params) : std::nan("");
     record.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -195,7 +186,12 @@ const FieldList<LmOptions>& trainbr_fields() {
           .field("min_gradient", &O::min_gradient,
                  "stop when the gradient <= min_gradient (lm: 2‖Jᵀe‖/N, MATLAB's mse; trainbr: "
                  "2‖Jᵀe‖) (1e-7)",
-                 Rule::non_negative());
+                 Rule::non_negative())
+          .choice("form", &O::form,
+                  {{"auto", LmForm::automatic}, {"primal", LmForm::primal}, {"dual", LmForm::dual}},
+                  "shape of the damped system: auto = the N × N dual JJᵀ (Woodbury) when there "
+                  "are fewer residuals N than parameters P, else the P × P primal JᵀJ; primal or "
+                  "dual forces one (dual needs N <= P); both give the same steps to rounding");
   return fields;
 }
 
@@ -216,24 +212,15 @@ void LmOptions::validate() const {
 }
 
 double effective_parameters(const Eigen::MatrixXd& jtj_lower, double alpha, double beta) {
-  const Eigen::Index w = jtj_lower.rows();
-  Eigen::MatrixXd a(w, w);
-  a.triangularView<Eigen::Lower>() = beta * jtj_lower;
-  a.diagonal().array() += alpha;
-  Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(a);
-  if (llt.info() != Eigen::Success) return std::nan("");
-  // A^-1 = L^-T L^-1, so tr(A^-1) = ||L^-1||_F^2.
-  Eigen::MatrixXd l_inv = Eigen::MatrixXd::Identity(w, w);
-  llt.matrixL().solveInPlace(l_inv);
-  return static_cast<double>(w) - alpha * l_inv.squaredNorm();
+  ShiftedGram gram;
+  if (!gram.reset(jtj_lower, ShiftedGram::Method::cholesky)) return std::nan("");
+  return gram.effective_count(alpha, beta);
 }
 
-bool reestimate_hyperparameters(BayesianHyperparameters& h, const Eigen::MatrixXd& jtj_lower,
-                                double sse, double ssw, double n) {
-  const double w = static_cast<double>(jtj_lower.rows());
-  const double gamma = effective_parameters(jtj_lower, h.alpha, h.beta);
+bool reestimate_hyperparameters(BayesianHyperparameters& h, double gamma, double nw, double sse,
+                                double ssw, double n) {
   if (!std::isfinite(gamma)) return true;  // keep alpha, beta: factorisation failed
-  h.gamma = std::min(std::max(gamma, 0.0), w);
+  h.gamma = std::min(std::max(gamma, 0.0), nw);
   h.alpha = ssw == 0 ? 1.0 : h.gamma / (2.0 * ssw);
   if (sse == 0) {
     h.beta = 1.0;

@@ -2,10 +2,11 @@
 // Levenberg-Marquardt on a residual objective, with MATLAB trainlm's
 // semantics and defaults (Hagan & Menhaj 1994; MATLAB Deep Learning Toolbox
 // trainlm):
-//   solve (J^T J + mu I) dw = -J^T e by Cholesky; accept w + dw if the sum of
+//   solve (J^T J + mu I) dw = -J^T e (in the primal or the dual form, the
+//   Gram matrix decomposed once per epoch: gauss_newton.hpp); accept w + dw if the sum of
 //   squares E_D = e^T e decreases (then mu <- mu * mu_dec, floored at 1e-20),
 //   else mu <- mu * mu_inc and solve again, up to mu_max.
-// A step whose factorisation fails or whose objective is NaN/Inf counts as a
+// A step whose damped system is not positive definite or whose objective is NaN/Inf counts as a
 // failed step (mu is raised); non-finite values never reach the parameters.
 // Stops (checked before every epoch, in MATLAB's order): performance <= goal,
 // gradient <= min_gradient, epochs done, max_fail validation checks; and when
@@ -25,6 +26,7 @@
 #include <cstddef>
 #include <functional>
 
+#include "cnclab/train/gauss_newton.hpp"
 #include "cnclab/train/residual_objective.hpp"
 #include "cnclab/train/summary.hpp"
 
@@ -32,6 +34,7 @@ namespace cnclab {
 
 template <class S>
 class FieldList;
+struct TrainerDef;
 
 struct LmOptions {
   std::size_t epochs = 1000;  // maximum number of accepted steps (trainlm: 1000)
@@ -42,16 +45,25 @@ struct LmOptions {
   double mu_max = 1e10;       // stop when mu exceeds this (trainlm: 1e10)
   double min_gradient = 1e-7;  // stop when the gradient (above) <= min_gradient (trainlm: 1e-7)
   std::size_t max_fail = 6;    // validation checks (above); 0 = off (trainlm: 6)
-  // Rows of J per symmetric rank update; 0 = automatic (about 8 MB of J).
+  // The shape of the damped system (gauss_newton.hpp): automatic = the
+  // N x N dual (J J^T, Woodbury) when there are fewer residuals N than
+  // parameters P, else the P x P primal (J^T J); primal or dual forces one
+  // (dual needs N <= P).
+  LmForm form = LmForm::automatic;
+  // Tuning knobs, not part of a config: rows of J per symmetric rank update
+  // (primal; 0 = about 8 MB of J), and the decomposition of the Gram matrix
+  // (shifted_gram.hpp; automatic = spectral up to 1,024, Cholesky above).
   std::size_t block_rows = 0;
+  LmDecomposition decomposition = LmDecomposition::automatic;
 
   // All finite; epochs >= 1; goal, min_gradient >= 0; 0 < mu <= mu_max;
   // 0 < mu_dec < 1 < mu_inc.
   void validate() const;
 };
 
-// The YAML fields of LmOptions (`trainer:` with type lm; block_rows is a
-// tuning knob, not part of a config), declared once (core/fields.hpp);
+// The YAML fields of LmOptions (`trainer:` with type lm; block_rows and
+// decomposition are tuning knobs, not part of a config), declared once
+// (core/fields.hpp);
 // validate() checks their rules and mu <= mu_max. trainbr_fields(): the same
 // without max_fail (trainbr has no validation stop).
 const FieldList<LmOptions>& lm_fields();
@@ -68,5 +80,8 @@ struct LmHooks {
 // Minimises E_D = e^T e over `params` (updated in place).
 Summary train_lm(ResidualObjective& objective, Eigen::VectorXd& params, const LmOptions& options,
                  const LmHooks& hooks = {});
+
+// `trainer.type: lm` (trainer_registry.hpp; lm_trainers.cpp).
+TrainerDef lm_trainer();
 
 }  // namespace cnclab

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/nn/kernels.hpp"
 
 namespace cnclab {
 namespace {
@@ -13,7 +14,7 @@ using Clock = std::chrono::steady_clock;
 }  // namespace
 
 NormalEquationBuilder::NormalEquationBuilder(ResidualObjective& objective, Eigen::Index block_rows)
-    : objective_(objective) {
+    : objective_(objective), kernels_(kernels::active()) {
   const Eigen::Index n = objective.num_residuals(), w = objective.num_parameters();
   const Eigen::Index g = objective.row_granularity();
   if (n < 1 || w < 1 || g < 1 || n % g != 0) {
@@ -43,8 +44,12 @@ bool NormalEquationBuilder::build(const Eigen::VectorXd& params, NormalEquations
     objective_.evaluate(params, first, count, e, &jacobian_);
     const auto t1 = Clock::now();
     if (!e.allFinite() || !jacobian_.allFinite()) return false;
-    out.jtj.selfadjointView<Eigen::Lower>().rankUpdate(jacobian_.transpose());
-    out.jte.noalias() += jacobian_.transpose() * e;
+    // J^T J (lower) += J_b^T J_b and J^T e += J_b^T e_b at this process's
+    // instruction-set level (nn/kernels.hpp).
+    kernels_.dsyrk(true, w, count, jacobian_.data(), jacobian_.outerStride(), out.jtj.data(),
+                   out.jtj.outerStride());
+    kernels_.dgemv(true, count, w, jacobian_.data(), jacobian_.outerStride(), e.data(),
+                   out.jte.data());
     out.sse += e.squaredNorm();
     timing_.evaluate_seconds += std::chrono::duration<double>(t1 - t0).count();
     timing_.product_seconds += std::chrono::duration<double>(Clock::now() - t1).count();

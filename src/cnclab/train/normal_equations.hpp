@@ -1,10 +1,11 @@
 #pragma once
 // The Gauss-Newton quantities of a residual objective, accumulated over row
 // blocks: J^T J by a symmetric rank-k update per block (BLAS SYRK through
-// Eigen's rankUpdate: W^2 b / 2 multiply-adds per block of b rows, no N x W
-// or N x W x W temporaries), J^T e and e^T e.
+// Eigen's rankUpdate, nn/kernels.hpp: W^2 b / 2 multiply-adds per block of b
+// rows, no N x W or N x W x W temporaries), J^T e and e^T e.
 #include <Eigen/Core>
 
+#include "cnclab/nn/kernel_table.hpp"
 #include "cnclab/train/residual_objective.hpp"
 
 namespace cnclab {
@@ -38,6 +39,7 @@ class NormalEquationBuilder {
 
  private:
   ResidualObjective& objective_;
+  const kernels::Table& kernels_;
   Eigen::Index block_rows_;
   Eigen::MatrixXd jacobian_;
   Eigen::VectorXd residuals_;

@@ -18,22 +18,52 @@ MlpRegressionObjective::MlpRegressionObjective(const Mlp& mlp, const Eigen::Matr
   for (std::size_t l = 0; l < sizes.size(); ++l) any_dropout_ = any_dropout_ || mlp.has_dropout(l);
 }
 
-double MlpRegressionObjective::loss_and_gradient(const Eigen::VectorXd& params,
-                                                 std::span<const std::size_t> batch,
-                                                 Eigen::VectorXd& gradient) {
+float SeparableObjective::loss_and_gradient_float32(const Eigen::VectorXf&,
+                                                    std::span<const std::size_t>,
+                                                    Eigen::VectorXf&) {
+  throw Error("this objective has no float32 evaluation (precision: float64)");
+}
+
+template <class T, class Workspace>
+T MlpRegressionObjective::loss_and_gradient_impl(
+    const Eigen::Matrix<T, Eigen::Dynamic, 1>& params,
+    const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& inputs,
+    const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& targets,
+    std::span<const std::size_t> batch, Workspace& ws,
+    Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& x_batch,
+    Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& y_batch,
+    Eigen::Matrix<T, Eigen::Dynamic, 1>& gradient) {
   const auto b = static_cast<Eigen::Index>(batch.size());
-  if (x_batch_.cols() != b) {
-    x_batch_.resize(inputs_.rows(), b);
-    y_batch_.resize(targets_.rows(), b);
+  if (x_batch.cols() != b) {
+    x_batch.resize(inputs.rows(), b);
+    y_batch.resize(targets.rows(), b);
   }
   for (Eigen::Index j = 0; j < b; ++j) {
     const auto col = static_cast<Eigen::Index>(batch[static_cast<std::size_t>(j)]);
-    x_batch_.col(j) = inputs_.col(col);
-    y_batch_.col(j) = targets_.col(col);
+    x_batch.col(j) = inputs.col(col);
+    y_batch.col(j) = targets.col(col);
   }
-  mlp_.prepare(workspace_, b);
-  if (any_dropout_) mlp_.draw_dropout_masks(workspace_, dropout_rng_);
-  return mlp_.loss_and_gradient(params, x_batch_, y_batch_, workspace_, gradient);
+  mlp_.prepare(ws, b);
+  if (any_dropout_) mlp_.draw_dropout_masks(ws, dropout_rng_);
+  return mlp_.loss_and_gradient(params, x_batch, y_batch, ws, gradient);
+}
+
+double MlpRegressionObjective::loss_and_gradient(const Eigen::VectorXd& params,
+                                                 std::span<const std::size_t> batch,
+                                                 Eigen::VectorXd& gradient) {
+  return loss_and_gradient_impl<double>(params, inputs_, targets_, batch, workspace_, x_batch_,
+                                        y_batch_, gradient);
+}
+
+float MlpRegressionObjective::loss_and_gradient_float32(const Eigen::VectorXf& params,
+                                                        std::span<const std::size_t> batch,
+                                                        Eigen::VectorXf& gradient) {
+  if (inputs32_.size() != inputs_.size()) {
+    inputs32_ = inputs_.cast<float>();
+    targets32_ = targets_.cast<float>();
+  }
+  return loss_and_gradient_impl<float>(params, inputs32_, targets32_, batch, workspace32_,
+                                       x_batch32_, y_batch32_, gradient);
 }
 
 }  // namespace cnclab

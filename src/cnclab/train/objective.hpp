@@ -21,6 +21,14 @@ class SeparableObjective {
   virtual double loss_and_gradient(const Eigen::VectorXd& params,
                                    std::span<const std::size_t> batch,
                                    Eigen::VectorXd& gradient) = 0;
+  // The same computed in float throughout (float32 training, sgdm.hpp);
+  // whether this objective has it.
+  virtual bool has_float32() const { return false; }
+  // (A name of its own: an override of the double one alone hides no
+  // overload.)
+  virtual float loss_and_gradient_float32(const Eigen::VectorXf& params,
+                                          std::span<const std::size_t> batch,
+                                          Eigen::VectorXf& gradient);
 };
 
 // MSE regression of an Mlp on (already normalised) inputs and targets, one
@@ -33,14 +41,29 @@ class MlpRegressionObjective : public SeparableObjective {
   std::size_t num_parameters() const override { return mlp_.num_parameters(); }
   double loss_and_gradient(const Eigen::VectorXd& params, std::span<const std::size_t> batch,
                            Eigen::VectorXd& gradient) override;
+  // In float: the data are converted once, on the first call.
+  bool has_float32() const override { return true; }
+  float loss_and_gradient_float32(const Eigen::VectorXf& params, std::span<const std::size_t> batch,
+                                  Eigen::VectorXf& gradient) override;
 
  private:
+  template <class T, class Workspace>
+  T loss_and_gradient_impl(const Eigen::Matrix<T, Eigen::Dynamic, 1>& params,
+                           const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& inputs,
+                           const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& targets,
+                           std::span<const std::size_t> batch, Workspace& ws,
+                           Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& x_batch,
+                           Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& y_batch,
+                           Eigen::Matrix<T, Eigen::Dynamic, 1>& gradient);
+
   const Mlp& mlp_;
   const Eigen::MatrixXd& inputs_;
   const Eigen::MatrixXd& targets_;
   Rng& dropout_rng_;
   Mlp::Workspace workspace_;
   Eigen::MatrixXd x_batch_, y_batch_;
+  Mlp::Workspace32 workspace32_;
+  Eigen::MatrixXf inputs32_, targets32_, x_batch32_, y_batch32_;
   bool any_dropout_ = false;
 };
 

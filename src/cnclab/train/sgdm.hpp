@@ -15,6 +15,16 @@ namespace cnclab {
 
 template <class S>
 class FieldList;
+struct TrainerDef;
+
+// The arithmetic of the training loop. float64 is the default and the
+// reference; float32 keeps the weights, the momentum and every product of
+// the forward and backward passes in float, as PyTorch trains by default
+// (faster: twice the numbers per vector register and half the memory
+// traffic). The returned weights are the float weights widened to double;
+// validation losses and callbacks see those. Its distance from float64 over
+// a whole run is bounded in tests/train/sgdm_test.cpp and docs/performance.md.
+enum class Precision { float64, float32 };
 
 struct SgdmOptions {
   double learning_rate = 1e-5;  // eta > 0 (seed 000: 1e-5)
@@ -29,6 +39,7 @@ struct SgdmOptions {
   // Stop after this many epochs without a lower validation loss and restore
   // the best parameters; 0 = off. Needs a validation set.
   std::size_t early_stop_patience = 0;
+  Precision precision = Precision::float64;  // arithmetic of the loop (above)
 
   void validate() const;
 };
@@ -46,5 +57,9 @@ struct SgdmHooks {
 
 Summary train_sgdm(SeparableObjective& objective, Eigen::VectorXd& params,
                    const SgdmOptions& options, Rng& shuffle_rng, const SgdmHooks& hooks = {});
+
+// `trainer.type: sgdm` (trainer_registry.hpp): an MLP with dropout masks from
+// Rng(seed, "dropout") and the sample order from Rng(seed, "shuffle").
+TrainerDef sgdm_trainer();
 
 }  // namespace cnclab

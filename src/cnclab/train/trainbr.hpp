@@ -11,8 +11,11 @@
 //   N = number of residuals (target elements), N_w = number of parameters.
 //   Start (as MATLAB): gamma_0 = N_w, beta_0 = (N - gamma_0) / (2 E_D) (1 if
 //   that is <= 0 or E_D = 0), alpha_0 = gamma_0 / (2 E_W) (1 if E_W = 0).
-// The trace is ||L^-1||_F^2 from the Cholesky factor L of beta J^T J + alpha I
-// (no explicit inverse). Guard: when N - gamma <= 0 (few residuals, many
+// gamma comes from the decomposition of the step's Gram matrix (J^T J, or
+// J J^T in the dual form: gauss_newton.hpp) as sum_i beta l_i / (beta l_i +
+// alpha) over its eigenvalues, or, for a Gram matrix too large for the
+// spectral method, as ||L^-1||_F^2 from the Cholesky factor L of
+// beta J^T J + alpha I (no explicit inverse). Guard: when N - gamma <= 0 (few residuals, many
 // parameters) beta would not be positive; the previous beta is kept and
 // Summary::beta_guard_count says how often. An E_D of 0 gives beta = 1 and an
 // E_W of 0 gives alpha = 1 (MATLAB). As MATLAB's trainbr (which forces the
@@ -35,8 +38,12 @@ struct TrainbrOptions : LmOptions {
 Summary train_trainbr(ResidualObjective& objective, Eigen::VectorXd& params,
                       const TrainbrOptions& options, const LmHooks& hooks = {});
 
+// `trainer.type: trainbr` (trainer_registry.hpp; lm_trainers.cpp).
+TrainerDef trainbr_trainer();
+
 // gamma = N_w - alpha tr((beta J^T J + alpha I)^-1) from the lower triangle of
-// J^T J; NaN if beta J^T J + alpha I is not positive definite.
+// J^T J by Cholesky (the reference formula); NaN if beta J^T J + alpha I is
+// not positive definite.
 double effective_parameters(const Eigen::MatrixXd& jtj_lower, double alpha, double beta);
 
 struct BayesianHyperparameters {
@@ -45,11 +52,12 @@ struct BayesianHyperparameters {
   double gamma = 0;  // effective number of parameters
 };
 
-// One re-estimation (the update rules above) from J^T J (lower triangle),
-// E_D = sse, E_W = ssw and N = n at the current weights. gamma is clamped to
-// [0, N_w]; if the factorisation fails, h is left unchanged. Returns false
-// when the beta guard triggered (N - gamma <= 0: the previous beta is kept).
-bool reestimate_hyperparameters(BayesianHyperparameters& h, const Eigen::MatrixXd& jtj_lower,
-                                double sse, double ssw, double n);
+// One re-estimation (the update rules above) from gamma (before clamping;
+// NaN: the factorisation failed and h is left unchanged), N_w = nw, E_D =
+// sse, E_W = ssw and N = n at the current weights. gamma is clamped to
+// [0, N_w]. Returns false when the beta guard triggered (N - gamma <= 0:
+// the previous beta is kept).
+bool reestimate_hyperparameters(BayesianHyperparameters& h, double gamma, double nw, double sse,
+                                double ssw, double n);
 
 }  // namespace cnclab

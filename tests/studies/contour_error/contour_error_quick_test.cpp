@@ -66,7 +66,7 @@ TEST(ContourErrorQuick, ReproduceAndTables) {
         "Paper:", "sources:"}) {
     EXPECT_NE(text.find(needle), std::string::npos) << needle << "\n" << text;
   }
-  // csv and json carry numbers only (issue 21 item 5): every column a number
+  // csv and json carry numbers only: every column a number
   // column or a declared label column, read by Python's csv and json modules.
   TableEntry entry;
   entry.name = "contour-error";

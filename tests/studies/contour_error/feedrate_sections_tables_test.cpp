@@ -39,7 +39,7 @@ struct SectionsFixture {
     const fs::path path = options.experiment_file(file);
     const FeedrateJob job = load_feedrate_job(path);
     const ResultKey key{job.name, std::nullopt, to_yaml(job), path, true};
-    RunRecord rec = make_job_record("feedrate_optimisation", key);
+    RunRecord rec = make_job_record("feedrate_optimisation", key, job.request);
     for (std::size_t k = 0; k < job.sections.count; ++k) {
       const std::string s = feedrate_section_prefix(job, k);
       rec.metrics[s + "start"] = 100.0 * static_cast<double>(k);

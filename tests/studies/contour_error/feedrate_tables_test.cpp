@@ -1,5 +1,5 @@
 // `cnclab tables feedrate`'s measurements over the tolerances and the
-// manifest's targets (issue 18's "Done when"), on a result written here with
+// manifest's targets (configs/studies/feedrate_tables.yaml), on a result written here with
 // known metrics for the study's own experiment file: the minimum share and
 // ratio are the ones put in, a plan below 99.9 % or slower than the uniform
 // slowdown fails its target, and a tolerance that was not planned fails too.
@@ -41,9 +41,9 @@ struct FeedrateTablesFixture {
   // uniform / constrained time ratio[i]; NaN share: the tolerance was not
   // planned (no constrained metrics, as below_resolution writes it).
   void write(const std::vector<double>& share, const std::vector<double>& ratio) const {
-    RunRecord rec =
-        make_job_record("feedrate_optimisation",
-                        ResultKey{job.name, std::nullopt, to_yaml(job), job.source_file, true});
+    RunRecord rec = make_job_record(
+        "feedrate_optimisation",
+        ResultKey{job.name, std::nullopt, to_yaml(job), job.source_file, true}, job.request);
     for (std::size_t i = 0; i < job.tolerances.size(); ++i) {
       if (std::isnan(share[i])) continue;
       const std::string label = "eps" + shortest_double(job.tolerances[i]) + "um";

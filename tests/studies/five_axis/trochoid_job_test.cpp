@@ -1,5 +1,5 @@
-// The trochoid job file (kind: gcode) against its declaration (issue 16
-// item 6): every declared key changes the job's identity (its resolved
+// The trochoid job file (kind: gcode) against its declaration:
+// every declared key changes the job's identity (its resolved
 // config, which names its result) and the resolved config reads back to
 // itself.
 #include "cnclab/studies/five_axis/trochoid_job.hpp"

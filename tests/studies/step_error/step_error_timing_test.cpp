@@ -101,7 +101,7 @@ TEST(StepErrorTiming, TimesTheResultsTestSegmentsAndRoundTrips) {
   EXPECT_THROW(store.get(step_error_timing_key(other)), MissingResults);
 }
 
-// Issue 16 item 6: every declared key of the job file changes the job's
+// Every declared key of the job file changes the job's
 // identity (its resolved config) and reads back from it.
 TEST(StepErrorTiming, EveryJobKeyChangesTheIdentityAndRoundTrips) {
   TempDir dir;

@@ -4,7 +4,7 @@
 // velocities, and the Taylor estimate (Eqs. 3-6, taylor_contour_error)
 // turns them and the interpolator's local path geometry into the predicted
 // contour error, once per 1 ms tick. It lives in experiment, the first
-// module that sees both nn and motion (DESIGN.md's dependency arrows).
+// module that sees both nn and motion (docs/architecture.md's arrows).
 //
 // Real-time contract as NarxPredictor: construction may allocate and throw;
 // reset() and step() never allocate and never throw. step() checks all its

@@ -1,6 +1,6 @@
 #pragma once
 // Verification of a planned reference on the simulated machine and the two
-// baselines of the contour-error feedrate optimisation (issue 18): the
+// baselines of the contour-error feedrate optimisation (docs/motion.md): the
 // uniform slowdown of the unconstrained plan (a feed override, found by
 // bisection) and the best constant feed (a constant-feed S-curve, bisection
 // on the feed), both judged by the simulated contour error.
@@ -21,7 +21,7 @@ struct VerificationOptions {
   std::uint64_t seed = 1;    // its scale-noise streams (simulate_machine)
   double tolerance = 0.005;  // eps_max [mm]
   // A reference meets the tolerance when at least this share of its ticks
-  // has a simulated contour error <= eps_max (issue 18: 99.9 %). In (0, 1].
+  // has a simulated contour error <= eps_max (the study's target: 99.9 %). In (0, 1].
   double required_share = 0.999;
   // Bisection steps of the baselines (factor or feed), >= 1; 12 halve the
   // bracket to 1/4096 of its width.

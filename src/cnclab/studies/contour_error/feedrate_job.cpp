@@ -165,6 +165,7 @@ FeedrateJob load_feedrate_job(const fs::path& file, const std::vector<std::strin
   }
   FeedrateJob job;
   job.source_file = file;
+  job.request = {overrides, profile};
   job.name = read_experiment_name(root);
   job.description = root.get<std::string>("description", "");
   feedrate_job_fields().read(root, job);

@@ -1,5 +1,5 @@
 #pragma once
-// The contour-error feedrate job (`kind: feedrate_optimisation`, issue 18):
+// The contour-error feedrate job (`kind: feedrate_optimisation`, docs/motion.md):
 // on a section of the seed-002 dataset's random NURBS path, at the
 // dataset's axis limits and on its simulated machine, for each tolerance:
 // the predictive feedrate optimisation (feedrate_optimisation.hpp) with the
@@ -33,6 +33,7 @@
 
 #include "cnclab/core/fields.hpp"
 #include "cnclab/experiment/job_kinds.hpp"
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/studies/contour_error/contour_verification.hpp"
 #include "cnclab/studies/contour_error/feedrate_optimisation.hpp"
@@ -96,6 +97,7 @@ struct FeedrateJob {
   FeedrateOptimisationOptions optimisation;  // tolerance and limits set per run
   VerificationOptions verification;          // tolerance and machine set per run
   std::filesystem::path source_file;
+  JobRequest request;  // the command's overrides and --profile (provenance only)
 };
 
 // The declared keys below kind, name and description.

@@ -93,7 +93,7 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path& results = c.options.results_dir;
   const ResultKey key{job.name, std::nullopt, to_yaml(job), job.source_file, true};
-  RunRecord rec = make_job_record("feedrate_optimisation", key);
+  RunRecord rec = make_job_record("feedrate_optimisation", key, job.request);
   Dataset dataset;
   TrainedContourModel model = load_trained_contour_model(
       job.predictor_file, results, c.options.datasets_dir, c.options.profile, c.log, &dataset);

@@ -59,9 +59,9 @@ Measurements measure_feedrate_example_tables(const TablesOptions& options) {
   const FeedrateTableInput in = feedrate_table_input(options);
   const RunRecord& r = in.result.record;
   Measurements m;
-  // Over the tolerances: the "Done when" as two numbers. A tolerance
-  // that was not planned (below_resolution) has no constrained metrics: NaN,
-  // which fails any target.
+  // Over the tolerances: the study's two targets (configs/studies/feedrate_tables.yaml). A
+  // tolerance that was not planned (below_resolution) has no constrained metrics: NaN, which fails
+  // any target.
   double min_share = INFINITY, min_ratio = INFINITY;
   const auto lower = [](double& least, double x) {
     least = std::isnan(x) || std::isnan(least) ? NAN : std::min(least, x);

@@ -34,7 +34,7 @@ struct NarxStudyRun {
   bool bounded() const;  // metric "stable" is 1: the prediction stayed bounded
 };
 
-// Issue 17's criterion for a stable run, stricter than bounded: a bounded
+// The criterion for a stable run (docs/narx_training.md), stricter than bounded: a bounded
 // prediction, and on every axis a closed-loop RMS within kStableFactor times
 // the best bounded run's of the same study. A network that does not blow up
 // but predicts 10x worse than the others is a failed training, as seed 002

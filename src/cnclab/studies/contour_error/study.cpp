@@ -18,12 +18,15 @@ void register_contour_error_study() {
       {"contour-error",
        "seed 002: NARX training methods, architecture sweep, contour-error estimates and the "
        "contour predictor's accuracy (simulated machine)",
-       print_contour_error_tables, measure_contour_error_tables,
-       "studies/contour_error_tables.yaml", [](const TablesOptions& o) {
+       print_contour_error_tables,
+       measure_contour_error_tables,
+       "studies/contour_error_tables.yaml",
+       [](const TablesOptions& o) {
          return std::vector<std::filesystem::path>{
              o.experiment_file("contour_error/training_methods.yaml"),
              o.experiment_file("contour_error/architecture.yaml")};
-       }});
+       },
+       {"contour_error", "narx_training"}});
   register_table({"feedrate",
                   "seed 002's application on any path: the contour-error constrained feedrate "
                   "with the planning predictor and calibrated margins on many declared sections "
@@ -38,11 +41,14 @@ void register_contour_error_study() {
                   "seed 002's application on one section chosen by its outcome: contour-error "
                   "constrained feedrate vs the unconstrained plan, the uniform slowdown and the "
                   "best constant feed (simulated machine)",
-                  print_feedrate_example_tables, measure_feedrate_example_tables,
-                  "studies/feedrate_example_tables.yaml", [](const TablesOptions& o) {
+                  print_feedrate_example_tables,
+                  measure_feedrate_example_tables,
+                  "studies/feedrate_example_tables.yaml",
+                  [](const TablesOptions& o) {
                     return std::vector<std::filesystem::path>{
                         o.experiment_file("contour_error/feedrate.yaml")};
-                  }});
+                  },
+                  {"feedrate"}});
 }
 
 }  // namespace cnclab

@@ -17,6 +17,7 @@
 #include "cnclab/report/run_settings.hpp"
 #include "cnclab/report/typed_table.hpp"
 #include "cnclab/studies/five_axis/ik_runs.hpp"
+#include "cnclab/train/sgdm.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -61,7 +62,7 @@ Reference read_reference(const fs::path& file) {
 
 // An SGDM setting of the run's trainer; "-" for other trainers (lm, trainbr).
 TableCell sgdm_setting(const IkAxisRun& r, double SgdmOptions::*field) {
-  const auto* sgdm = std::get_if<SgdmOptions>(&r.loaded.spec.trainer);
+  const auto* sgdm = trainer_options_if<SgdmOptions>(r.loaded.spec.trainer);
   return sgdm ? number_cell(sgdm->*field, table_number(sgdm->*field)) : missing_cell("-");
 }
 

@@ -165,6 +165,7 @@ TrochoidJob load_trochoid_job(const fs::path& file, const std::vector<std::strin
   if (root.get<std::string>("kind", "gcode") != "gcode") root.fail("kind", "must be gcode");
   TrochoidJob job;
   job.source_file = file;
+  job.request = {overrides, profile};
   job.name = read_experiment_name(root);
   job.description = root.get<std::string>("description", "");
   if (root.get<std::string>("toolpath", "trochoid") != "trochoid") {
@@ -318,7 +319,7 @@ ResultKey trochoid_key(const TrochoidJob& job) {
 
 TrochoidFiles write_trochoid_outputs(const TrochoidJob& job, const fs::path& results_dir) {
   const ResultKey key = trochoid_key(job);
-  RunRecord rec = make_job_record("gcode", key);
+  RunRecord rec = make_job_record("gcode", key, job.request);
   const auto start = std::chrono::steady_clock::now();
   const fs::path dir = results_dir / job.name;
   TrochoidFiles files{dir / (job.name + ".nc"), result_path(key, results_dir),

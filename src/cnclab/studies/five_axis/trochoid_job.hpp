@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "cnclab/core/fields.hpp"
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/kinematics/gcode.hpp"
 #include "cnclab/kinematics/tool_entry.hpp"
@@ -49,6 +50,7 @@ struct TrochoidJob {
   EntryOptions entry;
   TrochoidReportOptions report;
   std::filesystem::path source_file;
+  JobRequest request;  // the command's overrides and --profile (provenance only)
 };
 
 // The declared keys of a `kind: gcode` file below its kind, name,

@@ -1,7 +1,6 @@
 #pragma once
-// The seed-to-seed spread of the step-error study's headline rows (issue 20
-// item 3): the `kind: sweep` files the manifest's `repeats:` names
-// (experiments/step_error/tuned/seeds_*.yaml), each one swept key with
+// The seed-to-seed spread of the step-error study's headline rows: the `kind: sweep` files the
+// manifest's `repeats:` names (experiments/step_error/tuned/seeds_*.yaml), each one swept key with
 // `repeats` seeds per value, read as `cnclab tables step-error` needs them:
 // per point (value of the key) the figures of every complete trial
 // (run_figures, step_error_measures.hpp), so a table row gives their mean ±

@@ -4,14 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cnclab/core/format.hpp"
+
 namespace cnclab {
 namespace {
-
-std::string seed_notes_fixed(double v, int decimals) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
 
 // "(5 and 5 seeds; Welch p = 0.00012 < 0.05)"
 std::string seed_notes_test(const SeedComparison& c, double alpha) {
@@ -27,8 +23,8 @@ std::string seed_notes_test(const SeedComparison& c, double alpha) {
 }  // namespace
 
 std::string seed_mean_std_text(const SampleSummary& s, int decimals) {
-  if (s.n < 2) return seed_notes_fixed(s.mean, decimals) + " (1 seed)";
-  return seed_notes_fixed(s.mean, decimals) + " ± " + seed_notes_fixed(s.std, decimals);
+  if (s.n < 2) return fixed_decimals(s.mean, decimals) + " (1 seed)";
+  return fixed_decimals(s.mean, decimals) + " ± " + fixed_decimals(s.std, decimals);
 }
 
 SeedComparison compare_seeds(const SeedSample& a, const SeedSample& b, double alpha) {

@@ -14,13 +14,6 @@ namespace cnclab {
 namespace fs = std::filesystem;
 namespace {
 
-std::string spread_fixed(double v, int decimals) {
-  if (std::isnan(v)) return "-";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
 // A quantity of the table: its figure (run_figures name), how it is shown
 // and where the paper gives it.
 struct SpreadQuantity {
@@ -36,7 +29,7 @@ const SpreadQuantity kMaxAbs{"max |e| (µm)", "max_abs_um", "max_abs_um", 3};
 const SpreadQuantity kMeanAbs{"mean |e| (µm)", "mean_abs_um", "mean_abs_um", 3};
 
 TableCell spread_value_cell(double v, int decimals) {
-  return std::isnan(v) ? missing_cell("-") : number_cell(v, spread_fixed(v, decimals));
+  return std::isnan(v) ? missing_cell("-") : number_cell(v, fixed_or_dash(v, decimals));
 }
 
 // mean ± std over the point's seeds ("-" without a point or seed).
@@ -44,8 +37,8 @@ TableCell spread_seeds_cell(const RepeatedPoint* point, const SpreadQuantity& q)
   if (!point || point->sample(q.figure).empty()) return missing_cell("-");
   const SampleSummary s = summarize(point->sample(q.figure));
   const std::string text =
-      s.n < 2 ? spread_fixed(s.mean, q.decimals)
-              : spread_fixed(s.mean, q.decimals) + " ± " + spread_fixed(s.std, q.decimals);
+      s.n < 2 ? fixed_or_dash(s.mean, q.decimals)
+              : fixed_or_dash(s.mean, q.decimals) + " ± " + fixed_or_dash(s.std, q.decimals);
   return mean_std_cell(s.mean, s.std, text);
 }
 

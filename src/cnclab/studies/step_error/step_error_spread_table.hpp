@@ -1,10 +1,9 @@
 #pragma once
-// The seed-to-seed spread of the step-error study's headline rows (issue 20
-// item 3; the manifest's `repeats:`, step_error_repeats.hpp): one table with,
-// per row, the paper's single number, our run that Tables 3-7 show, and the
-// mean ± std over the seed sweep; and the notes that compare settings only
-// as far as Welch's test supports (step_error_seed_notes.hpp). Table 2 over
-// the seeds has its own table (step_error_table2.hpp).
+// The seed-to-seed spread of the step-error study's headline rows (the manifest's `repeats:`,
+// step_error_repeats.hpp): one table with, per row, the paper's single number, our run that Tables
+// 3-7 show, and the mean ± std over the seed sweep; and the notes that compare settings only as far
+// as Welch's test supports (step_error_seed_notes.hpp). Table 2 over the seeds has its own table
+// (step_error_table2.hpp).
 #include <ostream>
 #include <string>
 #include <vector>

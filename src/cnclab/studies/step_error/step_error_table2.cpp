@@ -28,19 +28,14 @@ struct Table2Evaluation {
 constexpr Table2Evaluation kTable2Deterministic{"deterministic", "_deterministic"};
 constexpr Table2Evaluation kTable2Mc{"MC dropout", "_mc"};
 
-std::string seeds_fixed(double v) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", kMseDecimals, v);
-  return buf;
-}
-
 // mean ± std of `figure` over the point's seeds ("-" without a value).
 TableCell seeds_cell(const RepeatedPoint* point, const std::string& figure) {
   if (!point || point->sample(figure).empty()) return missing_cell("-");
   const SampleSummary s = summarize(point->sample(figure));
   return mean_std_cell(
       s.mean, s.std,
-      s.n < 2 ? seeds_fixed(s.mean) : seeds_fixed(s.mean) + " ± " + seeds_fixed(s.std));
+      s.n < 2 ? fixed_decimals(s.mean, kMseDecimals)
+              : fixed_decimals(s.mean, kMseDecimals) + " ± " + fixed_decimals(s.std, kMseDecimals));
 }
 
 TableCell planned_cell(const RepeatedPoint* point) {

@@ -1,5 +1,8 @@
 #include "cnclab/studies/step_error/step_error_table_parts.hpp"
 
+#include <cmath>
+
+#include "cnclab/core/format.hpp"
 #include "cnclab/report/run_settings.hpp"
 
 namespace cnclab {
@@ -15,6 +18,10 @@ const std::vector<std::string> kDropoutKeys = {"model.dropout.keep_probability",
                                                "model.dropout.inference"};
 
 }  // namespace
+
+std::string fixed_or_dash(double v, int decimals) {
+  return std::isnan(v) ? "-" : fixed_decimals(v, decimals);
+}
 
 std::string ours(const StudyVariant& v) {
   return "ours, " + v.name;

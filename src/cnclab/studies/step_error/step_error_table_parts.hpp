@@ -18,6 +18,10 @@
 
 namespace cnclab {
 
+// `v` with `decimals` decimals (core/format.hpp's fixed_decimals), or "-"
+// for NaN (a cell without a value).
+std::string fixed_or_dash(double v, int decimals);
+
 // "ours, tuned"
 std::string ours(const StudyVariant& v);
 // A source ("ours, tuned") as a label, carried as "ours_tuned" by csv/json.

@@ -233,6 +233,7 @@ StepErrorTimingJob load_step_error_timing_job(const fs::path& file,
   }
   StepErrorTimingJob job;
   job.source_file = file;
+  job.request = {overrides, profile};
   job.profile = profile;
   job.name = read_experiment_name(root);
   job.description = root.get<std::string>("description", "");
@@ -295,7 +296,7 @@ const std::vector<std::pair<const char*, double SurfaceTiming::*>> kSeconds = {
 fs::path write_step_error_timing(const StepErrorTimingJob& job, const StepErrorTimingResult& r,
                                  const ResultStore& store) {
   const ResultKey key = step_error_timing_key(job);
-  RunRecord rec = make_job_record("step_error_timing", key);
+  RunRecord rec = make_job_record("step_error_timing", key, job.request);
   rec.provenance.start_utc = r.utc;
   rec.provenance.end_utc = utc_now_iso8601();
   rec.provenance.wall_seconds = r.wall_seconds;

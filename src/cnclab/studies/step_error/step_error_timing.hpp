@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "cnclab/core/fields.hpp"
+#include "cnclab/experiment/job_result.hpp"
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/geometry/step_error.hpp"
 
@@ -67,6 +68,7 @@ struct StepErrorTimingJob {
   std::map<std::string, std::string> experiments_as_written;
   StepErrorTimingOptions options;
   std::filesystem::path source_file;
+  JobRequest request;   // the command's overrides and --profile (provenance only)
   std::string profile;  // applied to the upstream experiments as well
 };
 

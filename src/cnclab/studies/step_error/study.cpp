@@ -47,8 +47,11 @@ void register_step_error_study() {
       {"step-error",
        "seed 000 Tables 2-8 (step-error BP network: dropout, surface 1, fine-tuning on surfaces 2 "
        "and 3, timing), ours vs paper, and the normaliser keep/refit comparison",
-       print_step_error_tables, measure_step_error_tables, "studies/step_error_tables.yaml",
-       step_error_experiment_files});
+       print_step_error_tables,
+       measure_step_error_tables,
+       "studies/step_error_tables.yaml",
+       step_error_experiment_files,
+       {"step_error"}});
 }
 
 }  // namespace cnclab
