@@ -140,6 +140,27 @@ TEST(FeedrateSectionsTables, MissesFailTheirTargets) {
   EXPECT_FALSE(pass.at("predictor.lowest_slowed_rms"));
 }
 
+// One path run, the other not: the table says which is missing before any
+// number, and the missing path's targets (and the predictor comparison,
+// declared by the validation-half job) fail instead of passing by absence.
+TEST(FeedrateSectionsTables, APathNotRunIsNamedAndFailsItsTargets) {
+  SectionsFixture f;
+  f.write("contour_error/any_path/feedrate_unseen_path.yaml", 1.0, 1.05, 1.05);
+  std::ostringstream out;
+  print_feedrate_sections_tables(f.options, out);
+  const std::string text = out.str();
+  EXPECT_LT(text.find("not shown"), text.find("15 sections"));
+  EXPECT_NE(text.find("feedrate_sections.yaml"), std::string::npos) << text;
+  const Measurements m = measure_feedrate_sections_tables(f.options);
+  EXPECT_EQ(m.at("unseen_path.sections"), 15.0);
+  EXPECT_TRUE(std::isnan(m.at("validation_path.sections")));
+  const auto pass = f.check();
+  EXPECT_TRUE(pass.at("unseen_path.sections_meeting_all"));
+  EXPECT_FALSE(pass.at("validation_path.sections"));
+  EXPECT_FALSE(pass.at("validation_path.sections_meeting_all"));
+  EXPECT_FALSE(pass.at("predictor.lowest_slowed_rms"));
+}
+
 TEST(FeedrateSectionsTables, NothingRunIsMissingResultsNamingTheCommand) {
   SectionsFixture f;
   try {

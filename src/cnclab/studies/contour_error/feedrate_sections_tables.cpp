@@ -55,8 +55,10 @@ double sections_min(const std::vector<double>& v) {
 }
 
 // The results present, in kSectionsStudies order; MissingResults (naming
-// the command) when there is none.
-std::vector<SectionsResult> sections_results(const TablesOptions& options) {
+// the command) when there is none. `missing` (if given) receives what is
+// absent, so a table of one path says that the other has not run.
+std::vector<SectionsResult> sections_results(const TablesOptions& options,
+                                             std::string* missing_out = nullptr) {
   std::vector<SectionsResult> out;
   std::string missing;
   for (const SectionsStudy& s : kSectionsStudies) {
@@ -77,6 +79,7 @@ std::vector<SectionsResult> sections_results(const TablesOptions& options) {
     throw MissingResults("the many-section feedrate study has not run (" + missing +
                          "): cnclab reproduce experiments/contour_error/any_path");
   }
+  if (missing_out) *missing_out = missing;
   return out;
 }
 
@@ -286,13 +289,30 @@ void print_predictors(const SectionsResult& r, TableFormat format, std::ostream&
 Measurements measure_feedrate_sections_tables(const TablesOptions& options) {
   const std::vector<SectionsResult> results = sections_results(options);
   Measurements m;
+  // A path that has not run measures NaN (its targets fail, named), and the
+  // predictors are compared by the first path's job (the validation half,
+  // where compare_predictors is declared) or not at all.
+  for (const SectionsStudy& s : kSectionsStudies) {
+    for (const char* q : {".sections", ".sections_meeting_all", ".min_share_within",
+                          ".min_ratio_uniform_constrained", ".min_oracle_gain_share"}) {
+      m[std::string(s.key) + q] = NAN;
+    }
+  }
+  m["predictor.lowest_slowed_rms"] = NAN;
   for (const auto& r : results) measure_study(r, m);
-  measure_predictors(results.front(), m);
+  if (results.front().study == &kSectionsStudies[0]) measure_predictors(results.front(), m);
   return m;
 }
 
 void print_feedrate_sections_tables(const TablesOptions& options, std::ostream& out) {
-  const std::vector<SectionsResult> results = sections_results(options);
+  std::string missing;
+  const std::vector<SectionsResult> results = sections_results(options, &missing);
+  if (!missing.empty()) {
+    // Half the study is not the study: say so before any number.
+    print_table_notes(out, options.format,
+                      {"not shown, not run with the configs as declared: " + missing +
+                       " (cnclab reproduce experiments/contour_error/any_path)"});
+  }
   Measurements m;
   for (const auto& r : results) measure_study(r, m);
   std::vector<fs::path> sources;
@@ -308,8 +328,12 @@ void print_feedrate_sections_tables(const TablesOptions& options, std::ostream& 
             (r.job.sections.span == SectionSpan::validation
                  ? "the arc lengths of the dataset path's validation half"
                  : "the whole path") +
-            (r.job.path.seed ? "; path drawn from seed " + std::to_string(*r.job.path.seed)
-                             : std::string("")) +
+            ", declared before the run" +
+            (r.job.path.seed
+                 ? "; path drawn from seed " + std::to_string(*r.job.path.seed) + " (the test)"
+                 : std::string("; the path whose held-out plans calibrated the "
+                               "margins and chose the inputs (validation, not a "
+                               "test)")) +
             "; margin " +
             (r.job.calibrate_margin ? std::string("calibrated per feed band (below)")
                                     : shortest_double(r.job.prediction_margin) + " µm") +
@@ -319,7 +343,10 @@ void print_feedrate_sections_tables(const TablesOptions& options, std::ostream& 
     print_sections(r, options.format, out);
     sources.push_back(r.result.file);
   }
-  print_predictors(results.front(), options.format, out);
+  // The comparison is the validation-half job's (compare_predictors).
+  if (results.front().study == &kSectionsStudies[0]) {
+    print_predictors(results.front(), options.format, out);
+  }
   print_table_sources(out, options.format, sources);
 }
 
