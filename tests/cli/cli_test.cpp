@@ -495,6 +495,25 @@ TEST_F(Cli, ReproduceRunsAFolderAndPrintsMetrics) {
   EXPECT_NE(r.out.find("r2"), std::string::npos) << r.out;
 }
 
+// A folder holding OPT_IN.md (an opt-in set, too long for README command
+// 1) is skipped by `reproduce` of a folder above it and run when named.
+TEST_F(Cli, ReproduceSkipsAnOptInSetUnlessNamed) {
+  fs::create_directories(dir_ / "exps/long");
+  const std::string tiny =
+      "include: " + kExperiment + "\ntrainer: {epochs: 1}\ndataset: {options: {samples: 100}}\n";
+  write("exps/e.yaml", tiny + "name: everyday\n");
+  write("exps/long/l.yaml", tiny + "name: long_study\n");
+  write("exps/long/OPT_IN.md", "run with: cnclab reproduce exps/long\n");
+  const Result all = cnclab("reproduce exps --quiet");
+  ASSERT_EQ(all.code, 0) << all.err << all.out;
+  EXPECT_NE(all.out.find("everyday"), std::string::npos) << all.out;
+  EXPECT_EQ(all.out.find("long_study"), std::string::npos) << all.out;
+  const Result named = cnclab("reproduce exps/long --quiet");
+  ASSERT_EQ(named.code, 0) << named.err << named.out;
+  EXPECT_NE(named.out.find("long_study"), std::string::npos) << named.out;
+  EXPECT_EQ(named.out.find("everyday"), std::string::npos) << named.out;
+}
+
 // `reproduce --quick`: each file's `profiles: {quick: ...}` applies, also to
 // the upstream an init_from names, and results go to results/quick.
 TEST_F(Cli, QuickProfileAppliesThroughTheGraphIntoItsOwnFolder) {

@@ -160,6 +160,40 @@ TEST(NarxCli, FeedrateJobAloneTrainsItsPredictorAndNamesWhatItCannotPlan) {
   EXPECT_NE(low.out.find("eps" + std::to_string(above) + "um: constrained "), std::string::npos)
       << low.out;
 
+  // calibrate_margin: the first job calibrates on the predictor's
+  // validation plans and stores the margins beside the predictor's result;
+  // the next job plans with what is stored there (here rewritten with h5py
+  // to 1.25 um in every band, which no calibration gives).
+  const std::string calibrated =
+      kCnclab + " run " + feedrate + " calibrate_margin=true prediction_margin=0 'tolerances=[" +
+      std::to_string(above) + "]' --profile quick --out results --data-dir data";
+  const Result first = sh(dir.path(), calibrated);
+  ASSERT_EQ(first.code, 0) << first.err << first.out;
+  EXPECT_NE(first.out.find("has no stored margins yet; calibrating on its validation plans"),
+            std::string::npos)
+      << first.out;
+  const std::string stored_at = "margins stored with the predictor: ";
+  const std::size_t named = first.out.find(stored_at);
+  ASSERT_NE(named, std::string::npos) << first.out;
+  const std::string file = first.out.substr(
+      named + stored_at.size(), first.out.find(" (written)", named) - named - stored_at.size());
+  ASSERT_TRUE(fs::exists(dir.path() / file)) << file;
+  const Result edit = sh(dir.path(),
+                         "/usr/bin/python3 -c \"import h5py, numpy\n"
+                         "with h5py.File('" +
+                             file +
+                             "', 'r+') as f:\n"
+                             "    f['margins'][...] = numpy.full(f['margins'].shape, "
+                             "0.00125)\"");
+  ASSERT_EQ(edit.code, 0) << edit.err;
+  const Result second = sh(dir.path(), calibrated);
+  ASSERT_EQ(second.code, 0) << second.err << second.out;
+  EXPECT_NE(second.out.find(stored_at + file + "\n"), std::string::npos) << second.out;
+  EXPECT_EQ(second.out.find("calibrating"), std::string::npos) << second.out;
+  EXPECT_NE(second.out.find("held-out ticks): 1.25 um 1.25 um 1.25 um 1.25 um 1.25 um;"),
+            std::string::npos)
+      << second.out;
+
   std::ofstream(dir.path() / "other.yaml")
       << "kind: feedrate_optimisation\nname: other\npredictor: " CNCLAB_SOURCE_DIR
          "/experiments/friedman/friedman1_mlp.yaml\n";

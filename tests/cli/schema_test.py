@@ -137,7 +137,8 @@ for path in sorted((SOURCE / "experiments").rglob("*.yaml")):
         checked += 1
     if kind == "train" and train_example is None:
         example = resolved(rel, "")
-        if example is not None and example["model"]["type"] == "mlp":
+        # A job may include another (kind comes from the included file).
+        if example is not None and example.get("model", {}).get("type") == "mlp":
             train_example = example
 
 assert checked > 150, f"only {checked} documents checked"

@@ -143,7 +143,10 @@ TEST(FieldIdentity, FollowingErrorGeneratorOptions) {
       "dataset.options.", following_error_fields().info(),
       // weight_min 1.5 would exceed weight_max 1; velocity 450 would outrun the
       // planner's window overlap (stopping distance)
-      {{"dataset.options.path.weight_min", "0.5"}, {"dataset.options.limits.velocity", "200"}},
+      {{"dataset.options.path.weight_min", "0.5"},
+       {"dataset.options.limits.velocity", "200"},
+       {"dataset.options.feed_factors", "[1, 0.5]"},
+       {"dataset.options.extra_inputs", "[direction]"}},
       {{"dataset.options.machine", "a file name or a map: MachineKeys below"}});
 }
 
@@ -195,7 +198,8 @@ const std::vector<std::string>& identity_test_sequence_metrics() {
 
 TEST(FieldIdentity, EveryNarxKeyChangesTheIdentityAndRoundTrips) {
   identity_test_sequence_metrics();
-  expect_every_key_in_identity(kNarxBase, "model.", narx_model_fields().info());
+  expect_every_key_in_identity(kNarxBase, "model.", narx_model_fields().info(),
+                               {{"model.inputs", "[v, direction]"}});
 }
 
 // "trainer.stages=[{mode: open_loop, type: TYPE, KEY: VALUE}]" (no KEY: "");

@@ -103,10 +103,11 @@ RunRecord narx_record() {
   n.options.input_delays = 2;
   n.options.feedback_delays = 3;
   n.options.first_input_delay = 1;
+  n.options.inputs = 2;  // two channels per network (not the default 1)
   for (const char* axis : {"e_x", "e_y"}) {
     NarxNetworkRecord net;
     net.axis = axis;
-    net.input = std::string("v_") + axis;
+    net.inputs = {std::string("v_") + axis, std::string("direction_") + axis};
     net.target = axis;
     net.parameters = counting(19, 1, axis[2] == 'x' ? 1 : 2);
     net.seconds = axis[2] == 'x' ? 1.5 : 2.5;
@@ -233,6 +234,7 @@ TEST(ResultRoundTrip, NarxRecordReadsBackFieldForField) {
   EXPECT_EQ(n.options.input_delays, m.options.input_delays);
   EXPECT_EQ(n.options.feedback_delays, m.options.feedback_delays);
   EXPECT_EQ(n.options.first_input_delay, m.options.first_input_delay);
+  EXPECT_EQ(n.options.inputs, m.options.inputs);
   EXPECT_EQ(n.predictions, m.predictions);
   EXPECT_EQ(n.targets, m.targets);
   EXPECT_EQ(n.first_step, m.first_step);
@@ -240,7 +242,7 @@ TEST(ResultRoundTrip, NarxRecordReadsBackFieldForField) {
   for (std::size_t k = 0; k < n.networks.size(); ++k) {
     const auto &x = n.networks[k], &y = m.networks[k];
     EXPECT_EQ(x.axis, y.axis);
-    EXPECT_EQ(x.input, y.input);
+    EXPECT_EQ(x.inputs, y.inputs);
     EXPECT_EQ(x.target, y.target);
     EXPECT_EQ(x.parameters, y.parameters);
     EXPECT_EQ(x.seconds, y.seconds);

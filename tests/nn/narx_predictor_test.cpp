@@ -150,6 +150,52 @@ TEST(NarxPredictor, BadInputLeavesStateAndOutputUnchanged) {
   EXPECT_STREQ(to_string(PredictorStatus::non_finite_input), "non-finite input");
 }
 
+// Two input channels (velocity and a second series in its own range):
+// tick by tick equals the batch closed loop on the normalised channels, and
+// a tick with the wrong channel count changes nothing.
+TEST(NarxPredictor, SeveralChannelsEqualTheBatchClosedLoop) {
+  NarxOptions o = options(0, 4, 4, 8, Activation::tanh);
+  o.inputs = 2;
+  const Narx narx(o);
+  Rng rng(3);
+  NarxAxisModel m{
+      o, Eigen::VectorXd(narx.num_parameters()),
+      MinMaxNormaliser(Eigen::Vector2d(-300, -1), Eigen::Vector2d(300, 1)),
+      MinMaxNormaliser(Eigen::VectorXd::Constant(1, -0.4), Eigen::VectorXd::Constant(1, 0.4))};
+  narx.initialise(m.params, rng);
+  m.params *= 0.3;  // a contracting closed loop
+  const Eigen::Index n = 3000;
+  Eigen::MatrixXd v(n, 2);
+  for (Eigen::Index t = 0; t < n; ++t) {
+    v(t, 0) = test_velocity(t, 0.5);
+    v(t, 1) = v(t, 0) > 0 ? 1.0 : -1.0;
+  }
+  const Eigen::MatrixXd vn = m.input.transform(v.transpose()).transpose();
+  const Eigen::VectorXd rest =
+      Eigen::VectorXd::Constant(n, m.output.transform(0, 0.0));  // e = 0 initial states
+  Eigen::MatrixXd vn_rest = vn;
+  for (Eigen::Index c = 0; c < 2; ++c) {
+    vn_rest.col(c).head(narx.first_step()).setConstant(m.input.transform(c, 0.0));
+  }
+  // The predictor from rest sees 0 before t = 0: the batch series with
+  // first_step() rest ticks in front.
+  Eigen::MatrixXd padded(n + narx.first_step(), 2);
+  padded.topRows(narx.first_step()) = vn_rest.topRows(narx.first_step());
+  padded.bottomRows(n) = vn;
+  Eigen::VectorXd e_init = Eigen::VectorXd::Constant(n + narx.first_step(), rest[0]);
+  const Eigen::VectorXd sim = narx.simulate_closed_loop(m.params, padded, e_init);
+  NarxPredictor p(m);
+  double e = 0;
+  for (Eigen::Index t = 0; t < n; ++t) {
+    const double in[2] = {v(t, 0), v(t, 1)};
+    ASSERT_EQ(p.step(std::span<const double>(in, 2), e), PredictorStatus::ok);
+    ASSERT_NEAR(e, m.output.inverse_transform(0, sim[t]), 1e-12) << t;
+  }
+  const double before = e;
+  EXPECT_EQ(p.step(1.0, e), PredictorStatus::wrong_input_count);
+  EXPECT_EQ(e, before);
+}
+
 TEST(NarxPredictor, RejectsInconsistentModels) {
   const NarxOptions o = options(0, 4, 4, 12, Activation::tanh);
   NarxAxisModel m = stable_narx_model(o, 1);
@@ -165,9 +211,9 @@ TEST(NarxPredictor, RejectsInconsistentModels) {
             std::string::npos);
   NarxAxisModel two_features = m;
   two_features.input = MinMaxNormaliser(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1));
-  EXPECT_NE(testing::error_message<Error>([&] {
-              NarxPredictor p(two_features);
-            }).find("input (velocity) normaliser has 2 fitted features"),
+  EXPECT_NE(testing::error_message<Error>([&] { NarxPredictor p(two_features); })
+                .find("input (velocity, other channels) normaliser has 2 fitted features, need "
+                      "exactly 1"),
             std::string::npos);
   NarxAxisModel unfitted = m;
   unfitted.output = MinMaxNormaliser();

@@ -127,6 +127,63 @@ TEST(Narx, DynamicJacobianMatchesFiniteDifferencesOverLongSeries) {
   }
 }
 
+// Two input channels: each channel's delays together, channel by channel,
+// then the fed-back errors; a series with the wrong channel count is an error.
+TEST(Narx, RegressorLayoutOfSeveralChannels) {
+  NarxOptions o = small(0);
+  o.inputs = 2;
+  const Narx narx(o);
+  Eigen::MatrixXd v(8, 2);
+  Eigen::VectorXd e(8);
+  for (int t = 0; t < 8; ++t) {
+    v(t, 0) = 10 + t;
+    v(t, 1) = 20 + t;
+    e[t] = 100 + t;
+  }
+  EXPECT_EQ(narx.num_inputs(), 8);
+  EXPECT_EQ(narx.num_parameters(), 5u * 8 + 5 + 5 + 1);
+  EXPECT_EQ(narx.open_loop_regressors(v, e).col(0),
+            (Eigen::VectorXd(8) << 12, 11, 10, 22, 21, 20, 101, 100).finished());
+  EXPECT_NE(testing::error_message<Error>([&] {
+              narx.open_loop_regressors(v.leftCols(1), e);
+            }).find("1 input channel(s), the network has 2"),
+            std::string::npos);
+}
+
+// The closed loop and its RTRL Jacobian with two channels, as for one:
+// the static network fed its own outputs, and central differences.
+TEST(Narx, SeveralChannelsClosedLoopAndDynamicJacobian) {
+  NarxOptions o = small(1);
+  o.inputs = 2;
+  const Narx narx(o);
+  Rng rng(8);
+  Eigen::VectorXd w(narx.num_parameters());
+  narx.initialise(w, rng);
+  w *= 2.0;
+  Eigen::MatrixXd v(90, 2);
+  v.col(0) = smooth_input(90, 0.3);
+  v.col(1) = smooth_input(90, 2.1).array().sign().matrix();  // a direction-like channel
+  Eigen::VectorXd e0 = Eigen::VectorXd::Zero(90);
+  e0.head(3) << 0.2, -0.1, 0.05;
+  Eigen::MatrixXd jac;
+  const Eigen::VectorXd sim = narx.simulate_closed_loop(w, v, e0, &jac);
+  Eigen::VectorXd series = e0;
+  series.tail(sim.size()) = sim;
+  const Eigen::MatrixXd predicted = narx.mlp().predict(w, narx.open_loop_regressors(v, series));
+  for (Eigen::Index s = 0; s < sim.size(); ++s) ASSERT_NEAR(predicted(0, s), sim[s], 1e-13);
+  const double h = 1e-6;
+  for (Eigen::Index p = 0; p < w.size(); ++p) {
+    Eigen::VectorXd plus = w, minus = w;
+    plus[p] += h;
+    minus[p] -= h;
+    const Eigen::VectorXd fd =
+        (narx.simulate_closed_loop(plus, v, e0) - narx.simulate_closed_loop(minus, v, e0)) /
+        (2 * h);
+    EXPECT_LT((jac.col(p) - fd).cwiseAbs().maxCoeff() / (1.0 + fd.cwiseAbs().maxCoeff()), 1e-7)
+        << "parameter " << p;
+  }
+}
+
 TEST(Narx, RejectsBadOptionsAndSeries) {
   const auto message = [](auto change) {
     NarxOptions o;
@@ -138,13 +195,14 @@ TEST(Narx, RejectsBadOptionsAndSeries) {
   EXPECT_NE(message([](NarxOptions& o) { o.feedback_delays = 0; }).find("feedback_delays = 0"),
             std::string::npos);
   EXPECT_NE(message([](NarxOptions& o) { o.hidden = 0; }).find("hidden = 0"), std::string::npos);
+  EXPECT_NE(message([](NarxOptions& o) { o.inputs = 0; }).find("inputs = 0"), std::string::npos);
   EXPECT_NE(message([](NarxOptions& o) { o.first_input_delay = 2; }).find("first_input_delay = 2"),
             std::string::npos);
   const Narx narx(small(0));
   Eigen::VectorXd v = smooth_input(10, 0), e = Eigen::VectorXd::Zero(9);
   EXPECT_NE(testing::error_message<Error>([&] {
               narx.open_loop_regressors(v, e);
-            }).find("velocity has 10 samples, error 9"),
+            }).find("input has 10 samples, error 9"),
             std::string::npos);
   e = Eigen::VectorXd::Zero(10);
   e[4] = NAN;

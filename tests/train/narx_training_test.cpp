@@ -111,6 +111,58 @@ TEST(NarxTraining, ClosedLoopWindowsSpanOpenLoopToParallel) {
   EXPECT_THROW(NarxClosedLoopObjective(narx, s.v, s.e, -1), Error);
 }
 
+// A series of independent sequences (starts): each objective equals the
+// concatenation of the objectives of the sequences on their own, residuals
+// and Jacobian, open loop and closed loop with and without windows; nothing
+// reaches across a start.
+TEST(NarxTraining, SequencesAreSeriesOfTheirOwn) {
+  const Narx narx(small_narx());
+  Rng rng(9);
+  const Series a = first_order_system(40, rng), b = first_order_system(35, rng);
+  Series ab{Eigen::VectorXd(75), Eigen::VectorXd(75)};
+  ab.v << a.v, b.v;
+  ab.e << a.e, b.e;
+  Eigen::VectorXd w(narx.num_parameters());
+  narx.initialise(w, rng);
+  const std::vector<Eigen::Index> starts = {40};
+  const auto evaluate = [&](ResidualObjective& o) {
+    Eigen::VectorXd r(o.num_residuals());
+    Eigen::MatrixXd j(o.num_residuals(), w.size());
+    o.evaluate(w, 0, o.num_residuals(), r, &j);
+    return std::make_pair(r, j);
+  };
+  for (const Eigen::Index horizon : {Eigen::Index{0}, Eigen::Index{6}}) {
+    NarxClosedLoopObjective joined(narx, ab.v, ab.e, horizon, starts);
+    NarxClosedLoopObjective first(narx, a.v, a.e, horizon), second(narx, b.v, b.e, horizon);
+    const auto [r, j] = evaluate(joined);
+    const auto [r1, j1] = evaluate(first);
+    const auto [r2, j2] = evaluate(second);
+    ASSERT_EQ(r.size(), r1.size() + r2.size());
+    EXPECT_EQ(r.head(r1.size()), r1);
+    EXPECT_EQ(r.tail(r2.size()), r2);
+    EXPECT_EQ(j.topRows(r1.size()), j1);
+    EXPECT_EQ(j.bottomRows(r2.size()), j2);
+  }
+  NarxOpenLoopObjective joined(narx, ab.v, ab.e, starts);
+  NarxOpenLoopObjective first(narx, a.v, a.e), second(narx, b.v, b.e);
+  const auto [r, j] = evaluate(joined);
+  const auto [r1, j1] = evaluate(first);
+  const auto [r2, j2] = evaluate(second);
+  ASSERT_EQ(r.size(), r1.size() + r2.size());
+  EXPECT_EQ(r.head(r1.size()), r1);
+  EXPECT_EQ(r.tail(r2.size()), r2);
+  EXPECT_EQ(j.bottomRows(r2.size()), j2);
+  // A sequence no longer than the delays, or starts out of order, are errors.
+  EXPECT_NE(testing::error_message<Error>([&] {
+              NarxOpenLoopObjective bad(narx, ab.v, ab.e, {74});
+            }).find("sequence 1 [74, 75) has 1 samples"),
+            std::string::npos);
+  EXPECT_NE(testing::error_message<Error>([&] {
+              NarxClosedLoopObjective bad(narx, ab.v, ab.e, 0, {40, 30});
+            }).find("start 30 is not after 40"),
+            std::string::npos);
+}
+
 // Seed 002's two-stage method on measurements with output noise: the
 // series-parallel stage fits the noisy fed-back errors (equation-error
 // bias), the parallel stage then lowers the closed-loop prediction error on

@@ -1,17 +1,18 @@
 #include "cnclab/data/following_error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/core/resources.hpp"
 #include "cnclab/core/units.hpp"
-#include "cnclab/data/declared_generator.hpp"
-#include "cnclab/data/named_config_file.hpp"
+#include "cnclab/data/following_error_runs.hpp"
+#include "cnclab/motion/axis_direction.hpp"
 #include "cnclab/motion/contour_error.hpp"
 #include "cnclab/motion/interpolator.hpp"
-#include "cnclab/motion/machine_fields.hpp"
 #include "cnclab/motion/smoothing_spline.hpp"
 
 namespace cnclab {
@@ -64,6 +65,35 @@ void FollowingErrorOptions::validate() const {
   if (samples != 0 && samples < 8) {
     throw OptionError("samples", std::to_string(samples), "must be 0 (whole run) or >= 8");
   }
+  for (std::size_t i = 0; i < feed_factors.size(); ++i) {
+    const double f = feed_factors[i];
+    if (!(f > 0.0 && f <= 1.0)) {
+      throw OptionError("feed_factors", shortest_double(f),
+                        "entry " + std::to_string(i) + " must be in (0, 1]");
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (feed_factors[j] == f) {
+        throw OptionError("feed_factors", shortest_double(f), "lists a factor twice");
+      }
+    }
+  }
+  for (std::size_t i = 0; i < extra_inputs.size(); ++i) {
+    AxisFeature f{};
+    if (!parse_axis_feature(extra_inputs[i], f)) {
+      throw OptionError("extra_inputs", extra_inputs[i],
+                        "must be sign, direction or reversal (motion/axis_direction.hpp)");
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (extra_inputs[j] == extra_inputs[i]) {
+        throw OptionError("extra_inputs", extra_inputs[i], "lists an input twice");
+      }
+    }
+  }
+  prefixed("direction.", [&] { direction.validate(); });
+  if (!(plan_length >= 0.0 && std::isfinite(plan_length))) {
+    throw OptionError("plan_length", shortest_double(plan_length),
+                      "must be 0 (the whole path in one plan) or a length > 0 [mm]");
+  }
 }
 
 Eigen::VectorXd normalise_minmax(const Eigen::VectorXd& x, const std::string& what,
@@ -85,78 +115,203 @@ Eigen::VectorXd normalise_minmax(const Eigen::VectorXd& x, const std::string& wh
   return y;
 }
 
+namespace {
+
+// The metadata columns of samples [first, first + count) of `run`, from
+// column `col` of d.metadata on (the first kMetadata.size() rows).
+void following_error_metadata(const NurbsPlanarPath& path, const FollowingErrorRun& run,
+                              Eigen::Index first, Eigen::Index count, double validation, Dataset& d,
+                              Eigen::Index col, const ProgressCallback& progress, std::size_t& done,
+                              std::size_t total) {
+  const ReferenceTrajectory& ref = run.ref;
+  for (Eigen::Index k = first; k < first + count; ++k, ++col) {
+    const auto i = static_cast<std::size_t>(k);
+    const PathPoint p = path.evaluate(ref.u[i]);
+    const Vec2 r = ref.position.row(k).transpose();
+    const Vec2 actual = r - run.e.row(k).transpose();
+    const double exact = project_to_path(path, actual, ref.u[i]).distance;
+    d.metadata.col(col).head(static_cast<Eigen::Index>(kMetadata.size())) << ref.time[i], ref.u[i],
+        r.x(), r.y(), actual.x(), actual.y(), ref.velocity(k, 0), ref.velocity(k, 1),
+        run.e(k, 0) * kUmPerMm, run.e(k, 1) * kUmPerMm, p.d1.x(), p.d1.y(), p.d2.x(), p.d2.y(),
+        exact * kUmPerMm, std::abs(taylor_contour_error(p, actual)) * kUmPerMm,
+        tangent_line_contour_error(p, actual) * kUmPerMm,
+        osculating_circle_contour_error(p, actual) * kUmPerMm, validation;
+    ++done;
+    if (progress && (done % 1000 == 0 || done == total)) progress("contour errors", done, total);
+  }
+}
+
+}  // namespace
+
 Dataset generate_following_error_dataset(const FollowingErrorOptions& o, Rng& rng,
                                          const ProgressCallback& progress) {
   o.validate();
-  // 1. Path, feedrate, 1 ms references.
+  // 1. Path, feedrate, 1 ms references: the plan, or its runs at the feed
+  // factors, each for about the same part of the path as `samples` ticks of
+  // the plan, an even count so that its time midpoint splits it in halves.
   const NurbsPlanarPath path(random_planar_nurbs(o.path, rng));
   const std::uint64_t run_seed = rng.next_u64();
-  const FeedrateProfile profile = plan_feedrate(path, o.planner, progress);
-  const ReferenceTrajectory ref = interpolate(path, profile, o.machine.timing.controller_period);
-  const Eigen::Index total = ref.samples();
-  if (o.samples != 0 && static_cast<std::size_t>(total) < o.samples) {
-    std::ostringstream m;
-    m << "following_error: the planned run has " << total << " samples (" << profile.total_time()
-      << " s) < samples = " << o.samples << "; raise path.control_points (now "
-      << o.path.control_points << ") or lower samples";
-    throw Error(m.str());
-  }
-  const Eigen::Index n = o.samples == 0 ? total : static_cast<Eigen::Index>(o.samples);
-  check_memory(static_cast<double>(n) * (kMetadata.size() + 4 + 2 * o.runs) * 8.0,
-               "following_error dataset");
-
-  // 2. `runs` repetitions, each with its own noise streams; mean of the runs.
-  Eigen::MatrixX2d mean_error = Eigen::MatrixX2d::Zero(total, 2);
-  for (std::size_t k = 0; k < o.runs; ++k) {
-    const MachineResponse r =
-        simulate_machine(o.machine, ref, derive_seed(run_seed, "run/" + std::to_string(k)));
-    mean_error += r.following_error;
-    if (progress) progress("simulate runs", k + 1, o.runs);
-  }
-  mean_error /= static_cast<double>(o.runs);
-
-  // 3. csaps smoothing on the sample index (see smoothing_spline.hpp), of the
-  // kept samples.
-  Eigen::VectorXd index(n);
-  for (Eigen::Index i = 0; i < n; ++i) index[i] = static_cast<double>(i);
-  Eigen::MatrixX2d e(n, 2);  // [mm]
-  for (int a = 0; a < 2; ++a) {
-    const Eigen::VectorXd raw = mean_error.col(a).head(n);
-    e.col(a) = SmoothingSpline::fit(index, raw, o.smoothing).values();
-  }
-
-  // 4. Columns, contour errors and the normalisation.
-  Dataset d;
-  d.inputs.resize(2, n);
-  d.targets.resize(2, n);
-  d.metadata.resize(static_cast<Eigen::Index>(kMetadata.size()), n);
-  for (int a = 0; a < 2; ++a) {
-    const Eigen::VectorXd v = ref.velocity.col(a).head(n);
-    const Eigen::VectorXd err_um = e.col(a) * kUmPerMm;
-    d.inputs.row(a) = normalise_minmax(v, std::string("v_ref_") + kAxis[a]).transpose();
-    d.targets.row(a) = normalise_minmax(err_um, std::string("e_ref_") + kAxis[a]).transpose();
-  }
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const PathPoint p = path.evaluate(ref.u[static_cast<std::size_t>(k)]);
-    const Vec2 r = ref.position.row(k).transpose();
-    const Vec2 actual = r - e.row(k).transpose();
-    const double exact = project_to_path(path, actual, ref.u[static_cast<std::size_t>(k)]).distance;
-    d.metadata.col(k) << ref.time[static_cast<std::size_t>(k)], ref.u[static_cast<std::size_t>(k)],
-        r.x(), r.y(), actual.x(), actual.y(), ref.velocity(k, 0), ref.velocity(k, 1),
-        e(k, 0) * kUmPerMm, e(k, 1) * kUmPerMm, p.d1.x(), p.d1.y(), p.d2.x(), p.d2.y(),
-        exact * kUmPerMm, std::abs(taylor_contour_error(p, actual)) * kUmPerMm,
-        tangent_line_contour_error(p, actual) * kUmPerMm,
-        osculating_circle_contour_error(p, actual) * kUmPerMm, k >= n / 2 ? 1.0 : 0.0;
-    if (progress && ((k + 1) % 1000 == 0 || k + 1 == n)) {
-      progress("contour errors", static_cast<std::size_t>(k + 1), static_cast<std::size_t>(n));
+  const FollowingErrorPlan plan = plan_following_error(o, path, progress);
+  const bool feeds = !o.feed_factors.empty();
+  const double period = o.machine.timing.controller_period;
+  std::vector<FollowingErrorRun> runs;
+  if (feeds) {
+    for (const double f : o.feed_factors) {
+      Eigen::Index keep = 0;
+      if (o.samples != 0) {
+        keep = static_cast<Eigen::Index>(std::llround(static_cast<double>(o.samples) / f));
+      } else {
+        keep = following_error_run(plan, f, 0, period).samples();
+      }
+      runs.push_back(following_error_run(plan, f, keep - keep % 2, period));
     }
+  } else {
+    runs.push_back(following_error_run(plan, 1.0, 0, period));
+    const Eigen::Index total = runs[0].samples();
+    if (o.samples != 0 && static_cast<std::size_t>(total) < o.samples) {
+      std::ostringstream m;
+      m << "following_error: the planned run has " << total << " samples ("
+        << runs[0].ref.time.back() << " s) < samples = " << o.samples
+        << "; raise path.control_points (now " << o.path.control_points << ") or lower samples";
+      throw Error(m.str());
+    }
+    if (o.samples != 0) {
+      runs[0] = following_error_run(plan, 1.0, static_cast<Eigen::Index>(o.samples), period);
+    }
+  }
+  Eigen::Index n = 0;
+  for (const auto& run : runs) n += run.samples();
+  const std::size_t extra = o.extra_inputs.size();
+  const std::size_t columns = kMetadata.size() + (feeds ? 3 : 0);
+  check_memory(
+      static_cast<double>(n) * static_cast<double>(columns + 4 + 2 * extra + 2 * o.runs) * 8.0,
+      "following_error dataset");
+
+  // 2-3. `runs` repetitions of each run, each with its own noise streams;
+  // their mean, smoothed. The plan itself (factor 1) draws the streams
+  // run/<k> in both layouts.
+  for (auto& run : runs) {
+    const std::string streams =
+        run.factor == 1.0 ? "" : "feed/" + shortest_double(run.factor) + "/";
+    simulate_following_error(o, run, run_seed, streams, progress);
+  }
+
+  // 4. Columns, contour errors and the normalisation. Without feed factors
+  // the one run in time order, its second half validating; with them the
+  // first halves of every run in factor order, then their second halves.
+  struct Chunk {
+    std::size_t run;
+    Eigen::Index first, count;
+    double validation;
+  };
+  std::vector<Chunk> chunks;
+  if (!feeds) {
+    chunks.push_back({0, 0, n / 2, 0.0});
+    chunks.push_back({0, n / 2, n - n / 2, 1.0});
+  } else {
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      chunks.push_back({i, 0, runs[i].samples() / 2, 0.0});
+    }
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      chunks.push_back({i, runs[i].samples() / 2, runs[i].samples() / 2, 1.0});
+    }
+  }
+  Dataset d;
+  const auto channels = static_cast<Eigen::Index>(2 + 2 * extra);
+  d.inputs.resize(channels, n);
+  d.targets.resize(2, n);
+  d.metadata.resize(static_cast<Eigen::Index>(columns), n);
+  Eigen::MatrixX2d v(n, 2), e_um(n, 2);
+  std::vector<AxisFeature> wanted;
+  for (const auto& name : o.extra_inputs) {
+    AxisFeature f{};
+    parse_axis_feature(name, f);  // validate() checked the names
+    wanted.push_back(f);
+  }
+  AxisDirectionOptions direction = o.direction;
+  direction.period = period;
+  // Per run, the features of every piece from rest (a cold start, as the
+  // predictor starts a planned section): [run][axis][feature][sample].
+  std::vector<std::vector<std::vector<std::vector<double>>>> features(runs.size());
+  for (std::size_t i = 0; i < runs.size() && extra > 0; ++i) {
+    const FollowingErrorRun& run = runs[i];
+    features[i].resize(2);
+    for (int a = 0; a < 2; ++a) {
+      auto& out = features[i][static_cast<std::size_t>(a)];
+      out.assign(extra, {});
+      for (std::size_t p = 0; p < run.piece_starts.size(); ++p) {
+        const Eigen::Index first = run.piece_starts[p];
+        const Eigen::Index end =
+            p + 1 < run.piece_starts.size() ? run.piece_starts[p + 1] : run.samples();
+        const Eigen::VectorXd va = run.ref.velocity.col(a).segment(first, end - first);
+        const auto series =
+            axis_direction_series(std::vector<double>(va.begin(), va.end()), wanted, direction);
+        for (std::size_t f = 0; f < extra; ++f) {
+          out[f].insert(out[f].end(), series[f].begin(), series[f].end());
+        }
+      }
+    }
+  }
+  // Identifiers: a piece per run and piece (a cold start), a sequence per
+  // chunk and piece in it (an independent series for the NARX training).
+  std::vector<double> piece_id_base(runs.size(), 0.0);
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    piece_id_base[i] = piece_id_base[i - 1] + static_cast<double>(runs[i - 1].piece_starts.size());
+  }
+  Eigen::Index col = 0;
+  std::size_t done = 0;
+  double sequence = -1.0;
+  for (const Chunk& chunk : chunks) {
+    const FollowingErrorRun& run = runs[chunk.run];
+    v.middleRows(col, chunk.count) = run.ref.velocity.middleRows(chunk.first, chunk.count);
+    e_um.middleRows(col, chunk.count) = run.e.middleRows(chunk.first, chunk.count) * kUmPerMm;
+    for (int a = 0; a < 2 && extra > 0; ++a) {
+      for (std::size_t f = 0; f < extra; ++f) {
+        const auto& series = features[chunk.run][static_cast<std::size_t>(a)][f];
+        for (Eigen::Index k = 0; k < chunk.count; ++k) {
+          d.inputs(static_cast<Eigen::Index>(2 + 2 * f) + a, col + k) =
+              series[static_cast<std::size_t>(chunk.first + k)];
+        }
+      }
+    }
+    following_error_metadata(path, run, chunk.first, chunk.count, chunk.validation, d, col,
+                             progress, done, static_cast<std::size_t>(n));
+    if (feeds) {
+      const auto row = static_cast<Eigen::Index>(kMetadata.size());
+      for (Eigen::Index k = chunk.first; k < chunk.first + chunk.count; ++k, ++col) {
+        const auto piece = static_cast<std::size_t>(
+            std::upper_bound(run.piece_starts.begin(), run.piece_starts.end(), k) -
+            run.piece_starts.begin() - 1);
+        if (k == chunk.first || k == run.piece_starts[piece]) sequence += 1.0;
+        d.metadata(row, col) = run.factor;
+        d.metadata(row + 1, col) = sequence;
+        d.metadata(row + 2, col) = piece_id_base[chunk.run] + static_cast<double>(piece);
+      }
+    } else {
+      col += chunk.count;
+    }
+  }
+  for (int a = 0; a < 2; ++a) {
+    d.inputs.row(a) = normalise_minmax(v.col(a), std::string("v_ref_") + kAxis[a]).transpose();
+    d.targets.row(a) = normalise_minmax(e_um.col(a), std::string("e_ref_") + kAxis[a]).transpose();
   }
   d.input_names = {"v_x", "v_y"};
   d.input_units = {"1", "1"};
+  for (std::size_t f = 0; f < extra; ++f) {
+    for (int a = 0; a < 2; ++a) {
+      // Already in [-1, 1] (axis_direction.hpp): stored as they are.
+      d.input_names.push_back(o.extra_inputs[f] + "_" + kAxis[a]);
+      d.input_units.push_back("1");
+    }
+  }
   d.target_names = {"e_x", "e_y"};
   d.target_units = {"1", "1"};
   d.metadata_names = kMetadata;
   d.metadata_units = kMetadataUnits;
+  if (feeds) {
+    d.metadata_names.insert(d.metadata_names.end(), {"feed_factor", "sequence", "piece"});
+    d.metadata_units.insert(d.metadata_units.end(), {"1", "1", "1"});
+  }
   d.generator = "following_error";
   d.validate();
   return d;
@@ -185,102 +340,18 @@ FollowingErrorGenerator::FollowingErrorGenerator(FollowingErrorOptions options)
   options_.validate();
 }
 
-namespace {
-
-MachineOptions read_machine_option(const ConfigReader& r) {
-  // Absent: the struct defaults, which are configs/machines/biaxial_router.yaml's.
-  if (!r.has("machine")) return MachineOptions{};
-  const YAML::Node node = r.raw("machine");
-  if (node.IsMap()) return read_machine(r.section("machine"));
-  const std::filesystem::path file = named_config_file(r, "machine");
-  try {
-    return load_machine(file);
-  } catch (const ConfigError& e) {
-    r.fail("machine", e.what());
+DatasetShape FollowingErrorGenerator::shape() const {
+  const std::size_t inputs = 2 + 2 * options_.extra_inputs.size();
+  if (options_.feed_factors.empty() || options_.samples == 0) {
+    return {options_.samples, inputs, 2};  // 0: known only after planning
   }
-}
-
-}  // namespace
-
-const FieldList<FollowingErrorOptions>& following_error_fields() {
-  using O = FollowingErrorOptions;
-  using P = RandomNurbsPathOptions;
-  using L = AxisLimits;
-  using F = FeedratePlannerOptions;
-  static const auto path =
-      FieldList<P>()
-          .field("degree", &P::degree,
-                 "curve degree p (4: C''' continuous, so the jerk limit holds between nodes)",
-                 Rule::in(1, true, 15, true))
-          .field("control_points", &P::control_points, "control points, >= degree + 1",
-                 Rule::at_least(2))
-          .field("x_min", &P::x_min, "work area [mm]", Rule::finite_number())
-          .field("x_max", &P::x_max, "work area [mm], > x_min", Rule::finite_number())
-          .field("y_min", &P::y_min, "work area [mm]", Rule::finite_number())
-          .field("y_max", &P::y_max, "work area [mm], > y_min", Rule::finite_number())
-          .field("step_min", &P::step_min, "random-walk step between control points [mm]",
-                 Rule::positive())
-          .field("step_max", &P::step_max,
-                 "[mm], >= step_min and <= half the smaller side of the area", Rule::positive())
-          .field("max_turn", &P::max_turn, "largest heading change per step [deg]",
-                 Rule::in(0, true, 180, true))
-          .field("weight_min", &P::weight_min, "NURBS weights uniform in [min, max]",
-                 Rule::positive())
-          .field("weight_max", &P::weight_max, ">= weight_min; both 1: a B-spline",
-                 Rule::positive())
-          .field("min_curvature_radius", &P::min_curvature_radius,
-                 "smallest radius of curvature on the curve [mm] (seed 002 Eq. 5); 0: no check",
-                 Rule::non_negative());
-  static const auto limits =
-      FieldList<L>()
-          .field("velocity", &L::velocity, "max |axis velocity| [mm/s] (seed 002: 300)",
-                 Rule::positive())
-          .field("acceleration", &L::acceleration,
-                 "max |axis acceleration| [mm/s²] (seed 002: 2000)", Rule::positive())
-          .field("jerk", &L::jerk, "max |axis jerk| [mm/s³] (seed 002: 50000)", Rule::positive());
-  static const auto planner = FieldList<F>().field(
-      "grid_spacing", &F::grid_spacing, "planning grid along the path [mm]", Rule::positive());
-  static const auto fields = [] {
-    FieldInfo limits_info =
-        custom_info("limits", "per-axis limits, the same for x and y", FieldKind::section);
-    limits_info.children = limits.info();
-    // A file name or a map: FieldKind::any with the map's declarations.
-    FieldInfo machine_info = custom_info(
-        "machine",
-        "the simulated machine: a configs/machines/*.yaml path or a map (motion/machine.hpp); "
-        "absent: biaxial_router's values");
-    machine_info.children = machine_fields().info();
-    return FieldList<O>()
-        .section("path", &O::path, path, "the random NURBS tool path")
-        .custom(
-            limits_info,
-            [](const ConfigReader& r, O& o) {
-              L l = o.planner.limits.axes[0];
-              limits.read(r.section("limits"), l);
-              r.section("limits").validate([&] { l.validate(); });
-              o.planner.limits.axes = {l, l};
-            },
-            [](const O& o) { return limits.to_node(o.planner.limits.axes[0]); })
-        .flatten(&O::planner, planner)
-        .custom(
-            machine_info, [](const ConfigReader& r, O& o) { o.machine = read_machine_option(r); },
-            [](const O& o) { return machine_fields().to_node(o.machine); })
-        .field("runs", &O::runs, "simulated runs averaged (seed 002: 10)",
-               Rule::in(1, true, 1000, true))
-        .field("smoothing", &O::smoothing, "csaps p on the sample index (seed 002: 0.05)",
-               Rule::in(0, true, 1, true))
-        .field("samples", &O::samples,
-               "samples kept from the start (seed 002: over 170000); 0: the whole run");
-  }();
-  return fields;
-}
-
-std::string FollowingErrorGenerator::options_yaml() const {
-  return following_error_fields().yaml(options_);
-}
-
-std::shared_ptr<const DatasetGenerator> read_following_error(const ConfigReader& r) {
-  return read_declared_generator<FollowingErrorGenerator>(r, following_error_fields());
+  std::size_t n = 0;
+  for (const double f : options_.feed_factors) {
+    const auto run =
+        static_cast<std::size_t>(std::llround(static_cast<double>(options_.samples) / f));
+    n += run - run % 2;
+  }
+  return {n, inputs, 2};
 }
 
 }  // namespace cnclab

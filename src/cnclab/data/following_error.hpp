@@ -21,19 +21,38 @@
 //     contour_exact, contour_taylor, contour_tangent, contour_osculating [µm]
 //     (motion/contour_error.hpp; Taylor as |eps_c|), validation (0 first
 //     half, 1 second half).
-// The normalisation ranges are stored with the data they were fitted on:
-// they are exactly [min, max] of the physical columns v_ref_* and e_ref_*,
+//
+// Planning data (docs/motion.md, "A predictor for planning"): with
+// `feed_factors` the generator also runs time-scaled copies of the plan
+// (u(f t): every axis velocity x f, acceleration x f^2, jerk x f^3), each
+// for the same part of the path, and splits each at its time midpoint (the
+// same path point for every factor): the dataset holds the first halves of
+// every run in factor order, then their second halves, so the first N / 2
+// samples train and the rest validate as in seed 002's split. Three more
+// metadata columns then: feed_factor (f), sequence (a new id at every half
+// and every piece: independent series, experiment/narx_runner.cpp starts
+// each from its measured states) and piece (a new id at every cold start). `extra_inputs` adds
+// direction features of the commanded velocities as inputs (motion/axis_direction.hpp; in [-1, 1],
+// not normalised). `plan_length` plans the path in consecutive pieces from
+// rest to rest instead of in one, each simulated from the machine's initial
+// state with its features from rest (cold starts: the sections the feedrate
+// job plans, checks and predicts, following_error_runs.hpp). Single unsmoothed runs: runs 1,
+// smoothing 1 (the interpolating spline: the run itself). With the new options off the dataset and
+// its identity are seed 002's as before. The normalisation ranges are stored with the data they
+// were fitted on: they are exactly [min, max] of the physical columns v_ref_* and e_ref_*,
 // recovered by following_error_ranges() (no separate copy to disagree).
 #include <array>
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cnclab/core/config.hpp"
 #include "cnclab/core/fields.hpp"
 #include "cnclab/data/dataset.hpp"
 #include "cnclab/data/generator.hpp"
 #include "cnclab/data/nurbs_path.hpp"
+#include "cnclab/motion/axis_direction.hpp"
 #include "cnclab/motion/feedrate_planner.hpp"
 #include "cnclab/motion/machine.hpp"
 
@@ -54,6 +73,15 @@ struct FollowingErrorOptions {
   // Samples kept from the start of the run (seed 002: "over 170000"); the
   // run must be at least this long. 0 = the whole run. >= 8 otherwise.
   std::size_t samples = 172'000;
+  // Feed factors in (0, 1], each once; empty: seed 002's single run (above).
+  std::vector<double> feed_factors;
+  // Direction features as extra inputs: "sign", "direction", "reversal".
+  std::vector<std::string> extra_inputs;
+  AxisDirectionOptions direction;  // its period is the machine's controller period
+  // The plan in consecutive pieces of about this arc length [mm], each from
+  // rest to rest (the machine stops at every joint, as a feedrate plan of a
+  // section does); 0: the whole path in one plan (seed 002).
+  double plan_length = 0.0;
 
   void validate() const;  // OptionError naming the field
 };
@@ -99,6 +127,10 @@ std::size_t first_validation_sample(const Dataset& dataset);
 //   runs: 10
 //   smoothing: 0.05
 //   samples: 172000
+//   feed_factors: [1, 0.7, 0.5]                # optional: planning data (above)
+//   extra_inputs: [direction, reversal]        # optional
+//   direction: {deadband: 0.001, reversal_time_constant: 0.02}
+//   plan_length: 150                           # optional: pieces from rest [mm]
 class FollowingErrorGenerator : public DatasetGenerator {
  public:
   explicit FollowingErrorGenerator(FollowingErrorOptions options);  // validates
@@ -107,7 +139,7 @@ class FollowingErrorGenerator : public DatasetGenerator {
   // datasets cached by version 1 are regenerated. 3: the Taylor estimate's
   // denominator sign (motion/contour_error.hpp) changes contour_taylor.
   int version() const override { return 3; }
-  DatasetShape shape() const override { return {options_.samples, 2, 2}; }
+  DatasetShape shape() const override;
   std::string options_yaml() const override;
   Dataset generate(Rng& rng, const ProgressCallback& progress) const override {
     return generate_following_error_dataset(options_, rng, progress);
@@ -122,7 +154,7 @@ class FollowingErrorGenerator : public DatasetGenerator {
 };
 
 // dataset.options of `following_error`: {path, limits, grid_spacing, machine, runs,
-// smoothing, samples}.
+// smoothing, samples, feed_factors, extra_inputs, direction}.
 const FieldList<FollowingErrorOptions>& following_error_fields();
 
 std::shared_ptr<const DatasetGenerator> read_following_error(const ConfigReader& options);

@@ -1,6 +1,7 @@
 #include "cnclab/deploy/deployed_model.hpp"
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
 #include "cnclab/deploy/sequence_extension.hpp"
 #include "cnclab/deploy/training_dataset.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -126,6 +127,15 @@ DeployedModel deployed_model(const RunRecord& r, const std::string& file) {
   m.kind = ModelKind::narx;
   m.narx = r.narx->options;
   const Narx narx(m.narx);
+  for (const auto& net : r.narx->networks) {
+    // Seed 002's networks: one input channel each (model.inputs absent).
+    if (net.inputs.size() != 1) {
+      throw ConfigError(file + ": network " + net.axis + " has " +
+                        std::to_string(net.inputs.size()) + " input channels (" +
+                        join(net.inputs, ", ") +
+                        "); predict and export take one input channel per narx network");
+    }
+  }
   if (r.narx->networks.size() != m.target_names.size() ||
       m.input_names.size() != m.target_names.size()) {
     throw ConfigError(file + ": " + std::to_string(r.narx->networks.size()) +
@@ -133,7 +143,7 @@ DeployedModel deployed_model(const RunRecord& r, const std::string& file) {
   }
   for (const auto& net : r.narx->networks) {
     check_parameters(net.parameters, narx.num_parameters(), "network " + net.axis, file);
-    m.networks.push_back({net.axis, net.input, net.target, net.parameters});
+    m.networks.push_back({net.axis, net.inputs.front(), net.target, net.parameters});
   }
   m.extension = find_sequence_extension(m.generator);
   return m;

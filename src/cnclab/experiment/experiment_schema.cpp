@@ -1,5 +1,7 @@
 #include "cnclab/experiment/experiment_schema.hpp"
 
+#include <stdexcept>
+
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/field_schema.hpp"
 #include "cnclab/data/generator_registry.hpp"
@@ -100,10 +102,32 @@ void add_model_rules(json& s) {
   s["properties"]["metrics"]["items"]["enum"] = all;
 }
 
+// model: {type, ...}; without a type each key is checked against every
+// type's (a file whose include sets the type, e.g. a narx variant giving
+// model.inputs only), and a file without include: reads a missing type as
+// mlp (train_file_schema adds that rule).
 json model_schema(const std::string& doc) {
   std::vector<TaggedVariant> variants;
   for (const auto& m : model_types()) variants.push_back({m.type, object_schema(m.fields())});
-  return tagged_schema("type", "mlp", variants, doc);
+  json s = tagged_schema("type", "", variants, doc);
+  s.erase("required");
+  s["properties"]["type"]["default"] = "mlp";
+  return s;
+}
+
+// The default model type of a file without include: (the reader's default).
+json default_model_rule() {
+  for (const auto& m : model_types()) {
+    if (m.type != "mlp") continue;
+    json model;
+    model["if"] = {{"not", {{"required", {"type"}}}}};
+    model["then"] = object_schema(m.fields());
+    json rule;
+    rule["if"] = {{"not", {{"required", {"include"}}}}};
+    rule["then"]["properties"]["model"] = model;
+    return rule;
+  }
+  throw std::logic_error("model_types() lists no mlp");
 }
 
 // dataset: the generator picks the schema of `options`.
@@ -180,6 +204,7 @@ json train_file_schema(const std::vector<FieldInfo>& sweep_block,
   }
   // The reader requires what the experiment is about (no silent defaults).
   for (const char* key : {"dataset", "model", "trainer"}) s["required"].push_back(key);
+  s["allOf"].push_back(default_model_rule());
   add_model_rules(s);
   add_loader_keys(s);
   return s;

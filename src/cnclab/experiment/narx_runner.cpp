@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
 #include "cnclab/core/progress.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset_cache.hpp"
@@ -34,15 +35,8 @@ std::string axis_of(const std::string& target) {
   return cut == std::string::npos ? target : target.substr(cut + 1);
 }
 
-// The dataset rows of the targets (dataset.targets, default all); target k
-// is predicted from input k.
+// The dataset rows of the targets (dataset.targets, default all).
 std::vector<Eigen::Index> target_rows(const Dataset& d, const std::vector<std::string>& wanted) {
-  if (d.inputs.rows() != d.targets.rows()) {
-    throw ConfigError("model.type narx: dataset " + d.generator + " has " +
-                      std::to_string(d.inputs.rows()) + " inputs and " +
-                      std::to_string(d.targets.rows()) +
-                      " targets; a SISO network per target needs one input per target");
-  }
   std::vector<Eigen::Index> rows;
   for (std::size_t k = 0; k < d.target_names.size(); ++k) {
     const bool take = wanted.empty() ||
@@ -52,11 +46,53 @@ std::vector<Eigen::Index> target_rows(const Dataset& d, const std::vector<std::s
   return rows;
 }
 
+// The input rows of the network of target row k: input k (seed 002, model
+// inputs empty), or <name>_<axis> for each name of model.inputs.
+std::vector<Eigen::Index> network_input_rows(const Dataset& d, Eigen::Index k,
+                                             const std::vector<std::string>& names) {
+  if (names.empty()) {
+    if (d.inputs.rows() != d.targets.rows()) {
+      throw ConfigError("model.type narx: dataset " + d.generator + " has " +
+                        std::to_string(d.inputs.rows()) + " inputs and " +
+                        std::to_string(d.targets.rows()) +
+                        " targets; one input per target, or model.inputs naming each network's "
+                        "channels");
+    }
+    return {k};
+  }
+  const std::string axis = axis_of(d.target_names[static_cast<std::size_t>(k)]);
+  std::vector<Eigen::Index> rows;
+  for (const auto& name : names) {
+    const std::string column = name + "_" + axis;
+    const auto it = std::find(d.input_names.begin(), d.input_names.end(), column);
+    if (it == d.input_names.end()) {
+      throw ConfigError("model.inputs: the dataset (" + d.generator + ") has no input " + column +
+                        " for target " + d.target_names[static_cast<std::size_t>(k)] +
+                        "; its inputs: " + join(d.input_names, ", "));
+    }
+    rows.push_back(static_cast<Eigen::Index>(it - d.input_names.begin()));
+  }
+  return rows;
+}
+
+// Where a new independent sequence starts in [begin, end) (metadata
+// `sequence`: an id per sample; absent: one sequence), relative to begin.
+std::vector<Eigen::Index> sequence_starts(const Dataset& d, Eigen::Index begin, Eigen::Index end) {
+  std::vector<Eigen::Index> starts;
+  const Eigen::Index row = d.metadata_row("sequence");
+  if (row < 0) return starts;
+  for (Eigen::Index t = begin + 1; t < end; ++t) {
+    if (d.metadata(row, t) != d.metadata(row, t - 1)) starts.push_back(t - begin);
+  }
+  return starts;
+}
+
 // One stage from `params` in place: series-parallel or parallel residuals
 // over the training series, trained by the stage's lm or trainbr.
 // One stage of one network, with its progress (epochs, SSE, mu) on `progress`.
-Summary train_stage(const Narx& narx, const TrainingStage& stage, const Eigen::VectorXd& v,
-                    const Eigen::VectorXd& e, Eigen::VectorXd& params, Progress& progress) {
+Summary train_stage(const Narx& narx, const TrainingStage& stage, const Eigen::MatrixXd& v,
+                    const Eigen::VectorXd& e, const std::vector<Eigen::Index>& starts,
+                    Eigen::VectorXd& params, Progress& progress) {
   LmHooks hooks;
   hooks.on_epoch = [&](const EpochRecord& r, const LmEpochRecord& lm, const Eigen::VectorXd&) {
     std::ostringstream status;
@@ -68,10 +104,10 @@ Summary train_stage(const Narx& narx, const TrainingStage& stage, const Eigen::V
     return stage.trainer.def->train_residual(stage.trainer.options, objective, params, hooks);
   };
   if (stage.mode == StageMode::open_loop) {
-    NarxOpenLoopObjective open(narx, v, e);
+    NarxOpenLoopObjective open(narx, v, e, starts);
     return train(open);
   }
-  NarxClosedLoopObjective closed(narx, v, e, static_cast<Eigen::Index>(stage.horizon));
+  NarxClosedLoopObjective closed(narx, v, e, static_cast<Eigen::Index>(stage.horizon), starts);
   return train(closed);
 }
 
@@ -143,10 +179,11 @@ std::optional<UpstreamResult> upstream_results(const ExperimentSpec& spec, const
   const NarxOptions ours = spec.narx->options();
   if (!r.narx || r.narx->options.hidden != ours.hidden ||
       r.narx->options.hidden_activation != ours.hidden_activation ||
-      r.narx->options.input_delays != ours.input_delays ||
+      r.narx->options.inputs != ours.inputs || r.narx->options.input_delays != ours.input_delays ||
       r.narx->options.feedback_delays != ours.feedback_delays) {
     throw ConfigError("init_from: " + init->result_file.string() +
-                      " holds no narx network of this model's hidden size, activation and delays");
+                      " holds no narx network of this model's hidden size, activation, input "
+                      "channels and delays");
   }
   return init;
 }
@@ -169,6 +206,8 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
   rec.split = make_split(d.num_samples(), spec.split, split_rng);
   const auto n = static_cast<Eigen::Index>(d.num_samples());
   const auto half = static_cast<Eigen::Index>(rec.split.train.size());
+  const std::vector<Eigen::Index> train_starts = sequence_starts(d, 0, half);
+  const std::vector<Eigen::Index> val_starts = sequence_starts(d, half, n);
 
   NarxRecord narx_rec;
   narx_rec.options = spec.narx->options();
@@ -183,15 +222,21 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
     const Eigen::Index k = rows[a];
     NarxNetworkRecord net;
     net.target = d.target_names[static_cast<std::size_t>(k)];
-    net.input = d.input_names[static_cast<std::size_t>(k)];
     net.axis = axis_of(net.target);
-    rec.input_names.push_back(net.input);
-    rec.input_units.push_back(d.input_units[static_cast<std::size_t>(k)]);
+    const std::vector<Eigen::Index> in_rows = network_input_rows(d, k, spec.narx->inputs);
+    Eigen::MatrixXd v(n, static_cast<Eigen::Index>(in_rows.size()));  // one column per channel
+    for (std::size_t c = 0; c < in_rows.size(); ++c) {
+      const auto row = static_cast<std::size_t>(in_rows[c]);
+      net.inputs.push_back(d.input_names[row]);
+      rec.input_names.push_back(d.input_names[row]);
+      rec.input_units.push_back(d.input_units[row]);
+      v.col(static_cast<Eigen::Index>(c)) = d.inputs.row(in_rows[c]).transpose();
+    }
     rec.target_names.push_back(net.target);
     rec.target_units.push_back(d.target_units[static_cast<std::size_t>(k)]);
-    const Eigen::VectorXd v = d.inputs.row(k).transpose(), e = d.targets.row(k).transpose();
-    const Eigen::VectorXd v_train = v.head(half), e_train = e.head(half);
-    const Eigen::VectorXd v_val = v.tail(n - half), e_val = e.tail(n - half);
+    const Eigen::VectorXd e = d.targets.row(k).transpose();
+    const Eigen::MatrixXd v_train = v.topRows(half), v_val = v.bottomRows(n - half);
+    const Eigen::VectorXd e_train = e.head(half), e_val = e.tail(n - half);
     Eigen::VectorXd params(static_cast<Eigen::Index>(narx.num_parameters()));
     const std::string stream = "narx/init/" + net.axis;
     rec.provenance.derived_seeds[stream] = derive_seed(spec.seed, stream);
@@ -209,7 +254,7 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
       Progress progress(spec.name + " " + net.axis + " " + label, trainer_epochs(stage.trainer),
                         options.log ? *options.log : std::cerr,
                         {options.log ? options.progress : ProgressMode::quiet, 10.0, 0.1});
-      Summary s = train_stage(narx, stage, v_train, e_train, params, progress);
+      Summary s = train_stage(narx, stage, v_train, e_train, train_starts, params, progress);
       progress.finish(to_string(s.termination));
       message += " " + label + " " + std::to_string(s.history.size()) + " epochs (" +
                  to_string(s.termination) + ")";
@@ -228,12 +273,17 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
       rec.training.termination = t;
     }
     net.seconds = seconds_since(t0);
-    // Closed loop over the whole validation part from measured initial states.
-    const Eigen::VectorXd e_hat = narx.simulate_closed_loop(params, v_val, e_val);
+    // Closed loop over the whole validation part (each sequence of it) from
+    // measured initial states; those states stand in the predictions.
     const Eigen::Index first = narx.first_step();
     auto pred = narx_rec.predictions.row(static_cast<Eigen::Index>(a));
-    pred.head(first) = e_val.head(first).transpose();
-    pred.tail(n - half - first) = e_hat.transpose();
+    for (const SequenceRange& q : sequence_ranges(n - half, val_starts, first)) {
+      const Eigen::Index len = q.end - q.begin;
+      const Eigen::VectorXd e_seq = e_val.segment(q.begin, len);
+      pred.segment(q.begin, first) = e_seq.head(first).transpose();
+      pred.segment(q.begin + first, len - first) =
+          narx.simulate_closed_loop(params, v_val.middleRows(q.begin, len), e_seq).transpose();
+    }
     narx_rec.targets.row(static_cast<Eigen::Index>(a)) = e_val.transpose();
     net.parameters = std::move(params);
     if (options.log) {
@@ -249,6 +299,7 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
     p.data = &d;
     p.first_validation = static_cast<std::size_t>(half);
     p.first_step = narx.first_step();
+    p.sequence_starts = val_starts;
     for (std::size_t a = 0; a < rows.size(); ++a) {
       p.axes.push_back(narx_rec.networks[a].axis);
       p.target_rows.push_back(rows[a]);

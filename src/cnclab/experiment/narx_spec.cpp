@@ -22,7 +22,12 @@ const FieldList<NarxModelSpec>& narx_model_fields() {
           .field("feedback_delays", &M::feedback_delays,
                  "D_E, fed-back errors e(t-1..t-D_E) (seed 002: 4)", Rule::at_least(1))
           .field("first_input_delay", &M::first_input_delay,
-                 "0: v(t) (Eq. 1); 1: MATLAB narxnet(1:D_V, ...)", Rule::in(0, true, 1, true));
+                 "0: v(t) (Eq. 1); 1: MATLAB narxnet(1:D_V, ...)", Rule::in(0, true, 1, true))
+          .field("inputs", &M::inputs,
+                 "each axis network's input channels, dataset input names without the axis "
+                 "suffix (e.g. [v, direction]: v_x, direction_x for e_x); empty: input k for "
+                 "target k (seed 002)")
+          .omit_default();
   return fields;
 }
 
@@ -33,6 +38,7 @@ NarxOptions NarxModelSpec::options() const {
   o.input_delays = input_delays;
   o.feedback_delays = feedback_delays;
   o.first_input_delay = first_input_delay;
+  o.inputs = std::max<std::size_t>(inputs.size(), 1);
   return o;
 }
 
@@ -74,6 +80,17 @@ NarxModelSpec read_narx_model(const ConfigReader& model) {
     narx_model_fields().check(m);
     m.options().validate();
   });
+  for (std::size_t i = 0; i < m.inputs.size(); ++i) {
+    const std::string& name = m.inputs[i];
+    if (name.empty() || name.find('+') != std::string::npos) {
+      model.fail("inputs", "entry " + std::to_string(i) + " '" + name +
+                               "': must be a non-empty input name without '+'");
+    }
+    if (std::find(m.inputs.begin(), m.inputs.begin() + static_cast<std::ptrdiff_t>(i), name) !=
+        m.inputs.begin() + static_cast<std::ptrdiff_t>(i)) {
+      model.fail("inputs", "lists '" + name + "' twice");
+    }
+  }
   return m;
 }
 

@@ -10,6 +10,7 @@
 //     input_delays: 4         # D_V, velocity inputs v(t - d0 - j), j < D_V
 //     feedback_delays: 4      # D_E, fed-back errors e(t-1..t-D_E)
 //     first_input_delay: 0    # d0: 0 = Eq. 1 with v(t); 1 = MATLAB narxnet(1:D_V, ...)
+//     inputs: [v, direction]  # optional: each network's input channels (below)
 //   trainer:
 //     stages:                 # run in order, each from the previous stage's weights
 //       - {mode: open_loop, type: trainbr, epochs: 150, min_gradient: 1.0e-8}
@@ -25,7 +26,10 @@
 // Target k is predicted from input k of the dataset (following_error: e_x
 // from v_x, e_y from v_y); its network's weights are drawn from the stream
 // "narx/init/<axis>" of the master seed, <axis> the target name after its
-// last '_' (e_x -> x).
+// last '_' (e_x -> x). With `inputs` (names before the axis suffix), the
+// network of axis a takes the dataset inputs <name>_a in that order as its
+// channels (inputs: [v, direction]: e_x from v_x and direction_x; the
+// following_error generator's extra_inputs, data/following_error.hpp).
 #include <yaml-cpp/yaml.h>
 
 #include <cstddef>
@@ -48,6 +52,8 @@ struct NarxModelSpec {
   std::size_t input_delays = 4;
   std::size_t feedback_delays = 4;
   std::size_t first_input_delay = 0;
+  // Input channel names without the axis suffix; empty: input k for target k.
+  std::vector<std::string> inputs;
 
   // The network's options (initialisers: NarxOptions' defaults, U(-0.5, 0.5)).
   NarxOptions options() const;

@@ -208,11 +208,21 @@ void narx(Io& io, R& r) {
   io.attr("/model", "feedback_delays", o.feedback_delays);
   io.attr("/model", "first_input_delay", o.first_input_delay);
   io.note("/model", "parameter_layout",
-          "per network: W1 (H x (D_V + D_E), column-major), b1 (H), W2 (1 x H), b2");
+          o.inputs == 1 ? "per network: W1 (H x (D_V + D_E), column-major), b1 (H), W2 (1 x H), b2"
+                        : "per network: W1 (H x (C D_V + D_E), column-major; C input channels, "
+                          "each's delays together), b1 (H), W2 (1 x H), b2");
   auto networks = io.columns("/model", n.networks);
   networks.strings("networks", &NarxNetworkRecord::axis);
-  networks.strings("inputs", &NarxNetworkRecord::input);
+  networks.joined_strings("inputs", &NarxNetworkRecord::inputs, '+');  // e.g. v_x+direction_x
   networks.strings("targets", &NarxNetworkRecord::target);
+  if constexpr (Io::reading) {
+    // The channel count is not stored apart: every network's input list gives it.
+    for (const auto& net : n.networks) {
+      io.require(net.inputs.size() == n.networks.front().inputs.size(),
+                 "/model/inputs: networks with different channel counts");
+    }
+    if (!n.networks.empty()) o.inputs = n.networks.front().inputs.size();
+  }
   for (auto& net : n.networks) {
     io.vector("/model/" + net.axis + "/parameters", net.parameters, "1");
   }

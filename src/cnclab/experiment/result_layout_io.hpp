@@ -103,6 +103,17 @@ class ResultLayoutWriter {
       for (const auto& row : rows_) v.push_back(row.*field);
       f_.write_strings(g_ + "/" + name, v);
     }
+    // A list per row, stored as one text joined by `separator` (e.g. "v_x+direction_x").
+    void joined_strings(const char* name, std::vector<std::string> Row::*field, char separator) {
+      std::vector<std::string> v;
+      for (const auto& row : rows_) {
+        std::string text;
+        for (const auto& part : row.*field)
+          text += (text.empty() ? "" : std::string(1, separator)) + part;
+        v.push_back(text);
+      }
+      f_.write_strings(g_ + "/" + name, v);
+    }
 
    private:
     H5File& f_;
@@ -218,6 +229,20 @@ class ResultLayoutReader {
       const auto v = io_.f_.read_strings(g_ + "/" + name);
       size_to(v.size());
       for (std::size_t i = 0; i < v.size(); ++i) rows_[i].*field = v[i];
+    }
+    void joined_strings(const char* name, std::vector<std::string> Row::*field, char separator) {
+      const auto v = io_.f_.read_strings(g_ + "/" + name);
+      size_to(v.size());
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        auto& parts = rows_[i].*field;
+        parts.clear();
+        for (std::size_t from = 0;;) {
+          const std::size_t at = v[i].find(separator, from);
+          parts.push_back(v[i].substr(from, at == std::string::npos ? at : at - from));
+          if (at == std::string::npos) break;
+          from = at + 1;
+        }
+      }
     }
 
    private:

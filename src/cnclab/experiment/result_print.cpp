@@ -27,7 +27,7 @@ void print_narx_model(const RunRecord& r, std::ostream& out) {
   out << "\n";
   out << "training     " << r.trainer << ", " << to_string(r.training.termination) << "\n";
   for (const auto& net : n.networks) {
-    out << "  " << net.axis << " (" << net.input << " -> " << net.target << ", "
+    out << "  " << net.axis << " (" << join(net.inputs, ", ") << " -> " << net.target << ", "
         << format_metric(net.seconds) << " s):";
     for (const auto& st : net.stages) {
       out << (st.fallback ? " second try: " : " ") << st.mode;

@@ -49,8 +49,11 @@ struct NarxStageRecord {
   std::size_t fallback_horizon = 0;  // as configured (second tries only when it stopped)
 };
 struct NarxNetworkRecord {
-  std::string axis;            // e_x -> x
-  std::string input, target;   // the dataset's column names
+  std::string axis;  // e_x -> x
+  // The dataset's column names: the input channels in network order
+  // (seed 002: one, the axis velocity) and the target.
+  std::vector<std::string> inputs;
+  std::string target;
   Eigen::VectorXd parameters;  // Narx layout (nn/narx.hpp)
   std::vector<NarxStageRecord> stages;
   double seconds = 0;  // training time of this network

@@ -24,6 +24,10 @@ struct SequencePrediction {
   // Steps of the validation part that are initial states: predicted[a][t]
   // for t < first_step is the measured value, not a prediction.
   Eigen::Index first_step = 0;
+  // Where a further independent sequence starts in the validation part
+  // (metadata `sequence`; empty: one): its first first_step values are
+  // measured initial states as well.
+  std::vector<Eigen::Index> sequence_starts;
   std::vector<std::string> axes;          // per network: its axis name (e_x -> x)
   std::vector<Eigen::Index> target_rows;  // per network: its row of data->targets
   // Per network, the validation part in the dataset's (target) units.

@@ -34,6 +34,15 @@ double arc_length(const PlanarPath& path, int intervals) {
   return arc_length(path, path.u_begin(), path.u_end(), intervals);
 }
 
+double parameter_at_arc_length(const PlanarPath& path, double s) {
+  double lo = path.u_begin(), hi = path.u_end();
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (arc_length(path, path.u_begin(), mid, 256) < s ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 void RegularityOptions::validate() const {
   if (samples < 2) throw OptionError("samples", std::to_string(samples), "must be >= 2");
   if (!(min_speed_ratio > 0.0 && min_speed_ratio < 1.0)) {

@@ -37,6 +37,25 @@ double arc_length(const PlanarPath& path, int intervals = 2048);
 // Arc length between two parameters (u0 <= u1), same rule.
 double arc_length(const PlanarPath& path, double u0, double u1, int intervals);
 
+// The part of a path between two of its parameters: the same C(u) over
+// [u0, u1], u_begin <= u0 < u1 <= u_end (the path must outlive it). A
+// section planned on its own starts and ends at rest.
+class PathPiece final : public PlanarPath {
+ public:
+  PathPiece(const PlanarPath& path, double u0, double u1) : path_(&path), u0_(u0), u1_(u1) {}
+  double u_begin() const override { return u0_; }
+  double u_end() const override { return u1_; }
+  PathPoint evaluate(double u) const override { return path_->evaluate(u); }
+
+ private:
+  const PlanarPath* path_;
+  double u0_, u1_;
+};
+
+// The parameter at arc length s from u_begin (clamped to the path), by 60
+// bisection steps on arc_length(path, u_begin, u, 256).
+double parameter_at_arc_length(const PlanarPath& path, double s);
+
 struct RegularityOptions {
   // Parameter samples checked (uniform in u, both ends included).
   int samples = 20001;

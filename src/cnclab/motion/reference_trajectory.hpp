@@ -38,4 +38,11 @@ ReferenceTrajectory sized_reference_trajectory(double duration, double period);
 void set_reference_sample(ReferenceTrajectory& r, Eigen::Index k, double u, const PathPoint& p,
                           double ud, double udd, double uddd);
 
+// `pieces` one after the other: piece i + 1's samples follow piece i's last
+// sample by one period (its time shifted), rows appended as they are. Meant
+// for motions that end and start at rest where they meet (plans of
+// consecutive sections of a path: the machine stops at each joint for a
+// tick). cnclab::Error when the periods differ or there is no piece.
+ReferenceTrajectory concatenate_references(const std::vector<ReferenceTrajectory>& pieces);
+
 }  // namespace cnclab

@@ -11,7 +11,7 @@ namespace {
 
 MlpOptions static_network(const NarxOptions& o) {
   MlpOptions m;
-  m.inputs = o.input_delays + o.feedback_delays;
+  m.inputs = o.inputs * o.input_delays + o.feedback_delays;
   m.hidden = {o.hidden};
   m.outputs = 1;
   m.hidden_activation = o.hidden_activation;
@@ -32,6 +32,9 @@ void NarxOptions::validate() const {
                       "must be >= 1 (a NARX feeds back at least e(t-1))");
   }
   if (hidden < 1) throw OptionError("hidden", std::to_string(hidden), "must be >= 1");
+  if (inputs < 1) {
+    throw OptionError("inputs", std::to_string(inputs), "must be >= 1 (input channels)");
+  }
   if (first_input_delay > 1) {
     throw OptionError("first_input_delay", std::to_string(first_input_delay),
                       "must be 0 (v(t), Eq. 1) or 1 (MATLAB narxnet(1:D, ...))");
@@ -50,40 +53,49 @@ Eigen::Index Narx::first_step() const {
   return static_cast<Eigen::Index>(std::max(last_input, options_.feedback_delays));
 }
 
-void Narx::check_series(const Eigen::VectorXd& v, const Eigen::VectorXd& e) const {
-  if (v.size() != e.size() || v.size() <= first_step()) {
-    throw Error("NARX series: velocity has " + std::to_string(v.size()) + " samples, error " +
+void Narx::check_series(const Inputs& v, const Eigen::VectorXd& e) const {
+  if (v.cols() != static_cast<Eigen::Index>(options_.inputs)) {
+    throw Error("NARX series: " + std::to_string(v.cols()) + " input channel(s), the network has " +
+                std::to_string(options_.inputs));
+  }
+  if (v.rows() != e.size() || v.rows() <= first_step()) {
+    throw Error("NARX series: input has " + std::to_string(v.rows()) + " samples, error " +
                 std::to_string(e.size()) + "; need equal lengths > " +
                 std::to_string(first_step()) + " (the delays)");
   }
   if (!v.allFinite() || !e.allFinite()) throw Error("NARX series contain NaN or infinity");
 }
 
-Eigen::MatrixXd Narx::open_loop_regressors(const Eigen::VectorXd& v,
-                                           const Eigen::VectorXd& e) const {
+Eigen::MatrixXd Narx::open_loop_regressors(const Inputs& v, const Eigen::VectorXd& e) const {
   check_series(v, e);
-  const Eigen::Index t0 = first_step(), steps = v.size() - t0;
+  const Eigen::Index t0 = first_step(), steps = v.rows() - t0;
   const auto dv = static_cast<Eigen::Index>(options_.input_delays);
   const auto de = static_cast<Eigen::Index>(options_.feedback_delays);
   const auto d0 = static_cast<Eigen::Index>(options_.first_input_delay);
-  Eigen::MatrixXd x(dv + de, steps);
+  const Eigen::Index nv = dv * v.cols();
+  Eigen::MatrixXd x(nv + de, steps);
   for (Eigen::Index s = 0; s < steps; ++s) {
     const Eigen::Index t = t0 + s;
-    for (Eigen::Index j = 0; j < dv; ++j) x(j, s) = v[t - d0 - j];
-    for (Eigen::Index k = 1; k <= de; ++k) x(dv + k - 1, s) = e[t - k];
+    for (Eigen::Index c = 0; c < v.cols(); ++c) {
+      for (Eigen::Index j = 0; j < dv; ++j) x(c * dv + j, s) = v(t - d0 - j, c);
+    }
+    for (Eigen::Index k = 1; k <= de; ++k) x(nv + k - 1, s) = e[t - k];
   }
   return x;
 }
 
-Eigen::VectorXd Narx::simulate_closed_loop(const Eigen::VectorXd& params, const Eigen::VectorXd& v,
+Eigen::VectorXd Narx::simulate_closed_loop(const Eigen::VectorXd& params, const Inputs& v,
                                            const Eigen::VectorXd& e_initial,
                                            Eigen::MatrixXd* jacobian) const {
   check_series(v, e_initial);
-  const Eigen::Index t0 = first_step(), steps = v.size() - t0;
-  const auto dv = static_cast<Eigen::Index>(options_.input_delays);
+  const Eigen::Index t0 = first_step(), steps = v.rows() - t0;
+  const Eigen::Index channels = v.cols();
   const auto de = static_cast<Eigen::Index>(options_.feedback_delays);
   const auto d0 = static_cast<Eigen::Index>(options_.first_input_delay);
   const auto h = static_cast<Eigen::Index>(options_.hidden);
+  // dv: every input-channel regressor (C D_V), fed-back errors after them.
+  const auto per_channel = static_cast<Eigen::Index>(options_.input_delays);
+  const Eigen::Index dv = per_channel * channels;
   const Eigen::Index n = dv + de, w_count = params.size();
   if (w_count != static_cast<Eigen::Index>(num_parameters())) {
     throw Error("NARX parameters: " + std::to_string(w_count) + " values, the network has " +
@@ -92,7 +104,7 @@ Eigen::VectorXd Narx::simulate_closed_loop(const Eigen::VectorXd& params, const 
   const Eigen::Map<const Eigen::VectorXd> w2(params.data() + h * n + h, h);
 
   // e_full(t): initial states then predictions.
-  Eigen::VectorXd e_full(v.size());
+  Eigen::VectorXd e_full(v.rows());
   e_full.head(t0) = e_initial.head(t0);
   Eigen::VectorXd x(n), a(h), delta(h);  // delta_i = w2_i f'(z_i)
   // The predictions step through Narx::step (as the real-time predictor).
@@ -117,7 +129,9 @@ Eigen::VectorXd Narx::simulate_closed_loop(const Eigen::VectorXd& params, const 
   }
   for (Eigen::Index s = 0; s < steps; ++s) {
     const Eigen::Index t = t0 + s;
-    for (Eigen::Index j = 0; j < dv; ++j) x[j] = v[t - d0 - j];
+    for (Eigen::Index c = 0; c < channels; ++c) {
+      for (Eigen::Index j = 0; j < per_channel; ++j) x[c * per_channel + j] = v(t - d0 - j, c);
+    }
     for (Eigen::Index k = 1; k <= de; ++k) x[dv + k - 1] = e_full[t - k];
     e_full[t] = step(params, x, a);
     if (jacobian == nullptr) continue;

@@ -1,8 +1,11 @@
 #pragma once
-// SISO NARX network (seed 002 Eq. 1): one tanh hidden layer, linear output,
+// NARX network (seed 002 Eq. 1): one tanh hidden layer, linear output,
 //   e(t) = sum_i w^o_i f(h_i(t)) + b^o,
-//   h_i(t) = sum_j w^v_ij v(t - d_j) + sum_{k=1..D_E} w^e_ik e(t - k) + b_i,
-// input v = axis reference velocity, output e = axis following error.
+//   h_i(t) = sum_c sum_j w^v_icj v_c(t - d_j) + sum_{k=1..D_E} w^e_ik e(t - k) + b_i,
+// input v = axis reference velocity, output e = axis following error. Seed
+// 002's network is SISO (one input channel c = 0); `inputs` > 1 adds
+// exogenous channels with the same delays (e.g. the axis's direction of
+// motion, motion/axis_direction.hpp), each a column of the input series.
 //
 // Delay convention: the input delays are d_j = first_input_delay + j,
 // j = 0..D_V-1. Default first_input_delay = 0, i.e. Eq. 1 with the current
@@ -14,7 +17,7 @@
 // delays are always 1..D_E (e(t) cannot feed itself).
 //
 // Parameters: one flat vector in the layout of an Mlp with inputs
-// D_V + D_E (regressor order below), hidden {H}, one linear output:
+// C D_V + D_E (C = inputs; regressor order below), hidden {H}, one linear output:
 // W1 (H x (D_V + D_E), column-major), b1 (H), W2 (1 x H), b2.
 #include <Eigen/Core>
 #include <cstddef>
@@ -32,12 +35,13 @@ struct NarxOptions {
   std::size_t hidden = 12;          // H >= 1 (seed 002: 12)
   Activation hidden_activation = Activation::tanh;  // seed 002: tanh; output linear
   std::size_t first_input_delay = 0;  // 0: Eq. 1 with v(t); 1: MATLAB narxnet(1:D_V, ...)
+  std::size_t inputs = 1;             // C >= 1 exogenous channels (seed 002: 1, the velocity)
   // Initial weights and biases U(-0.5, 0.5) (small: tanh units start in
   // their linear range; MATLAB's Nguyen-Widrow is not reproduced).
   Initializer weights{Initializer::Kind::uniform, 0.0, 1.0, -0.5, 0.5};
   Initializer biases{Initializer::Kind::uniform, 0.0, 1.0, -0.5, 0.5};
 
-  // OptionError naming the field: delays >= 1, hidden >= 1,
+  // OptionError naming the field: delays >= 1, hidden >= 1, inputs >= 1,
   // first_input_delay in {0, 1}, initialisers valid.
   void validate() const;
 };
@@ -50,17 +54,23 @@ class Narx {
   // The static network of the series-parallel configuration (same layout).
   const Mlp& mlp() const { return mlp_; }
   std::size_t num_parameters() const { return mlp_.num_parameters(); }
+  // Regressor length C D_V + D_E.
   Eigen::Index num_inputs() const {
-    return static_cast<Eigen::Index>(options_.input_delays + options_.feedback_delays);
+    return static_cast<Eigen::Index>(options_.inputs * options_.input_delays +
+                                     options_.feedback_delays);
   }
   // First step with a full regressor: max(largest input delay, D_E).
   Eigen::Index first_step() const;
   void initialise(Eigen::VectorXd& params, Rng& rng) const { mlp_.initialise(params, rng); }
 
+  // The input series: T rows, one column per channel (a VectorXd is the
+  // single channel of seed 002).
+  using Inputs = Eigen::Ref<const Eigen::MatrixXd>;
+
   // Series-parallel regressors (one column per step t = first_step()..T-1):
-  // [v(t - d_0), ..., v(t - d_{D_V-1}), e(t-1), ..., e(t-D_E)] with the
-  // measured e. v and e have the same length T > first_step().
-  Eigen::MatrixXd open_loop_regressors(const Eigen::VectorXd& v, const Eigen::VectorXd& e) const;
+  // [v_0(t - d_0), ..., v_0(t - d_{D_V-1}), v_1(t - d_0), ..., e(t-1), ...,
+  // e(t-D_E)] with the measured e. v (T x C) and e have T > first_step() rows.
+  Eigen::MatrixXd open_loop_regressors(const Inputs& v, const Eigen::VectorXd& e) const;
 
   // Parallel (closed-loop) simulation: e_hat(t) for t = first_step()..T-1
   // with the network's own past outputs fed back; the first first_step()
@@ -69,7 +79,7 @@ class Narx {
   // Jacobian d e_hat(t) / dw ((T - first_step()) x W) by forward-mode (RTRL)
   // recursion through the feedback delays:
   //   S(t) = df/dw|x(t) + sum_k df/de(t-k)|x(t) S(t-k),  S = 0 on initial states.
-  Eigen::VectorXd simulate_closed_loop(const Eigen::VectorXd& params, const Eigen::VectorXd& v,
+  Eigen::VectorXd simulate_closed_loop(const Eigen::VectorXd& params, const Inputs& v,
                                        const Eigen::VectorXd& e_initial,
                                        Eigen::MatrixXd* jacobian = nullptr) const;
 
@@ -82,7 +92,7 @@ class Narx {
               Eigen::VectorXd& hidden) const noexcept;
 
  private:
-  void check_series(const Eigen::VectorXd& v, const Eigen::VectorXd& e) const;
+  void check_series(const Inputs& v, const Eigen::VectorXd& e) const;
 
   NarxOptions options_;
   Mlp mlp_;

@@ -19,7 +19,12 @@ std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
     if (fs::is_regular_file(root, ec)) {
       files.emplace_back(root);
     } else if (fs::is_directory(root, ec)) {
-      for (const auto& entry : fs::recursive_directory_iterator(root)) {
+      for (auto it = fs::recursive_directory_iterator(root); it != fs::end(it); ++it) {
+        const auto& entry = *it;
+        if (entry.is_directory() && fs::exists(entry.path() / kOptInMarker)) {
+          it.disable_recursion_pending();  // an opt-in set: only when named
+          continue;
+        }
         const auto ext = entry.path().extension();
         if (entry.is_regular_file() && (ext == ".yaml" || ext == ".yml"))
           files.push_back(entry.path());

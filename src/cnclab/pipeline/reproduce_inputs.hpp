@@ -13,7 +13,11 @@
 namespace cnclab {
 
 // Experiment YAML files under `paths` (files as given, folders recursively),
-// sorted; a missing path is a ConfigError.
+// sorted; a missing path is a ConfigError. A folder below a given one that
+// holds a file kOptInMarker is an opt-in set (a study too long for
+// `reproduce` of everything, README command 1): skipped unless it is
+// itself given (or a folder or file inside it).
+inline constexpr const char* kOptInMarker = "OPT_IN.md";
 std::vector<std::filesystem::path> find_experiments(const std::vector<std::string>& paths);
 
 // What reproduce runs from `paths`: training experiments (the graph) and

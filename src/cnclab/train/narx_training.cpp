@@ -7,17 +7,80 @@
 
 namespace cnclab {
 
-NarxOpenLoopObjective::NarxOpenLoopObjective(const Narx& narx, const Eigen::VectorXd& v,
-                                             const Eigen::VectorXd& e)
-    : inputs_(narx.open_loop_regressors(v, e)),
-      targets_(e.tail(e.size() - narx.first_step()).transpose()),
+std::vector<SequenceRange> sequence_ranges(Eigen::Index length,
+                                           const std::vector<Eigen::Index>& starts,
+                                           Eigen::Index min_length) {
+  std::vector<SequenceRange> out;
+  Eigen::Index begin = 0;
+  for (std::size_t i = 0; i <= starts.size(); ++i) {
+    const Eigen::Index end = i < starts.size() ? starts[i] : length;
+    if (!(end > begin && end <= length)) {
+      throw Error("NARX sequences: start " + std::to_string(end) + " is not after " +
+                  std::to_string(begin) + " within the series of " + std::to_string(length) +
+                  " samples");
+    }
+    if (end - begin <= min_length) {
+      throw Error("NARX sequences: sequence " + std::to_string(i) + " [" + std::to_string(begin) +
+                  ", " + std::to_string(end) + ") has " + std::to_string(end - begin) +
+                  " samples; need > " + std::to_string(min_length) + " (the delays)");
+    }
+    out.push_back({begin, end});
+    begin = end;
+  }
+  return out;
+}
+
+namespace {
+
+// The open-loop regressors of every sequence, side by side.
+Eigen::MatrixXd sequences_regressors(const Narx& narx, const Narx::Inputs& v,
+                                     const Eigen::VectorXd& e,
+                                     const std::vector<Eigen::Index>& starts) {
+  if (starts.empty()) return narx.open_loop_regressors(v, e);
+  const auto seqs = sequence_ranges(e.size(), starts, narx.first_step());
+  Eigen::MatrixXd x(narx.num_inputs(),
+                    e.size() - narx.first_step() * static_cast<Eigen::Index>(seqs.size()));
+  Eigen::Index col = 0;
+  for (const auto& q : seqs) {
+    const Eigen::Index n = q.end - q.begin;
+    x.middleCols(col, n - narx.first_step()) =
+        narx.open_loop_regressors(v.middleRows(q.begin, n), e.segment(q.begin, n));
+    col += n - narx.first_step();
+  }
+  return x;
+}
+
+// The measured e at the predicted steps of every sequence, as one row.
+Eigen::MatrixXd sequences_targets(const Narx& narx, const Eigen::VectorXd& e,
+                                  const std::vector<Eigen::Index>& starts) {
+  const auto seqs = sequence_ranges(e.size(), starts, narx.first_step());
+  Eigen::MatrixXd y(1, e.size() - narx.first_step() * static_cast<Eigen::Index>(seqs.size()));
+  Eigen::Index col = 0;
+  for (const auto& q : seqs) {
+    const Eigen::Index n = q.end - q.begin - narx.first_step();
+    y.row(0).segment(col, n) = e.segment(q.begin + narx.first_step(), n).transpose();
+    col += n;
+  }
+  return y;
+}
+
+}  // namespace
+
+NarxOpenLoopObjective::NarxOpenLoopObjective(const Narx& narx, const Narx::Inputs& v,
+                                             const Eigen::VectorXd& e,
+                                             const std::vector<Eigen::Index>& starts)
+    : inputs_(sequences_regressors(narx, v, e, starts)),
+      targets_(sequences_targets(narx, e, starts)),
       static_(narx.mlp(), inputs_, targets_) {}
 
-NarxClosedLoopObjective::NarxClosedLoopObjective(const Narx& narx, const Eigen::VectorXd& v,
-                                                 const Eigen::VectorXd& e, Eigen::Index horizon)
+NarxClosedLoopObjective::NarxClosedLoopObjective(const Narx& narx, const Narx::Inputs& v,
+                                                 const Eigen::VectorXd& e, Eigen::Index horizon,
+                                                 const std::vector<Eigen::Index>& starts)
     : narx_(narx), v_(v), e_(e), horizon_(horizon) {
   narx.open_loop_regressors(v, e);  // the same checks on the series (lengths, NaN)
   if (horizon < 0) throw Error("closed-loop horizon " + std::to_string(horizon) + " < 0");
+  sequences_ = sequence_ranges(e.size(), starts, narx.first_step());
+  for (const auto& q : sequences_) residual_count_ += q.end - q.begin - narx.first_step();
 }
 
 void NarxClosedLoopObjective::evaluate(const Eigen::VectorXd& params, Eigen::Index first,
@@ -35,8 +98,8 @@ void NarxClosedLoopObjective::evaluate(const Eigen::VectorXd& params, Eigen::Ind
 
 void NarxClosedLoopObjective::simulate(const Eigen::VectorXd& params) {
   const Eigen::Index steps = num_residuals(), t0 = narx_.first_step();
-  const Eigen::Index window = horizon_ > 0 ? std::min(horizon_, steps) : steps;
-  if (window == steps) {  // one window: no copies of the series or the Jacobian
+  if (sequences_.size() == 1 && (horizon_ == 0 || horizon_ >= steps)) {
+    // One window: no copies of the series or the Jacobian.
     residuals_ = narx_.simulate_closed_loop(params, v_, e_, has_jacobian_ ? &jacobian_ : nullptr) -
                  e_.tail(steps);
     return;
@@ -44,15 +107,24 @@ void NarxClosedLoopObjective::simulate(const Eigen::VectorXd& params) {
   residuals_.resize(steps);
   if (has_jacobian_) jacobian_.resize(steps, num_parameters());
   Eigen::MatrixXd window_jacobian;
-  // Window [s, s + n) of the residual rows predicts steps t0 + s .. t0 + s + n - 1
-  // from the measured states e(s .. s + t0 - 1) and the inputs from s on.
-  for (Eigen::Index s = 0; s < steps; s += window) {
-    const Eigen::Index n = std::min(window, steps - s);
-    const Eigen::VectorXd v = v_.segment(s, t0 + n), e = e_.segment(s, t0 + n);
-    residuals_.segment(s, n) =
-        narx_.simulate_closed_loop(params, v, e, has_jacobian_ ? &window_jacobian : nullptr) -
-        e.tail(n);
-    if (has_jacobian_) jacobian_.middleRows(s, n) = window_jacobian;
+  Eigen::Index row = 0;  // the residual row of the window's first prediction
+  for (const auto& q : sequences_) {
+    const Eigen::Index seq_steps = q.end - q.begin - t0;
+    const Eigen::Index window = horizon_ > 0 ? std::min(horizon_, seq_steps) : seq_steps;
+    // Window [s, s + n) of the sequence's steps predicts its samples
+    // t0 + s .. t0 + s + n - 1 from the measured states e(s .. s + t0 - 1)
+    // and the inputs from s on.
+    for (Eigen::Index s = 0; s < seq_steps; s += window) {
+      const Eigen::Index n = std::min(window, seq_steps - s);
+      const Eigen::Index first = q.begin + s;
+      const Eigen::VectorXd e = e_.segment(first, t0 + n);
+      residuals_.segment(row, n) =
+          narx_.simulate_closed_loop(params, v_.middleRows(first, t0 + n), e,
+                                     has_jacobian_ ? &window_jacobian : nullptr) -
+          e.tail(n);
+      if (has_jacobian_) jacobian_.middleRows(row, n) = window_jacobian;
+      row += n;
+    }
   }
 }
 
@@ -71,7 +143,7 @@ void NarxTrainingOptions::validate() const {
   }
 }
 
-NarxTrainingResult train_narx(const Narx& narx, const Eigen::VectorXd& v, const Eigen::VectorXd& e,
+NarxTrainingResult train_narx(const Narx& narx, const Narx::Inputs& v, const Eigen::VectorXd& e,
                               Eigen::VectorXd& params, const NarxTrainingOptions& options) {
   options.validate();
   if (params.size() != static_cast<Eigen::Index>(narx.num_parameters())) {

@@ -6,8 +6,16 @@
 // configuration from the same weights, with the exact dynamic Jacobian of
 // the closed-loop outputs (RTRL, Narx::simulate_closed_loop).
 // Residuals are prediction minus measurement at steps t = first_step()..T-1.
+//
+// A series may hold several independent sequences (e.g. one run of a path
+// per feed factor): `starts` lists the first sample of every sequence after
+// the first (ascending, each sequence longer than first_step()). Each
+// sequence is then a series of its own: no regressor and no prediction
+// reaches across a start, and each is predicted from its own measured
+// initial states, as a series split in two (seed 002's halves) is.
 #include <Eigen/Core>
 #include <optional>
+#include <vector>
 
 #include "cnclab/nn/narx.hpp"
 #include "cnclab/train/mlp_residuals.hpp"
@@ -17,11 +25,22 @@
 
 namespace cnclab {
 
+// The sequences of a series of `length` samples: [begin, end) each, from
+// `starts` (see above). cnclab::Error naming the sequence when one is not
+// longer than `min_length` or `starts` is not ascending within (0, length).
+struct SequenceRange {
+  Eigen::Index begin = 0, end = 0;
+};
+std::vector<SequenceRange> sequence_ranges(Eigen::Index length,
+                                           const std::vector<Eigen::Index>& starts,
+                                           Eigen::Index min_length);
+
 // Series-parallel residuals: the static network on the open-loop regressors
-// (MlpResidualObjective, Jacobian by Mlp::output_jacobian).
+// (MlpResidualObjective, Jacobian by Mlp::output_jacobian), of every sequence.
 class NarxOpenLoopObjective : public ResidualObjective {
  public:
-  NarxOpenLoopObjective(const Narx& narx, const Eigen::VectorXd& v, const Eigen::VectorXd& e);
+  NarxOpenLoopObjective(const Narx& narx, const Narx::Inputs& v, const Eigen::VectorXd& e,
+                        const std::vector<Eigen::Index>& starts = {});
   Eigen::Index num_residuals() const override { return static_.num_residuals(); }
   Eigen::Index num_parameters() const override { return static_.num_parameters(); }
   void evaluate(const Eigen::VectorXd& params, Eigen::Index first, Eigen::Index count,
@@ -35,9 +54,9 @@ class NarxOpenLoopObjective : public ResidualObjective {
 };
 
 // Parallel residuals e_hat(t) - e(t), e_hat from the closed-loop simulation
-// started from the measured initial states. The simulation is sequential:
-// one pass (with the dynamic Jacobian when asked) per parameter vector,
-// cached and served in row blocks.
+// started from the measured initial states (of each sequence). The
+// simulation is sequential: one pass (with the dynamic Jacobian when asked)
+// per parameter vector, cached and served in row blocks.
 //
 // horizon H > 0: the steps are predicted in consecutive windows of H steps
 // (the last one shorter), each started afresh from the measured states
@@ -48,9 +67,10 @@ class NarxOpenLoopObjective : public ResidualObjective {
 // grow along the whole series; short windows bound them).
 class NarxClosedLoopObjective : public ResidualObjective {
  public:
-  NarxClosedLoopObjective(const Narx& narx, const Eigen::VectorXd& v, const Eigen::VectorXd& e,
-                          Eigen::Index horizon = 0);
-  Eigen::Index num_residuals() const override { return e_.size() - narx_.first_step(); }
+  // v and e are copied (the objective outlives no caller's series).
+  NarxClosedLoopObjective(const Narx& narx, const Narx::Inputs& v, const Eigen::VectorXd& e,
+                          Eigen::Index horizon = 0, const std::vector<Eigen::Index>& starts = {});
+  Eigen::Index num_residuals() const override { return residual_count_; }
   Eigen::Index num_parameters() const override {
     return static_cast<Eigen::Index>(narx_.num_parameters());
   }
@@ -59,9 +79,11 @@ class NarxClosedLoopObjective : public ResidualObjective {
 
  private:
   const Narx& narx_;
-  const Eigen::VectorXd& v_;
-  const Eigen::VectorXd& e_;
-  Eigen::Index horizon_;  // steps per window; the whole series when 0
+  Eigen::MatrixXd v_;
+  Eigen::VectorXd e_;
+  Eigen::Index horizon_;  // steps per window; the whole sequence when 0
+  std::vector<SequenceRange> sequences_;
+  Eigen::Index residual_count_ = 0;  // sum over the sequences of their length - first_step
   Eigen::VectorXd cached_params_, residuals_;
   Eigen::MatrixXd jacobian_;
   bool has_jacobian_ = false;
@@ -92,7 +114,7 @@ struct NarxTrainingResult {
 };
 
 // Trains `params` in place (initialise it first: Narx::initialise).
-NarxTrainingResult train_narx(const Narx& narx, const Eigen::VectorXd& v, const Eigen::VectorXd& e,
+NarxTrainingResult train_narx(const Narx& narx, const Narx::Inputs& v, const Eigen::VectorXd& e,
                               Eigen::VectorXd& params, const NarxTrainingOptions& options = {});
 
 }  // namespace cnclab

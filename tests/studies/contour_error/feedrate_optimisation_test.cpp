@@ -132,6 +132,46 @@ TEST(FeedrateOptimisation, SimulatedMachineAsModelMeetsTheTolerance) {
   EXPECT_LE(both.profile.total_time(), lower.profile.total_time() + kTimeTol);
 }
 
+// Margins per feed band: the converged plan keeps every tick's modelled
+// error within eps_max - m(|v|) of its own band (checked tick by tick here),
+// and a band whose margin reaches eps_max at the speeds every plan passes
+// through (standstill at the ends) leaves nothing to plan: infeasible.
+TEST(FeedrateOptimisation, MarginsPerFeedBandHoldTickByTick) {
+  VerificationOptions v;
+  const FeedrateProfile free = plan_feedrate(test_path());
+  const ContourCheck free_check = check_on_machine(test_path(), interpolate(test_path(), free), v);
+  FeedrateOptimisationOptions o;
+  o.tolerance = 0.6 * free_check.max;
+  o.margin_bands = {{30.0}, {0.05 * o.tolerance, 0.25 * o.tolerance}};
+  const ContourErrorModel machine = [&](const ReferenceTrajectory& r) {
+    return check_on_machine(test_path(), r, v).simulated;
+  };
+  const FeedrateOptimisationResult res = optimise_feedrate(test_path(), machine, o);
+  ASSERT_EQ(res.status, OptimisationStatus::converged) << res.reason;
+  std::size_t slow = 0, fast = 0;
+  for (Eigen::Index k = 0; k < res.reference.samples(); ++k) {
+    const double speed = res.reference.velocity.row(k).norm();
+    const double m = speed < 30.0 ? 0.05 * o.tolerance : 0.25 * o.tolerance;
+    (speed < 30.0 ? slow : fast) += 1;
+    ASSERT_LE(res.predicted[static_cast<std::size_t>(k)], o.tolerance - m + 1e-15) << k;
+  }
+  EXPECT_GT(slow, 0u);
+  EXPECT_GT(fast, 0u);
+  EXPECT_LE(res.history.back().worst_excess, 0.0);
+  EXPECT_GT(res.history.front().worst_excess, 0.0);
+
+  o.margin_bands.margin[0] = o.tolerance;  // nothing left below 30 mm/s
+  const FeedrateOptimisationResult none = optimise_feedrate(test_path(), machine, o);
+  EXPECT_EQ(none.status, OptimisationStatus::infeasible) << none.reason;
+  o.margin_bands.margin = {0.1};  // one value for two bands
+  try {
+    optimise_feedrate(test_path(), machine, o);
+    FAIL() << "no error";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "margin_bands.margin");
+  }
+}
+
 TEST(FeedrateOptimisation, ModelOfTheWrongLengthIsAnError) {
   const ContourErrorModel short_model = [](const ReferenceTrajectory&) {
     return std::vector<double>(3, 0.0);

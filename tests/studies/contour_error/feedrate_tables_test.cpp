@@ -58,8 +58,10 @@ struct FeedrateTablesFixture {
   // Each declared target's PASS/FAIL by name.
   std::map<std::string, bool> check() const {
     std::map<std::string, bool> out;
-    const auto targets = read_targets(options.configs_dir / "studies" / "feedrate_tables.yaml");
-    for (const TargetResult& r : check_targets(targets, measure_feedrate_tables(options), "")) {
+    const auto targets =
+        read_targets(options.configs_dir / "studies" / "feedrate_example_tables.yaml");
+    for (const TargetResult& r :
+         check_targets(targets, measure_feedrate_example_tables(options), "")) {
       out[r.target->name] = r.pass;
     }
     return out;
@@ -70,7 +72,7 @@ TEST(FeedrateTables, MeasuresTheWorstToleranceAndChecksTheDoneWhen) {
   FeedrateTablesFixture f;
   ASSERT_EQ(f.job.tolerances.size(), 3u);  // the study's three tolerances
   f.write({1.0, 0.9995, 0.9991}, {1.16, 1.12, 1.27});
-  const Measurements m = measure_feedrate_tables(f.options);
+  const Measurements m = measure_feedrate_example_tables(f.options);
   EXPECT_DOUBLE_EQ(m.at("constrained.min_share_within"), 0.9991);
   EXPECT_DOUBLE_EQ(m.at("min_ratio_uniform_constrained"), 1.12);
   const auto pass = f.check();
@@ -79,7 +81,7 @@ TEST(FeedrateTables, MeasuresTheWorstToleranceAndChecksTheDoneWhen) {
   EXPECT_TRUE(pass.at("min_ratio_uniform_constrained"));
   // The section was chosen on this outcome itself: the table's note says so.
   std::ostringstream table;
-  print_feedrate_tables(f.options, table);
+  print_feedrate_example_tables(f.options, table);
   EXPECT_NE(table.str().find("section: chosen on the reported data, not on validation"),
             std::string::npos)
       << table.str();

@@ -12,7 +12,9 @@
 // (neither the networks' state nor `out`), so the caller decides whether to
 // skip the tick or reset.
 #include <array>
+#include <vector>
 
+#include "cnclab/motion/axis_direction.hpp"
 #include "cnclab/motion/planar_path.hpp"
 #include "cnclab/nn/narx_predictor.hpp"
 
@@ -28,10 +30,16 @@ struct ContourPrediction {
 
 class ContourPredictor {
  public:
-  // One trained network per axis (x, y). Throws as NarxPredictor.
-  ContourPredictor(NarxAxisModel x, NarxAxisModel y);
+  // One trained network per axis (x, y). Throws as NarxPredictor. A network
+  // with more input channels than the velocity takes the direction features
+  // `extra` of its axis's velocity, in that order (the following_error
+  // generator's extra_inputs, computed here with the same class and
+  // options): cnclab::Error when a network's channel count is not
+  // 1 + extra.size().
+  ContourPredictor(NarxAxisModel x, NarxAxisModel y, const std::vector<AxisFeature>& extra = {},
+                   const AxisDirectionOptions& direction = {});
 
-  void reset() noexcept;  // both axes at rest (NarxPredictor::reset)
+  void reset() noexcept;  // both axes at rest (NarxPredictor::reset), no direction yet
 
   // One tick. `velocity`: the axis reference velocities (v_x, v_y) [mm/s],
   // the networks' inputs. `reference`: R = C(u) in position, and d1, d2 for
@@ -50,6 +58,9 @@ class ContourPredictor {
 
  private:
   std::array<NarxPredictor, 2> axes_;
+  std::array<AxisDirection, 2> directions_;
+  std::array<AxisFeature, 3> extra_{};  // the first extra_count_ are used
+  std::size_t extra_count_ = 0;
 };
 
 }  // namespace cnclab

@@ -20,6 +20,43 @@ const FieldList<PathSectionOptions>& feedrate_job_section_fields() {
   return fields;
 }
 
+const FieldList<PathSectionsOptions>& feedrate_job_sections_fields() {
+  using S = PathSectionsOptions;
+  static const auto fields =
+      FieldList<S>()
+          .field("count", &S::count, "sections, evenly spaced over the span (0: the one `section`)")
+          .field("length", &S::length, "arc length of each section [mm]", Rule::positive())
+          .choice("span", &S::span,
+                  {{"validation", SectionSpan::validation}, {"path", SectionSpan::path}},
+                  "validation: the arc lengths of the dataset's validation half; path: the "
+                  "whole path");
+  return fields;
+}
+
+const FieldList<FeedratePathOptions>& feedrate_job_path_fields() {
+  using P = FeedratePathOptions;
+  static const auto fields = FieldList<P>().field(
+      "seed", &P::seed,
+      "another random path with the dataset's path options, drawn from this seed (absent: the "
+      "dataset's own path)");
+  return fields;
+}
+
+const FieldList<MarginCalibrationOptions>& feedrate_job_calibration_fields() {
+  using C = MarginCalibrationOptions;
+  static const auto fields =
+      FieldList<C>()
+          .field("quantile", &C::quantile,
+                 "the margin of a band: this quantile of simulated - predicted contour error "
+                 "on the held-out plans",
+                 Rule::in(0, false, 1, false))
+          .field("feed_bands", &C::feed_bands,
+                 "band edges of the tick's path speed [mm/s], ascending", Rule::positive())
+          .field("min_ticks", &C::min_ticks,
+                 "a band with fewer held-out ticks takes the quantile of all", Rule::at_least(1));
+  return fields;
+}
+
 const FieldList<FeedrateOptimisationOptions>& feedrate_job_optimisation_fields() {
   using O = FeedrateOptimisationOptions;
   static const auto fields =
@@ -34,6 +71,16 @@ const FieldList<FeedrateOptimisationOptions>& feedrate_job_optimisation_fields()
           .field("raise_caps", &O::raise_caps,
                  "two-sided cap update: caps also rise where the prediction is below the "
                  "target; the fastest plan within tolerance - margin of all plans is kept")
+          .field("uniform_candidate", &O::uniform_candidate,
+                 "also the unconstrained plan slowed by the largest factor the predictor keeps "
+                 "within tolerance - margin (bisection); the faster plan is kept")
+          .omit_default()
+          .field("uniform_steps", &O::uniform_steps, "bisection steps of the uniform candidate",
+                 Rule::at_least(1))
+          .omit_default()
+          .field("min_factor", &O::min_factor, "slowest factor of the uniform candidate",
+                 Rule::in(0, false, 1, false))
+          .omit_default()
           .field("max_iterations", &O::max_iterations, "plans, the first included",
                  Rule::at_least(1))
           .field("min_speed", &O::min_speed, "a cap below this [mm/s]: infeasible",
@@ -68,6 +115,12 @@ const FieldList<FeedrateJob>& feedrate_job_fields() {
                  "its dataset gives the path, limits and machine")
           .section("section", &J::section, feedrate_job_section_fields(),
                    "the part of the dataset's path")
+          .section("sections", &J::sections, feedrate_job_sections_fields(),
+                   "many sections declared up front, instead of `section`")
+          .omit_default()
+          .section("path", &J::path, feedrate_job_path_fields(),
+                   "the path planned on (absent: the dataset's)")
+          .omit_default()
           .field("tolerances", &J::tolerances, "eps_max values [µm]", Rule::positive())
           .field("prediction_margin", &J::prediction_margin,
                  "what the predictor may under-predict the machine's contour error by [µm]; "
@@ -76,6 +129,19 @@ const FieldList<FeedrateJob>& feedrate_job_fields() {
           .field("oracle", &J::oracle,
                  "also run the loop with the simulated machine as its error model (a perfect "
                  "predictor, margin 0): method oracle, the loop's own limit (a diagnostic)")
+          .field("calibrate_margin", &J::calibrate_margin,
+                 "the margin per feed band stored with the predictor's result (its residuals "
+                 "on its dataset's validation plans; calibrated and stored first when the "
+                 "result has none for these options), instead of prediction_margin")
+          .omit_default()
+          .section("calibration", &J::calibration, feedrate_job_calibration_fields(),
+                   "the margin calibration (margin_calibration.hpp)")
+          .omit_default()
+          .field("compare_predictors", &J::compare_predictors,
+                 "narx experiments (relative to this file) scored on the same held-out plans")
+          .omit_default()
+          .field("constant_feed", &J::constant_feed, "run the best-constant-feed baseline")
+          .omit_default()
           .section("optimisation", &J::optimisation, feedrate_job_optimisation_fields(),
                    "the predictive optimisation (feedrate_optimisation.hpp)")
           .section("verification", &J::verification, feedrate_job_verification_fields(),
@@ -103,8 +169,16 @@ FeedrateJob load_feedrate_job(const fs::path& file, const std::vector<std::strin
   job.name = read_experiment_name(root);
   job.description = root.get<std::string>("description", "");
   feedrate_job_fields().read(root, job);
+  root.validate([&] { feedrate_job_fields().check(job); });
   job.predictor_file = upstream_file(root, "predictor", job.predictor, file.parent_path());
+  for (const auto& text : job.compare_predictors) {
+    job.compare_files.push_back(
+        upstream_file(root, "compare_predictors", text, file.parent_path()));
+  }
   root.check(!job.tolerances.empty(), "tolerances", "must list at least one tolerance [µm]");
+  root.check(!(job.calibrate_margin && job.prediction_margin != 0.0), "prediction_margin",
+             "must be 0 with calibrate_margin: true (the margin comes from the calibration)");
+  root.section("calibration").validate([&] { job.calibration.validate(); });
   for (const double t : job.tolerances) {
     root.check(t > job.prediction_margin, "tolerances",
                "every tolerance must exceed prediction_margin " +
@@ -118,6 +192,13 @@ FeedrateJob load_feedrate_job(const fs::path& file, const std::vector<std::strin
 
 std::string feedrate_tolerance_label(double tolerance_um) {
   return "eps" + shortest_double(tolerance_um) + "um";
+}
+
+std::string feedrate_section_prefix(const FeedrateJob& job, std::size_t k) {
+  if (job.sections.count == 0) return "";
+  std::string digits = std::to_string(k);
+  if (digits.size() < 2) digits.insert(0, 2 - digits.size(), '0');
+  return "s" + digits + "_";
 }
 
 std::string to_yaml(const FeedrateJob& job) {
@@ -136,7 +217,10 @@ JobKind feedrate_job_kind() {
                           "verified on the simulated machine (seed 002)",
                           load_feedrate_job, run_feedrate_job);
   kind.upstream = [](const fs::path& file, const std::string& profile) {
-    return std::vector<fs::path>{load_feedrate_job(file, {}, profile).predictor_file};
+    const FeedrateJob job = load_feedrate_job(file, {}, profile);
+    std::vector<fs::path> files{job.predictor_file};
+    files.insert(files.end(), job.compare_files.begin(), job.compare_files.end());
+    return files;
   };
   kind.schema = [] {
     return object_schema(feedrate_file_fields(),

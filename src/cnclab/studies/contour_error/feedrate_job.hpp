@@ -17,7 +17,17 @@
 //   oracle: false                   # also plan with the simulated machine as the model
 //   optimisation: {safety_factor, error_exponent, margin, max_iterations, min_speed, grid_spacing}
 //   verification: {seed, required_share, bisection_steps, min_factor}
+// and for the study over many sections (docs/motion.md, "Any path"), each
+// key optional:
+//   sections: {count: 15, length: 150, span: validation}   # instead of section
+//   path: {seed: 7}                 # another random path of the dataset's options
+//   calibrate_margin: true          # margins per feed band stored with the predictor
+//   calibration: {quantile, feed_bands, min_ticks}   # margin_calibration.hpp
+//   compare_predictors: [../narx.yaml]   # scored on the same held-out plans
+//   constant_feed: false            # skip the best-constant-feed baseline
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +37,7 @@
 #include "cnclab/experiment/result_store.hpp"
 #include "cnclab/studies/contour_error/contour_verification.hpp"
 #include "cnclab/studies/contour_error/feedrate_optimisation.hpp"
+#include "cnclab/studies/contour_error/margin_calibration.hpp"
 
 namespace cnclab {
 
@@ -35,11 +46,32 @@ struct PathSectionOptions {
   double length = 150.0;  // [mm], > 0; start + length within the path
 };
 
+// Sections declared before any result is seen: `count` sections of `length`
+// evenly spaced over the span, the first at its start, the last ending at
+// its end. span "validation": the arc lengths the dataset's validation half
+// covers on its path (the same interval on another path, path.seed);
+// "path": the whole path.
+enum class SectionSpan { validation, path };
+struct PathSectionsOptions {
+  std::size_t count = 0;  // 0: the one `section` instead
+  double length = 150.0;  // [mm], > 0
+  SectionSpan span = SectionSpan::validation;
+};
+
+// The path planned on: the predictor's dataset's random NURBS path, or with
+// `seed` another draw of the same options (a path neither the predictor's
+// training nor its margin calibration saw).
+struct FeedratePathOptions {
+  std::optional<std::uint64_t> seed;
+};
+
 struct FeedrateJob {
   std::string name, description;
   std::string predictor = "narx.yaml";   // as written
   std::filesystem::path predictor_file;  // resolved against the job file's folder
   PathSectionOptions section;
+  PathSectionsOptions sections;
+  FeedratePathOptions path;
   std::vector<double> tolerances = {10.0, 5.0, 3.0};  // [µm]
   // What the predictor may under-predict the machine by [µm]
   // (FeedrateOptimisationOptions::prediction_margin); < every tolerance.
@@ -49,6 +81,19 @@ struct FeedrateJob {
   // reaches apart from the predictor's error (a diagnostic; the simulated
   // machine is not available to a real controller).
   bool oracle = false;
+  // The loop's margin per feed band from the predictor's residuals on its
+  // dataset's validation plans (margin_calibration.hpp) instead of
+  // prediction_margin (which must then be 0): the calibration stored with
+  // the predictor's result (stored_margins.hpp), made and stored first when
+  // that result has none for these options.
+  bool calibrate_margin = false;
+  MarginCalibrationOptions calibration;
+  // narx experiments whose predictors are scored on the same held-out plans
+  // as the job's (its dataset's validation part): the comparison the
+  // predictor was chosen by, and the paper's predictor before it.
+  std::vector<std::string> compare_predictors;  // as written
+  std::vector<std::filesystem::path> compare_files;
+  bool constant_feed = true;                 // run the best-constant-feed baseline
   FeedrateOptimisationOptions optimisation;  // tolerance and limits set per run
   VerificationOptions verification;          // tolerance and machine set per run
   std::filesystem::path source_file;
@@ -68,6 +113,10 @@ std::string to_yaml(const FeedrateJob& job);
 // "eps<um>um": a tolerance's group in the per-tick file and the prefix of its
 // metrics and facts in the result (what `cnclab tables feedrate` reads).
 std::string feedrate_tolerance_label(double tolerance_um);
+// "s<k>_" (two digits at least): the prefix of section k's metrics and
+// facts, and "s<k>/" its group in the per-tick file, when the job has
+// sections; "" for the one section.
+std::string feedrate_section_prefix(const FeedrateJob& job, std::size_t k);
 
 // Runs the job and writes <results>/<name>/<name>-ticks.h5 (per tolerance and
 // method: time, u, feed, predicted and simulated contour error per tick; the

@@ -41,22 +41,21 @@ std::size_t optimisation_lower_caps(const FeedrateOptimisationOptions& o,
                                     const std::vector<double>& predicted,
                                     const std::vector<double>& s_knots, double top,
                                     PathSpeedCap& cap) {
-  const double bound = o.tolerance - o.prediction_margin;
-  const double target = o.safety_factor * bound;
   const PathSpeedCap before = cap;
   if (o.raise_caps) std::fill(cap.speed.begin(), cap.speed.end(), top);
   std::size_t over = 0;
   for (Eigen::Index k = 0; k < r.samples(); ++k) {
     const double eps = predicted[static_cast<std::size_t>(k)];
+    const double v = r.velocity.row(k).norm();
+    const double bound = o.tolerance - o.margin_at(v);
+    const double target = std::max(0.0, o.safety_factor * bound);
     if (eps > bound) ++over;
     const bool below = !(eps > target);
     if (below && !(o.raise_caps && eps > 0.0)) continue;
     // Below the target the tick may rise from its cap (whether or not the
     // cap bound it: near standstill the speed says nothing of the cap), above
     // it falls from its speed.
-    const double speed =
-        below ? std::max(r.velocity.row(k).norm(), before.at(r.u[static_cast<std::size_t>(k)]))
-              : r.velocity.row(k).norm();
+    const double speed = below ? std::max(v, before.at(r.u[static_cast<std::size_t>(k)])) : v;
     const double wanted = std::min(top, speed * std::pow(target / eps, 1.0 / o.error_exponent));
     const double s = optimisation_arc_length_at(cap.u, s_knots, r.u[static_cast<std::size_t>(k)]);
     const auto first = std::lower_bound(s_knots.begin(), s_knots.end(), s - o.margin);
@@ -80,6 +79,33 @@ std::size_t optimisation_lower_caps(const FeedrateOptimisationOptions& o,
 
 }  // namespace
 
+std::size_t FeedBandMargins::band(double speed) const noexcept {
+  return static_cast<std::size_t>(std::upper_bound(edges.begin(), edges.end(), speed) -
+                                  edges.begin());
+}
+
+double FeedBandMargins::max() const noexcept {
+  return margin.empty() ? 0.0 : *std::max_element(margin.begin(), margin.end());
+}
+
+void FeedBandMargins::validate() const {
+  if (margin.size() != edges.size() + 1) {
+    throw OptionError("margin", std::to_string(margin.size()) + " values",
+                      "must be one per band: " + std::to_string(edges.size() + 1));
+  }
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (!(edges[i] > 0.0 && std::isfinite(edges[i])) || (i > 0 && !(edges[i] > edges[i - 1]))) {
+      throw OptionError("edges", shortest_double(edges[i]),
+                        "must be finite, > 0 and ascending [mm/s]");
+    }
+  }
+  for (const double m : margin) {
+    if (!(m >= 0.0 && std::isfinite(m))) {
+      throw OptionError("margin", shortest_double(m), "must be >= 0 and finite [mm]");
+    }
+  }
+}
+
 void FeedrateOptimisationOptions::validate() const {
   if (!(tolerance > 0.0 && std::isfinite(tolerance))) {
     throw OptionError("tolerance", shortest_double(tolerance), "must be > 0 and finite [mm]");
@@ -91,11 +117,24 @@ void FeedrateOptimisationOptions::validate() const {
     throw OptionError("prediction_margin", shortest_double(prediction_margin),
                       "must be in [0, tolerance " + shortest_double(tolerance) + ") [mm]");
   }
+  if (!margin_bands.empty()) {
+    try {
+      margin_bands.validate();
+    } catch (const OptionError& e) {
+      throw OptionError("margin_bands." + e.field(), e.value(), e.rule());
+    }
+  }
   if (!(error_exponent > 0.0 && std::isfinite(error_exponent))) {
     throw OptionError("error_exponent", shortest_double(error_exponent), "must be > 0");
   }
   if (!(margin >= 0.0 && std::isfinite(margin))) {
     throw OptionError("margin", shortest_double(margin), "must be >= 0 and finite [mm]");
+  }
+  if (uniform_steps < 1) {
+    throw OptionError("uniform_steps", std::to_string(uniform_steps), "must be >= 1");
+  }
+  if (!(min_factor > 0.0 && min_factor < 1.0)) {
+    throw OptionError("min_factor", shortest_double(min_factor), "must be in (0, 1)");
   }
   if (max_iterations < 1) {
     throw OptionError("max_iterations", std::to_string(max_iterations), "must be >= 1");
@@ -150,30 +189,112 @@ FeedrateOptimisationResult optimise_feedrate(const PlanarPath& path, ContourPred
   return optimise_feedrate(path, model, options, progress);
 }
 
-FeedrateOptimisationResult optimise_feedrate(const PlanarPath& path,
-                                             const ContourErrorModel& error_model,
-                                             const FeedrateOptimisationOptions& options,
-                                             const ProgressCallback& progress) {
-  options.validate();
+namespace {
+
+// max over the ticks of predicted + m(|v|) - eps_max [mm]: <= 0 within.
+double optimisation_worst_excess(const FeedrateOptimisationOptions& o, const ReferenceTrajectory& r,
+                                 const std::vector<double>& predicted) {
+  double worst = -INFINITY;
+  for (Eigen::Index k = 0; k < r.samples(); ++k) {
+    worst = std::max(worst, predicted[static_cast<std::size_t>(k)] +
+                                o.margin_at(r.velocity.row(k).norm()) - o.tolerance);
+  }
+  return worst;
+}
+
+std::vector<double> optimisation_model(const ContourErrorModel& error_model,
+                                       const ReferenceTrajectory& r) {
+  std::vector<double> predicted = error_model(r);
+  if (predicted.size() != static_cast<std::size_t>(r.samples())) {
+    throw Error("contour error model returned " + std::to_string(predicted.size()) +
+                " values for a reference of " + std::to_string(r.samples()) + " ticks");
+  }
+  return predicted;
+}
+
+// uniform_candidate (feedrate_optimisation.hpp): the largest factor of the
+// unconstrained plan the model keeps within the bound; replaces `res` when
+// faster (or when the loop found no plan within the bound).
+void optimisation_uniform_candidate(const PlanarPath& path, const ContourErrorModel& error_model,
+                                    const FeedrateOptimisationOptions& o,
+                                    const FeedrateProfile& unconstrained,
+                                    FeedrateOptimisationResult& res) {
+  struct Trial {
+    FeedrateProfile profile;
+    ReferenceTrajectory reference;
+    std::vector<double> predicted;
+  };
+  const auto trial = [&](double f) {
+    Trial t;
+    t.profile = f == 1.0 ? unconstrained : time_scaled(unconstrained, f);
+    t.reference = interpolate(path, t.profile, 1e-3);
+    t.predicted = optimisation_model(error_model, t.reference);
+    return t;
+  };
+  const auto within = [&](const Trial& t) {
+    return optimisation_worst_excess(o, t.reference, t.predicted) <= 0.0;
+  };
+  Trial best = trial(o.min_factor);
+  if (!within(best)) return;  // not even the slowest factor
+  double good = o.min_factor, bad = 1.0;
+  for (int step = 0; step < o.uniform_steps; ++step) {
+    const double mid = 0.5 * (good + bad);
+    Trial t = trial(mid);
+    if (within(t)) {
+      good = mid;
+      best = std::move(t);
+    } else {
+      bad = mid;
+    }
+  }
+  res.uniform_factor = good;
+  const bool loop_met = res.status == OptimisationStatus::converged;
+  if (loop_met && !(best.profile.total_time() < res.profile.total_time())) return;
+  res.uniform_chosen = true;
+  res.status = OptimisationStatus::converged;
+  res.reason =
+      "the uniform slowdown by factor " + shortest_double(good) + " (" +
+      fixed_decimals(best.profile.total_time(), 4) +
+      " s) keeps the prediction within tolerance - margin " +
+      (loop_met ? "faster than local limits (" + fixed_decimals(res.profile.total_time(), 4) + " s)"
+                : "where local limits did not (" + res.reason + ")");
+  res.profile = std::move(best.profile);
+  res.reference = std::move(best.reference);
+  res.predicted = std::move(best.predicted);
+}
+
+// The loop of feedrate_optimisation.hpp without the uniform candidate.
+FeedrateOptimisationResult optimise_feedrate_caps(const PlanarPath& path,
+                                                  const ContourErrorModel& error_model,
+                                                  const FeedrateOptimisationOptions& options,
+                                                  const ProgressCallback& progress,
+                                                  FeedrateProfile& unconstrained) {
   FeedratePlannerOptions planner = options.planner;
   planner.speed_cap = {};
   const auto& L = options.planner.limits.axes;
   const double top = std::hypot(L[0].velocity, L[1].velocity);  // no effect as a cap
-  const double bound = options.tolerance - options.prediction_margin;
   FeedrateOptimisationResult res, best;  // best: the fastest plan within bound (raise_caps)
   bool have_best = false;
   std::vector<double> s_knots;
   for (int it = 0; it < options.max_iterations; ++it) {
     const auto t0 = std::chrono::steady_clock::now();
-    res.profile = plan_feedrate(path, planner);
-    res.reference = interpolate(path, res.profile, 1e-3);
-    res.predicted = error_model(res.reference);
-    if (res.predicted.size() != static_cast<std::size_t>(res.reference.samples())) {
-      throw Error("contour error model returned " + std::to_string(res.predicted.size()) +
-                  " values for a reference of " + std::to_string(res.reference.samples()) +
-                  " ticks");
+    try {
+      res.profile = plan_feedrate(path, planner);
+    } catch (const Error& e) {
+      if (it == 0) throw;  // the unconstrained plan: the path or the limits, not the caps
+      // No feasible plan under the lowered caps (Ipopt: a cap too low over
+      // too short a span for the jerk limit): the loop ends with what it
+      // has, as when a cap falls below min_speed.
+      if (have_best) break;
+      res.status = OptimisationStatus::infeasible;
+      res.reason =
+          "no plan under the lowered caps after " + std::to_string(it) + " plan(s): " + e.what();
+      return res;
     }
+    res.reference = interpolate(path, res.profile, 1e-3);
+    res.predicted = optimisation_model(error_model, res.reference);
     if (it == 0) {
+      unconstrained = res.profile;
       // Cap knots: the unconstrained grid, at the fastest speed the axis
       // velocity limits allow anywhere (no effect until lowered).
       res.cap = PathSpeedCap::uniform(res.profile.u, top);
@@ -182,10 +303,11 @@ FeedrateOptimisationResult optimise_feedrate(const PlanarPath& path,
     res.cap = it == 0 ? res.cap : planner.speed_cap;  // the cap this plan was made with
     OptimisationIteration rec;
     rec.worst_predicted = *std::max_element(res.predicted.begin(), res.predicted.end());
+    rec.worst_excess = optimisation_worst_excess(options, res.reference, res.predicted);
     rec.time = res.profile.total_time();
     rec.min_cap = *std::min_element(res.cap.speed.begin(), res.cap.speed.end());
     res.history.push_back(rec);
-    const bool within = rec.worst_predicted <= bound;
+    const bool within = rec.worst_excess <= 0.0;
     if (within && (!have_best || rec.time < best.profile.total_time())) {
       best = res;  // its history is replaced below
       have_best = true;
@@ -240,6 +362,22 @@ FeedrateOptimisationResult optimise_feedrate(const PlanarPath& path,
   res.reason =
       "worst predicted contour error " + shortest_double(res.history.back().worst_predicted * 1e3) +
       " um still above the tolerance after " + std::to_string(res.history.size()) + " plans";
+  return res;
+}
+
+}  // namespace
+
+FeedrateOptimisationResult optimise_feedrate(const PlanarPath& path,
+                                             const ContourErrorModel& error_model,
+                                             const FeedrateOptimisationOptions& options,
+                                             const ProgressCallback& progress) {
+  options.validate();
+  FeedrateProfile unconstrained;
+  FeedrateOptimisationResult res =
+      optimise_feedrate_caps(path, error_model, options, progress, unconstrained);
+  if (options.uniform_candidate) {
+    optimisation_uniform_candidate(path, error_model, options, unconstrained, res);
+  }
   return res;
 }
 

@@ -38,6 +38,19 @@
 
 namespace cnclab {
 
+// A prediction margin per feed band [mm]: margin[b] applies to a tick whose
+// path speed |v| lies in band b = [edges[b-1], edges[b]) (edges[-1] = 0,
+// edges[size] = infinity). Empty: no bands.
+struct FeedBandMargins {
+  std::vector<double> edges;   // ascending, > 0 [mm/s]
+  std::vector<double> margin;  // edges.size() + 1 values [mm], >= 0
+  bool empty() const noexcept { return margin.empty(); }
+  std::size_t band(double speed) const noexcept;
+  double at(double speed) const noexcept { return margin[band(speed)]; }
+  double max() const noexcept;
+  void validate() const;  // OptionError naming the field
+};
+
 struct FeedrateOptimisationOptions {
   double tolerance = 0.005;  // eps_max [mm], > 0
   // s: caps aim at s eps_max, so the next plan lands under eps_max despite
@@ -47,6 +60,15 @@ struct FeedrateOptimisationOptions {
   // [mm]; the loop plans for a predicted error within eps_max - m. 0 trusts
   // the predictor. In [0, tolerance).
   double prediction_margin = 0.0;
+  // Instead of prediction_margin when not empty: m per feed band of the
+  // tick (margin_calibration.hpp calibrates it on held-out plans). A band
+  // whose margin reaches eps_max leaves nothing to plan for at that feed:
+  // the loop slows down out of it, or ends infeasible.
+  FeedBandMargins margin_bands;
+  // The margin at a tick of path speed |v| [mm].
+  double margin_at(double speed) const noexcept {
+    return margin_bands.empty() ? prediction_margin : margin_bands.at(speed);
+  }
   // p in |eps| ~ v^p near a tick: the cap scales by (s eps_max/|eps|)^(1/p).
   // The lag error of a P position loop grows like v (tangential) and the
   // centripetal part like v^2 (normal): 1 is cautious (more slowdown, fewer
@@ -65,7 +87,17 @@ struct FeedrateOptimisationOptions {
   // more than 1 %) and returns the fastest plan within eps_max - m. false:
   // caps only fall and the first plan within eps_max - m is returned.
   bool raise_caps = false;
-  int max_iterations = 15;  // plans including the first, >= 1
+  // Also the unconstrained plan slowed by one factor f (time_scaled, u(f t))
+  // with f the largest the error model keeps within eps_max - m (bisection,
+  // `uniform_steps` steps over [min_factor, 1]); the faster of it and the
+  // local-limit plan is the result. Local limits should never lose to one
+  // feed override judged by the same model (where the error is spread
+  // evenly one factor is near optimal, and the loop's safety factor and
+  // caps that only fall slow it down more than needed).
+  bool uniform_candidate = false;
+  int uniform_steps = 12;    // >= 1
+  double min_factor = 0.02;  // in (0, 1)
+  int max_iterations = 15;   // plans including the first, >= 1
   // A cap below this path speed [mm/s] means the tolerance cannot be met by
   // slowing down (the predictor's error at standstill, or its bias, exceeds
   // it): the optimisation stops with status infeasible. > 0.
@@ -81,10 +113,12 @@ const char* to_string(OptimisationStatus status) noexcept;
 // One plan of the loop.
 struct OptimisationIteration {
   double worst_predicted = 0.0;  // max predicted |eps| over the ticks [mm]
-  double time = 0.0;             // traversal time [s]
-  std::size_t ticks_over = 0;    // ticks with predicted |eps| > eps_max - m
-  double min_cap = 0.0;          // smallest cap knot this plan was made with [mm/s]
-  double seconds = 0.0;          // wall time of planning and prediction
+  // max over the ticks of predicted |eps| + m(|v|) - eps_max [mm]: <= 0 within
+  double worst_excess = 0.0;
+  double time = 0.0;           // traversal time [s]
+  std::size_t ticks_over = 0;  // ticks with predicted |eps| > eps_max - m
+  double min_cap = 0.0;        // smallest cap knot this plan was made with [mm/s]
+  double seconds = 0.0;        // wall time of planning and prediction
 };
 
 struct FeedrateOptimisationResult {
@@ -95,6 +129,10 @@ struct FeedrateOptimisationResult {
   std::vector<double> predicted;               // predicted |eps| per tick of `reference` [mm]
   PathSpeedCap cap;                            // the cap of the last plan
   std::vector<OptimisationIteration> history;  // [0] = the unconstrained plan
+  // uniform_candidate: the factor the model allowed (0: none met the bound),
+  // and whether that plan is the result.
+  double uniform_factor = 0.0;
+  bool uniform_chosen = false;
   double unconstrained_time() const { return history.empty() ? 0.0 : history.front().time; }
 };
 

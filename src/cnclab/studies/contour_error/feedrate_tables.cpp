@@ -55,7 +55,7 @@ double feedrate_metric(const RunRecord& r, const std::string& name) {
 
 }  // namespace
 
-Measurements measure_feedrate_tables(const TablesOptions& options) {
+Measurements measure_feedrate_example_tables(const TablesOptions& options) {
   const FeedrateTableInput in = feedrate_table_input(options);
   const RunRecord& r = in.result.record;
   Measurements m;
@@ -85,7 +85,7 @@ Measurements measure_feedrate_tables(const TablesOptions& options) {
   return m;
 }
 
-void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
+void print_feedrate_example_tables(const TablesOptions& options, std::ostream& out) {
   const FeedrateTableInput in = feedrate_table_input(options);
   const RunRecord& r = in.result.record;
   const TableFormat format = options.format;
@@ -135,10 +135,12 @@ void print_feedrate_tables(const TablesOptions& options, std::ostream& out) {
     }
   }
   print_table_title(out, format,
-                    "Contour-error constrained feedrate (seed 002's application), " +
+                    "An example: contour-error constrained feedrate (seed 002's application) on "
+                    "one section chosen by its outcome (docs/motion.md, \"Choice of section\"), " +
                         shortest_double(in.job.section.length) + " mm of the seed-002 path from " +
                         shortest_double(in.job.section.start) +
-                        " mm, simulated machine: exact contour error of the tool per 1 ms tick");
+                        " mm, simulated machine: exact contour error of the tool per 1 ms tick; "
+                        "`cnclab tables feedrate` holds the study over declared sections");
   t.print(out, format);
   notes.push_back(
       "methods: unconstrained = minimum time under the axis limits; constrained = "
