@@ -234,7 +234,10 @@ const FieldList<SweepJob>& sweep_job_fields() {
 
 std::vector<FieldInfo> sweep_file_fields() {
   std::vector<FieldInfo> fields = job_file_fields("sweep");
-  for (auto& f : sweep_job_fields().info()) fields.push_back(std::move(f));
+  // A named default object: with the temporary of info()'s default argument,
+  // GCC 12 at -O3 warns that a string of it "may be used uninitialized".
+  const SweepJob defaults;
+  for (auto& f : sweep_job_fields().info(defaults)) fields.push_back(std::move(f));
   return fields;
 }
 
