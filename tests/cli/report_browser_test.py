@@ -147,6 +147,12 @@ with tempfile.TemporaryDirectory() as tmp:
             definitions.setdefault(k, []).append(v)
     for override in ("trainer.learning_rate=0.02", "description=by hand"):
         check(override in definitions.get("override", []), f"provenance: override {override}")
+    # The contents: a link to each section, and every link lands on an id of the page.
+    links = re.findall(r'<nav class="contents"[^>]*>.*?</nav>', dom, re.S)
+    check(links, "a contents list")
+    targets = re.findall(r'href="#([^"]+)"', links[0]) if links else []
+    check(len(targets) >= 3, f"the contents link the sections: {targets}")
+    check(all(f'id="{t}"' in dom for t in targets), f"every contents link has a target: {targets}")
     # A run's heading names the point it is (a sweep trial keeps its base experiment's name).
     headings = re.findall(r"<h[2-6][^>]*>(Run [^<]*)</h", dom)
     check(any("[trainer.learning_rate=0.02]" in h for h in headings),

@@ -28,7 +28,8 @@ td.pass{background:#e3f4e3;font-weight:600}td.fail{background:#f9dede;font-weigh
 figure{margin:1em 0}figcaption{font-size:.85em;color:#555}svg,img.figure{max-width:100%;height:auto}
 dl{display:grid;grid-template-columns:max-content auto;gap:.15em 1em;font-size:.9em}dt{font-weight:600}dd{margin:0;word-break:break-all}
 p.note{font-size:.85em;color:#555}
-@media print{body{max-width:none;font-size:10.5pt;padding:0}h2{break-after:avoid}figure,tr{break-inside:avoid}
+nav.contents ul{list-style:none;padding-left:0;columns:2;font-size:.9em}nav.contents li.l3{padding-left:1.5em}
+@media print{nav.contents{display:none}body{max-width:none;font-size:10.5pt;padding:0}h2{break-after:avoid}figure,tr{break-inside:avoid}
 table.data{font-size:7.5pt}table.data th,table.data td{padding:.1em .3em}table.data td{white-space:nowrap}table.data td:first-child{white-space:normal}td.pass,td.fail{-webkit-print-color-adjust:exact;print-color-adjust:exact}a{color:inherit}}
 )";
 
@@ -242,11 +243,17 @@ std::string svg_parallel_coordinates(const std::vector<std::string>& axes,
 HtmlPage::HtmlPage(std::string title) : title_(std::move(title)) {}
 
 void HtmlPage::heading(int level, const std::string& text, const std::string& id) {
+  level = std::clamp(level, 1, 4);
+  const bool listed = level == 2 || level == 3;
+  const std::string anchor =
+      id.empty() && listed ? "section-" + std::to_string(contents_.size() + 1) : id;
   std::string h = "h";
-  h += static_cast<char>('0' + std::clamp(level, 1, 4));
+  h += static_cast<char>('0' + level);
   body_.append("<").append(h);
-  if (!id.empty()) body_.append(" id=\"").append(html_escape(id)).append("\"");
+  if (!anchor.empty()) body_.append(" id=\"").append(html_escape(anchor)).append("\"");
   body_.append(">").append(html_escape(text)).append("</").append(h).append(">\n");
+  if (level == 1) contents_at_ = body_.size();
+  if (listed) contents_.push_back({level, text, anchor});
 }
 
 void HtmlPage::paragraph(const std::string& text, const std::string& css_class) {
@@ -284,10 +291,19 @@ void HtmlPage::definitions(const std::vector<std::pair<std::string, std::string>
 }
 
 std::string HtmlPage::html() const {
+  std::string body = body_;
+  if (contents_.size() >= 2) {
+    std::string nav = "<nav class=\"contents\" aria-label=\"contents\"><ul>";
+    for (const auto& e : contents_) {
+      nav += "<li class=\"l" + std::to_string(e.level) + "\"><a href=\"#" + html_escape(e.id) +
+             "\">" + html_escape(e.text) + "</a></li>";
+    }
+    body.insert(contents_at_, nav + "</ul></nav>\n");
+  }
   return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
          "<title>" +
-         html_escape(title_) + "</title><style>" + kStyle + "</style></head>\n<body>\n" + body_ +
+         html_escape(title_) + "</title><style>" + kStyle + "</style></head>\n<body>\n" + body +
          "</body></html>\n";
 }
 

@@ -44,11 +44,20 @@ class HtmlPage {
   // Raw markup made by this module (SVG, or an <img> of a data URI): inside a <figure>.
   void figure(const std::string& svg, const std::string& caption);
   void definitions(const std::vector<std::pair<std::string, std::string>>& items);
+  // The page; a list of links to every level-2 and level-3 heading follows
+  // the level-1 heading when there are two or more (a study's report is long:
+  // a block per run behind its numbers).
   std::string html() const;
 
  private:
+  struct ContentsEntry {
+    int level;
+    std::string text, id;
+  };
   std::string title_;
   std::string body_;
+  std::vector<ContentsEntry> contents_;
+  std::size_t contents_at_ = 0;  // where in body_ the list goes: after the h1
 };
 
 }  // namespace cnclab
