@@ -167,6 +167,17 @@ class Helper:
         self.study = optuna.create_study(study_name=m.get("study", "cnclab"), storage=storage,
                                          sampler=sampler, pruner=pruner,
                                          directions=directions, load_if_exists=True)
+        # A continued study (a rerun to more trials, a resubmitted or restarted
+        # worker): its sampler with the first run's seed would draw that run's
+        # points again, and a point equal to a finished trial's config is that
+        # trial again (a trial spent on nothing). The seed is offset by the
+        # trials already in the journal: a fresh study keeps the given seed, and
+        # a continued one is as reproducible as the journal it continues.
+        existing = len(self.study.get_trials(deepcopy=False))
+        spec = dict(m.get("sampler", {}))
+        if existing and spec.get("seed") is not None:
+            spec["seed"] = (int(spec["seed"]) + existing) % 2**32
+            self.study.sampler = make_sampler(spec)
         if [d.name.lower() for d in self.study.directions] != [d.lower() for d in directions]:
             raise Bad("the journal's study has directions %s, not %s" % (
                 [d.name.lower() for d in self.study.directions], directions))

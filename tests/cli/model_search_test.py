@@ -119,6 +119,9 @@ with tempfile.TemporaryDirectory() as work:
                               storage=JournalStorage(JournalFileStorage("study/study.journal")))
     finished = [t for t in study.trials if t.state.name in ("COMPLETE", "PRUNED")]
     check(len(finished) == 10, "continued to 10 trials (got %d)" % len(finished))
+    # The continued trials are new points, not the first run's drawn again.
+    points = {tuple(sorted(t.params.items())) for t in finished}
+    check(len(points) == 10, "10 different points (got %d)" % len(points))
     for p, ino in inodes.items():
         check(os.stat(os.path.join("study/trials", p)).st_ino == ino, "trial %s kept" % p)
 

@@ -22,7 +22,8 @@
 // same sequence of trials. With more jobs or workers the sequence depends on
 // the order in which trials finish, as in Optuna. Worker k of a Slurm array
 // (SLURM_ARRAY_TASK_ID) seeds its sampler with seed + k, so workers do not
-// draw the same first points.
+// draw the same first points; a worker that continues a study (a rerun, a
+// resubmitted task) adds the number of trials already in the journal.
 //
 // A killed worker: the helper records the host and pid of the process
 // holding each running trial; a starting worker fails the trials whose holder
