@@ -131,9 +131,9 @@ TEST(NarxTraining, SequencesAreSeriesOfTheirOwn) {
     o.evaluate(w, 0, o.num_residuals(), r, &j);
     return std::make_pair(r, j);
   };
-  for (const Eigen::Index horizon : {Eigen::Index{0}, Eigen::Index{6}}) {
-    NarxClosedLoopObjective joined(narx, ab.v, ab.e, horizon, starts);
-    NarxClosedLoopObjective first(narx, a.v, a.e, horizon), second(narx, b.v, b.e, horizon);
+  // `joined`'s residuals and Jacobian rows are `first`'s, then `second`'s.
+  const auto expect_concatenation = [&](ResidualObjective& joined, ResidualObjective& first,
+                                        ResidualObjective& second) {
     const auto [r, j] = evaluate(joined);
     const auto [r1, j1] = evaluate(first);
     const auto [r2, j2] = evaluate(second);
@@ -142,16 +142,19 @@ TEST(NarxTraining, SequencesAreSeriesOfTheirOwn) {
     EXPECT_EQ(r.tail(r2.size()), r2);
     EXPECT_EQ(j.topRows(r1.size()), j1);
     EXPECT_EQ(j.bottomRows(r2.size()), j2);
+  };
+  for (const Eigen::Index horizon : {Eigen::Index{0}, Eigen::Index{6}}) {
+    SCOPED_TRACE("closed loop, horizon " + std::to_string(horizon));
+    NarxClosedLoopObjective joined(narx, ab.v, ab.e, horizon, starts);
+    NarxClosedLoopObjective first(narx, a.v, a.e, horizon), second(narx, b.v, b.e, horizon);
+    expect_concatenation(joined, first, second);
   }
-  NarxOpenLoopObjective joined(narx, ab.v, ab.e, starts);
-  NarxOpenLoopObjective first(narx, a.v, a.e), second(narx, b.v, b.e);
-  const auto [r, j] = evaluate(joined);
-  const auto [r1, j1] = evaluate(first);
-  const auto [r2, j2] = evaluate(second);
-  ASSERT_EQ(r.size(), r1.size() + r2.size());
-  EXPECT_EQ(r.head(r1.size()), r1);
-  EXPECT_EQ(r.tail(r2.size()), r2);
-  EXPECT_EQ(j.bottomRows(r2.size()), j2);
+  {
+    SCOPED_TRACE("open loop");
+    NarxOpenLoopObjective joined(narx, ab.v, ab.e, starts);
+    NarxOpenLoopObjective first(narx, a.v, a.e), second(narx, b.v, b.e);
+    expect_concatenation(joined, first, second);
+  }
   // A sequence no longer than the delays, or starts out of order, are errors.
   EXPECT_NE(testing::error_message<Error>([&] {
               NarxOpenLoopObjective bad(narx, ab.v, ab.e, {74});
