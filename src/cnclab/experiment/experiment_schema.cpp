@@ -54,9 +54,8 @@ json trainer_schema(const std::string& doc) {
     if (c["if"].contains("not")) c["then"]["properties"]["stages"] = json::object();
   }
   s["properties"]["stages"] = {
-      {"description",
-       "model.type narx: the training stages, run in order (narx_spec.hpp), e.g. [{mode: "
-       "open_loop, type: trainbr, epochs: 150}, {mode: closed_loop, type: trainbr, epochs: 40}]"},
+      {"description", "model.type narx: the training stages, run in order (narx_spec.hpp), e.g. " +
+                          stages_example()},
       {"type", "array"},
       {"minItems", 1},
       {"items", stage_schema()}};

@@ -88,7 +88,7 @@ std::vector<Eigen::Index> sequence_starts(const Dataset& d, Eigen::Index begin, 
 }
 
 // One stage from `params` in place: series-parallel or parallel residuals
-// over the training series, trained by the stage's lm or trainbr.
+// over the training series, trained by the stage's trainer.
 // One stage of one network, with its progress (epochs, SSE, mu) on `progress`.
 Summary train_stage(const Narx& narx, const TrainingStage& stage, const Eigen::MatrixXd& v,
                     const Eigen::VectorXd& e, const std::vector<Eigen::Index>& starts,

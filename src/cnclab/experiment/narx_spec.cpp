@@ -151,9 +151,7 @@ TrainingStage read_stage(const ConfigReader& s) {
 std::vector<TrainingStage> read_stages(const ConfigReader& trainer) {
   const YAML::Node list = trainer.raw("stages");
   if (!list.IsSequence() || list.size() == 0) {
-    trainer.fail("stages",
-                 "must be a non-empty list of stages, e.g. [{mode: open_loop, type: trainbr}, "
-                 "{mode: closed_loop, type: trainbr}]");
+    trainer.fail("stages", "must be a non-empty list of stages, e.g. " + stages_example());
   }
   std::vector<TrainingStage> stages;
   for (std::size_t i = 0; i < list.size(); ++i) {
@@ -190,6 +188,12 @@ std::string stages_text(const std::vector<TrainingStage>& stages) {
     s += to_string(stage.mode) + ":" + trainer_name(stage.trainer);
   }
   return s;
+}
+
+std::string stages_example() {
+  return "[{mode: open_loop, type: TRAINER, epochs: 150}, {mode: closed_loop, type: TRAINER, "
+         "epochs: 40}] (TRAINER: " +
+         join(trainer_names(needs_jacobian), " or ") + ")";
 }
 
 }  // namespace cnclab

@@ -13,13 +13,13 @@
 //     inputs: [v, direction]  # optional: each network's input channels (below)
 //   trainer:
 //     stages:                 # run in order, each from the previous stage's weights
-//       - {mode: open_loop, type: trainbr, epochs: 150, min_gradient: 1.0e-8}
-//       - {mode: closed_loop, type: trainbr, epochs: 40, min_gradient: 1.0e-8}
+//       - {mode: open_loop, type: TRAINER, epochs: 150, min_gradient: 1.0e-8}
+//       - {mode: closed_loop, type: TRAINER, epochs: 40, min_gradient: 1.0e-8}
 //
 // mode open_loop: series-parallel (the measured errors are fed back: a static
 // network on the regressors); closed_loop: parallel (the network's own
 // predictions are fed back; exact dynamic Jacobian by RTRL). Each stage takes
-// the keys of its `type` (trainer_spec.hpp: lm or trainbr). Seed 002's three
+// the keys of its `type` (trainer_spec.hpp: a trainer that needs a Jacobian). Seed 002's three
 // training methods are three stage lists: [open_loop, closed_loop] (its
 // two-stage method), [open_loop], [closed_loop].
 //
@@ -101,7 +101,13 @@ std::vector<TrainingStage> read_stages(const ConfigReader& trainer);
 // stage a flow map of every option resolved.
 YAML::Node stages_to_node(const std::vector<TrainingStage>& stages);
 
-// "open_loop:trainbr+closed_loop:trainbr", for messages and result files.
+// "open_loop:TYPE+closed_loop:TYPE" (each stage's mode and trainer type),
+// for messages and result files.
 std::string stages_text(const std::vector<TrainingStage>& stages);
+
+// An example trainer.stages for messages and the schema: an open-loop then a
+// closed-loop stage, "type: TRAINER" with the trainers a stage takes (those
+// that need a Jacobian, from the registry) listed after it.
+std::string stages_example();
 
 }  // namespace cnclab

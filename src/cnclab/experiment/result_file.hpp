@@ -85,8 +85,9 @@ std::vector<UpstreamRef> read_upstream(const H5File& file);
 std::vector<std::string> read_warnings(const H5File& file);  // none when absent (older files)
 
 // How a training run used its validation part, for people (`run` and `show`
-// print it): trainbr has no validation stop (as MATLAB's trainbr), so its
-// validation split is held out of training and only scored; a narx run's
+// print it): a trainer without a validation stop (its capabilities,
+// train/trainer_registry.hpp; Bayesian regularisation, as in MATLAB) holds
+// its validation split out of training and only scores it; a narx run's
 // stages never stop on the validation half. Empty for the other trainers
 // (their validation stop, when configured, is in the training message).
 std::vector<std::string> validation_notes(const RunRecord& record);

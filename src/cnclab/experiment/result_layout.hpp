@@ -195,7 +195,7 @@ void narx_stage(Io& io, const std::string& g, St& st) {
 // stages of each (/history/<axis>/stage<k>), and the closed-loop prediction
 // of the validation half (networks x steps; the first `first_step` steps are
 // measured initial states). /training's trainer names the stages, e.g.
-// "open_loop:trainbr+closed_loop:trainbr".
+// "open_loop:TYPE+closed_loop:TYPE".
 template <class Io, class R>
 void narx(Io& io, R& r) {
   auto& n = *r.narx;

@@ -1,5 +1,6 @@
 #pragma once
-// The Levenberg-Marquardt part of a training history (lm, trainbr), as an
+// The Levenberg-Marquardt part of a training history (the trainers that
+// record one, train/trainer_registry.hpp history layout), as an
 // MLP run's /history and each NARX stage's group hold it:
 //   <group>/<series>            one value per epoch (kLmSeries)
 //   <group> attrs initial_<series>   the state before the first step
@@ -26,7 +27,9 @@ inline constexpr LmSeries kLmSeries[] = {
     {"beta", &LmEpochRecord::beta, "1", true},
     {"gamma", &LmEpochRecord::gamma, "1 (effective number of parameters)", true},
     {"mu", &LmEpochRecord::mu, "1", true},
-    {"gradient", &LmEpochRecord::gradient, "lm: 2 |J^T e| / N (mse); trainbr: 2 |J^T e| (sse)",
+    {"gradient", &LmEpochRecord::gradient,
+     "2 |J^T e| / N on an mse objective; 2 |J^T e| on an sse objective (Bayesian "
+     "regularisation)",
      true},
     {"curvature", &LmEpochRecord::curvature, "1 (beta max_i (J^T J)_ii)", false},
 };

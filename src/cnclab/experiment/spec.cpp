@@ -240,8 +240,8 @@ LoadedExperiment read_experiment(ConfigDocument& doc, const std::vector<Override
                                  std::optional<std::uint64_t> seed_override,
                                  const std::filesystem::path& base) {
   // Config groups first, then the other overrides, whatever their order on
-  // the command line (as Hydra's defaults list): `trainer=trainbr
-  // trainer.epochs=5` and `trainer.epochs=5 trainer=trainbr` both train 5.
+  // the command line (as Hydra's defaults list): `trainer=NAME
+  // trainer.epochs=5` and `trainer.epochs=5 trainer=NAME` both train 5.
   std::vector<Override> groups, rest;
   for (const auto& override : overrides) {
     Override expanded = expand_config_group(override, base);

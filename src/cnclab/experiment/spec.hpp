@@ -26,7 +26,7 @@ namespace cnclab {
 // normalisation: {inputs: zscore|minmax|none, targets: ..., input_range:
 // [low, high], target_range: [low, high]}, fitted on the training split
 // only: zscore = seed 000 Eq. 7 (n-1 sample std), minmax = MATLAB mapminmax
-// to the range (default [-1, 1], seed 002 and trainbr's usual companion; a
+// to the range (default [-1, 1], seed 002 and Bayesian regularisation's usual companion; a
 // sigmoid output needs one inside (0, 1), seed 004). See scaling.hpp.
 struct NormalisationSpec {
   Scaling inputs = Scaling::zscore;

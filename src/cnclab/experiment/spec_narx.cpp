@@ -24,10 +24,8 @@ void read_narx_model_section(const ConfigReader& root, ExperimentSpec& spec) {
 void read_narx_trainer(const ConfigReader& root, ExperimentSpec& spec) {
   const ConfigReader trainer = root.section("trainer");
   if (trainer.has("type") || !trainer.has("stages")) {
-    trainer.fail("stages",
-                 "model.type narx trains in stages: give trainer.stages, e.g. [{mode: open_loop, "
-                 "type: trainbr, epochs: 150}, {mode: closed_loop, type: trainbr, epochs: 40}], "
-                 "and no trainer.type");
+    trainer.fail("stages", "model.type narx trains in stages: give trainer.stages, e.g. " +
+                               stages_example() + ", and no trainer.type");
   }
   spec.stages = read_stages(trainer);
 }

@@ -3,7 +3,7 @@
 // uses and its options. The types, their keys and defaults come from the
 // trainer registry (train/trainer_registry.hpp; `cnclab schema` lists them).
 // A key that only another type has (left from a fragment written for that
-// type, e.g. after `trainer.type=trainbr` on an sgdm experiment) is dropped,
+// type, e.g. after `trainer.type=B` on an experiment of type A) is dropped,
 // with a note saying which; any other key of no type is an unknown key.
 #include <yaml-cpp/yaml.h>
 

@@ -71,7 +71,7 @@ struct MlpOptions {
 };
 
 // Buffers of an Mlp for one batch size, in double or float (float32
-// training, sgdm.hpp); reused across mini-batches (no allocation in the
+// training, train/); reused across mini-batches (no allocation in the
 // training loop).
 template <class T>
 struct MlpWorkspace {

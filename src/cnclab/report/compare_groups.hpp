@@ -53,7 +53,7 @@ struct GroupCompareOptions {
 };
 
 struct RunGroup {
-  std::string label;              // "trainer.type=sgdm", or the repeats' distinguishing keys
+  std::string label;              // "trainer.type=NAME", or the repeats' distinguishing keys
   std::vector<std::size_t> runs;  // indices into the runs, in input order
 };
 

@@ -100,7 +100,8 @@ void add_run(Builder& b, const fs::path& file, int level) {
                     "Levenberg-Marquardt damping μ after each epoch's accepted step");
       b.page.figure(
           svg_line_chart({gamma}, {prefix + "effective parameters γ", "epoch", "γ", false}),
-          "effective number of parameters γ per epoch (trainbr; lm: N_w)");
+          "effective number of parameters γ per epoch (with Bayesian regularisation; without "
+          "it, γ = N_w, every weight)");
     }
   };
   if (r.narx) {

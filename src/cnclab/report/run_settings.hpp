@@ -10,7 +10,7 @@ namespace cnclab {
 
 // The settings of `resolved_yamls` (each a result's /config) at the dotted
 // `keys`, grouped by their first segment, in the order given:
-//   "trainer: type sgdm, batch_size 32, epochs 5; model: dropout.keep_probability 0.3 to 0.9 (7
+//   "trainer: type NAME, batch_size 32, epochs 5; model: dropout.keep_probability 0.3 to 0.9 (7
 //   values)"
 // A key whose value differs between the runs lists its values ("200 or
 // 2000"; numbers sorted, more than three as a range); a key no run has is
