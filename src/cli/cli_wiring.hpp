@@ -21,16 +21,16 @@ void add_experiment_commands(CLI::App& app, CommandAction& action);
 void add_sweep_commands(CLI::App& app, CommandAction& action);
 // dataset generate/show, gcode, tables, schema, version (wire_tool_commands.cpp).
 void add_tool_commands(CLI::App& app, CommandAction& action);
-// surface show/export/example-part (surface_command.cpp).
+// surface show/export/example-part (wire_surface_commands.cpp).
 void add_surface_commands(CLI::App& app, CommandAction& action);
 // predict, export (wire_deploy_commands.cpp).
 void add_deploy_commands(CLI::App& app, CommandAction& action);
-
 // runs, gc, report (wire_runs_commands.cpp).
 void add_runs_commands(CLI::App& app, CommandAction& action);
+// init (wire_tool_commands.cpp).
+void add_init_command(CLI::App& app, CommandAction& action);
 
 // Shared by the wiring files (cli_wiring.cpp).
-extern const char* const kProfileHelp;
 // --out / --results: the results root (results_folder, result_store.hpp).
 extern const char* const kResultsRootHelp;
 // Counts (--jobs, --repeats, --trials): digits only. CLI11 alone reads "-1"
@@ -46,5 +46,16 @@ std::optional<std::uint64_t> seed_option(const std::optional<std::string>& text,
 // mix with the full ones.
 void apply_profile_dir(const CLI::App& sub, const char* option, const std::string& profile,
                        std::filesystem::path& dir);
+
+// The options several commands share, each said the same way everywhere:
+// --out ROOT (kResultsRootHelp) and --data-dir DIR, their defaults shown.
+void add_store_options(CLI::App& sub, std::filesystem::path& results_dir,
+                       std::filesystem::path& datasets_dir);
+// --quiet, -q: no progress output.
+void add_quiet_flag(CLI::App& sub, bool& quiet);
+// --profile NAME (kProfileHelp).
+void add_profile_option(CLI::App& sub, std::string& profile);
+// --seed UINT read as text (seed_option).
+void add_seed_option(CLI::App& sub, std::optional<std::string>& seed_text);
 
 }  // namespace cnclab

@@ -1,8 +1,6 @@
 #include "cli/commands.hpp"
 
-#include <algorithm>
 #include <cstdlib>
-#include <iomanip>
 
 #include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
@@ -15,9 +13,9 @@
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/provenance.hpp"
 #include "cnclab/nn/metrics.hpp"
+#include "cnclab/pipeline/run_options.hpp"
 #include "cnclab/report/sweep_report.hpp"
 #include "cnclab/studies/five_axis/trochoid_job.hpp"
-#include "cnclab/sweep/sweep_summary.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -108,26 +106,6 @@ int validate_command(const fs::path& experiment, const std::vector<std::string>&
   return 0;
 }
 
-namespace {
-
-// A sweep's summary.h5 as `sweep merge` prints it (its trials as the summary
-// recorded them; the "best trial" path is beside the summary, as merge's).
-void show_summary(const fs::path& file, std::ostream& out) {
-  const StoredSummary stored = read_summary(file);
-  const SweepSummary summary = summarize(stored.plan, stored.outcomes);
-  print_summary(out, stored.plan, stored.outcomes, summary, file.parent_path());
-  if (stored.search) print_search_findings(out, *stored.search);
-  const std::string best = summary.best_trial >= 0
-                               ? stored.plan.trials[static_cast<std::size_t>(summary.best_trial)].id
-                               : "";
-  if (best != stored.best_trial) {
-    out << "note: the file records best trial '" << stored.best_trial
-        << "' (chosen by an older rule); `cnclab sweep merge` rewrites it\n";
-  }
-}
-
-}  // namespace
-
 int show_command(const std::vector<std::string>& result_files, const CommandOptions& options,
                  std::ostream& out) {
   ShowOptions show;
@@ -135,7 +113,7 @@ int show_command(const std::vector<std::string>& result_files, const CommandOpti
   for (std::size_t i = 0; i < result_files.size(); ++i) {
     if (i) out << "\n";
     if (is_sweep_summary(result_files[i])) {
-      show_summary(result_files[i], out);
+      print_stored_summary(result_files[i], out);
     } else {
       print_result(read_result(result_files[i]), out, show);
     }

@@ -1,20 +1,17 @@
 #pragma once
-// The CLI's command bodies (main.cpp wires arguments to them).
-// Each returns the exit code: 0 ok, 1 run failed; bad configuration throws
-// ConfigError (exit 2), other problems cnclab::Error (exit 1).
-#include <cstddef>
+// The short command bodies that only call the library and print (the
+// wire_*.cpp files wire arguments to them; the other bodies live in their
+// modules). Each returns the exit code: 0 ok, 1 run failed; bad
+// configuration throws ConfigError (exit 2), other problems cnclab::Error
+// (exit 1).
 #include <cstdint>
 #include <filesystem>
-#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "cnclab/experiment/command_options.hpp"
-#include "cnclab/experiment/job_kinds.hpp"
-#include "cnclab/pipeline/reproduce_inputs.hpp"
-#include "cnclab/pipeline/run_options.hpp"
 
 namespace cnclab {
 
@@ -29,12 +26,6 @@ int validate_command(const std::filesystem::path& experiment,
 // options.full: configs with every array in full.
 int show_command(const std::vector<std::string>& result_files, const CommandOptions& options,
                  std::ostream& out);
-// Runs the experiments under `paths` and the ones they need, upstream first
-// (experiment_graph.hpp); reuses every result whose resolved config and
-// upstream results are unchanged; prints per experiment ran/reused and why.
-int reproduce_command(const std::vector<std::string>& paths, const CommandOptions& options,
-                      std::ostream& out, std::ostream& log);
-
 int version_command(std::ostream& out);
 // `cnclab gcode trochoid CONFIG.yaml -o FILE.nc`: the tool path of a `kind:
 // gcode` file written atomically to `output`, its report printed.

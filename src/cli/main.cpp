@@ -12,7 +12,6 @@
 
 #include "cli/builtins.hpp"
 #include "cli/cli_wiring.hpp"
-#include "cli/init_command.hpp"
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/isa.hpp"
 

@@ -43,7 +43,7 @@ void add_predict(CLI::App& app, CommandAction& action) {
                       "default with measured targets) or from standstill (rest)");
   predict->add_option("--data-dir", a->request.data.data_dir, "Dataset cache folder")
       ->capture_default_str();
-  predict->add_flag("--quiet,-q", a->quiet, "No progress output");
+  add_quiet_flag(*predict, a->quiet);
   predict->footer(
       "Columns out: sample; mlp: <target>.predicted (and .measured); narx: <target>.closed_loop, "
       ".open_loop (with measured targets), .measured, in the dataset's and the physical units, "
@@ -91,7 +91,7 @@ void add_export(CLI::App& app, CommandAction& action) {
   exp->add_option("--data-dir", a->options.data.data_dir,
                   "Dataset cache folder (narx ranges, the float bound's data)")
       ->capture_default_str();
-  exp->add_flag("--quiet,-q", a->quiet, "No progress output");
+  add_quiet_flag(*exp, a->quiet);
   exp->footer(
       "API: mlp  int NAME_predict(const NAME_real in[], NAME_real out[]);\n"
       "     narx void NAME_init(NAME_state *s);  int NAME_step(NAME_state *s, const NAME_real "

@@ -5,10 +5,11 @@
 
 #include "cli/cli_wiring.hpp"
 #include "cli/commands.hpp"
-#include "cli/reproduce_slurm.hpp"
 #include "cli/slurm_command.hpp"
 #include "cnclab/core/config_abbreviate.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/pipeline/reproduce_command.hpp"
+#include "cnclab/pipeline/slurm_commands.hpp"
 #include "cnclab/report/compare.hpp"
 #include "cnclab/report/compare_groups.hpp"
 
@@ -37,14 +38,11 @@ void add_run(CLI::App& app, CommandAction& action) {
       ->check(CLI::ExistingFile);
   run->add_option("overrides", a->overrides,
                   "Config overrides key=value, values typed as YAML (1e-4, true, [28, 20])");
-  run->add_option("--seed", a->seed_text, "Master seed (overrides the YAML's seed)")
-      ->type_name("UINT");
-  run->add_option("--out", a->common.results_dir, kResultsRootHelp)->capture_default_str();
-  run->add_option("--data-dir", a->common.datasets_dir, "Dataset cache folder")
-      ->capture_default_str();
-  run->add_flag("--quiet,-q", a->common.quiet, "No progress output");
+  add_seed_option(*run, a->seed_text);
+  add_store_options(*run, a->common.results_dir, a->common.datasets_dir);
+  add_quiet_flag(*run, a->common.quiet);
   run->add_flag("--regenerate", a->common.regenerate, "Regenerate the dataset even when cached");
-  run->add_option("--profile", a->common.profile, kProfileHelp);
+  add_profile_option(*run, a->common.profile);
   run->footer(
       "Example:\n  cnclab run experiments/friedman/friedman1_mlp.yaml trainer.learning_rate=1e-3 "
       "model.hidden=[32,16] --seed 7\nWrites results/<name>/<name>-seed<N>-<hash>.h5 atomically.");
@@ -65,9 +63,8 @@ void add_validate(CLI::App& app, CommandAction& action) {
       ->required()
       ->check(CLI::ExistingFile);
   validate->add_option("overrides", a->overrides, "Config overrides key=value");
-  validate->add_option("--seed", a->seed_text, "Master seed (overrides the YAML's seed)")
-      ->type_name("UINT");
-  validate->add_option("--profile", a->common.profile, kProfileHelp);
+  add_seed_option(*validate, a->seed_text);
+  add_profile_option(*validate, a->common.profile);
   validate->add_flag("--full", a->common.full, kFullHelp);
   validate->footer(
       "Example:\n  cnclab validate experiments/friedman/friedman1_mlp.yaml trainer.momentum=0.9");
@@ -110,14 +107,12 @@ void add_reproduce(CLI::App& app, CommandAction& action) {
   auto* reproduce = app.add_subcommand(
       "reproduce", "Run experiments (default: all under experiments/) and print their metrics");
   reproduce->add_option("paths", a->paths, "Experiment files or folders (default: experiments)");
-  reproduce->add_option("--out", a->common.results_dir, kResultsRootHelp)->capture_default_str();
-  reproduce->add_option("--data-dir", a->common.datasets_dir, "Dataset cache folder")
-      ->capture_default_str();
-  reproduce->add_flag("--quiet,-q", a->common.quiet, "No progress output");
+  add_store_options(*reproduce, a->common.results_dir, a->common.datasets_dir);
+  add_quiet_flag(*reproduce, a->common.quiet);
   reproduce->add_flag("--force", a->common.force,
                       "Run every experiment even if its result is current");
   reproduce->add_flag("--regenerate", a->common.regenerate, "Regenerate datasets even when cached");
-  reproduce->add_option("--profile", a->common.profile, kProfileHelp);
+  add_profile_option(*reproduce, a->common.profile);
   reproduce
       ->add_option("--jobs,-j", a->common.jobs,
                    "Experiments trained at once, each in its own process, once their "

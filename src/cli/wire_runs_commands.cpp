@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "cli/cli_wiring.hpp"
-#include "cli/commands.hpp"
+#include "cnclab/pipeline/reproduce_inputs.hpp"
 #include "cnclab/report/garbage.hpp"
 #include "cnclab/report/html_report.hpp"
 #include "cnclab/report/runs_command.hpp"
@@ -61,9 +61,7 @@ void add_gc(CLI::App& app, CommandAction& action) {
   auto* gc = app.add_subcommand(
       "gc", "List (default) or remove results and datasets that no experiment still produces");
   gc->add_option("folders", a->folders, "Experiment files or folders (default: experiments)");
-  gc->add_option("--out", a->options.results_dir, kResultsRootHelp)->capture_default_str();
-  gc->add_option("--data-dir", a->options.datasets_dir, "Dataset cache folder")
-      ->capture_default_str();
+  add_store_options(*gc, a->options.results_dir, a->options.datasets_dir);
   auto* dry = gc->add_flag("--dry-run", a->dry_run, "List only (the default)");
   gc->add_flag("--yes", a->options.remove, "Remove what is listed")->excludes(dry);
   gc->footer(
@@ -92,7 +90,7 @@ void add_report(CLI::App& app, CommandAction& action) {
       ->required();
   report->add_option("-o,--output", o->output, "The .html file to write")->required();
   report->add_option("--results", o->tables.results_dir, kResultsRootHelp)->capture_default_str();
-  report->add_option("--profile", o->tables.profile, kProfileHelp);
+  add_profile_option(*report, o->tables.profile);
   report->footer(
       "Examples:\n  cnclab report step-error -o step-error.html\n"
       "  cnclab report results/narx/sweep-1a2b3c4d -o sweep.html\n"

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli/slurm_command.hpp"
+#include "cnclab/pipeline/status_command.hpp"
 #include "cnclab/sweep/slurm_fields.hpp"
 
 namespace cnclab {

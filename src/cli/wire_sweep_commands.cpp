@@ -5,8 +5,9 @@
 
 #include "cli/cli_wiring.hpp"
 #include "cli/slurm_command.hpp"
-#include "cli/sweep_command.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/pipeline/slurm_commands.hpp"
+#include "cnclab/pipeline/sweep_command.hpp"
 
 namespace cnclab {
 namespace {
@@ -64,14 +65,11 @@ void add_sweep_options(CLI::App& sweep, SweepArgs& a) {
       .add_option("--sweep-seed", a.sweep_seed_text,
                   "Seed of the random search (default: the experiment seed)")
       ->type_name("UINT");
-  sweep.add_option("--seed", a.seed_text, "Master seed (overrides the YAML's seed)")
-      ->type_name("UINT");
-  sweep.add_option("--out", o.common.results_dir, kResultsRootHelp)->capture_default_str();
-  sweep.add_option("--data-dir", o.common.datasets_dir, "Dataset cache folder")
-      ->capture_default_str();
+  add_seed_option(sweep, a.seed_text);
+  add_store_options(sweep, o.common.results_dir, o.common.datasets_dir);
   sweep.add_flag("--regenerate", o.common.regenerate, "Regenerate the datasets even when cached");
-  sweep.add_flag("--quiet,-q", o.common.quiet, "No progress output");
-  sweep.add_option("--profile", o.common.profile, kProfileHelp);
+  add_quiet_flag(sweep, o.common.quiet);
+  add_profile_option(sweep, o.common.profile);
   add_slurm_sweep_options(sweep, a.slurm, o);
   sweep.footer(
       "Examples:\n"

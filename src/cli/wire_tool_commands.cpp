@@ -1,14 +1,17 @@
-// CLI11 wiring of dataset generate/show, gcode, tables, schema and version
-// (cli_wiring.hpp).
+// CLI11 wiring of dataset generate/show, gcode, tables, schema, version and
+// init (cli_wiring.hpp).
 #include <iostream>
 #include <memory>
 #include <vector>
 
 #include "cli/cli_wiring.hpp"
 #include "cli/commands.hpp"
-#include "cli/dataset_commands.hpp"
-#include "cli/schema_command.hpp"
+#include "cnclab/data/dataset_commands.hpp"
+#include "cnclab/experiment/experiment_schema.hpp"
+#include "cnclab/pipeline/project_init.hpp"
 #include "cnclab/report/tables.hpp"
+#include "cnclab/sweep/slurm_fields.hpp"
+#include "cnclab/sweep/sweep_fields.hpp"
 
 namespace cnclab {
 namespace {
@@ -35,7 +38,7 @@ void add_dataset(CLI::App& app, CommandAction& action) {
       ->check(CLI::ExistingFile);
   generate->add_option("overrides", g->overrides, "Config overrides key=value");
   generate->add_option("--out", g->out, "Output file (default datasets/<config stem>.h5)");
-  generate->add_flag("--quiet,-q", g->quiet, "No progress output");
+  add_quiet_flag(*generate, g->quiet);
   generate->footer(
       "Example:\n  cnclab dataset generate configs/datasets/step_error_surface1.yaml\n  cnclab "
       "dataset generate configs/datasets/step_error_surface2.yaml dataset.options.lines=20 "
@@ -116,7 +119,7 @@ void add_tables(CLI::App& app, CommandAction& action) {
                    "After the tables, each declared target of the study's manifest "
                    "(configs/studies/*.yaml targets:) with its measured value and PASS/FAIL; "
                    "exit 1 on any FAIL");
-  tables->add_option("--profile", a->options.profile, kProfileHelp);
+  add_profile_option(*tables, a->options.profile);
   tables->footer(
       "Examples:\n  cnclab tables ik    # seed 004 Table 5 and the machine-space error\n"
       "  cnclab tables step-error --format md   # seed 000 Tables 2-8 as Markdown\n"
@@ -145,11 +148,34 @@ void add_tool_commands(CLI::App& app, CommandAction& action) {
       "Example:\n  cnclab schema > cnclab.schema.json\n  then start an experiment file with\n"
       "  # yaml-language-server: $schema=../../cnclab.schema.json");
   schema->callback([schema_kind, &action] {
-    action = [schema_kind] { return schema_command(*schema_kind, std::cout); };
+    action = [schema_kind] {
+      std::cout << experiment_file_schema(*schema_kind, sweep_fields().info(),
+                                          slurm_fields().info())
+                       .dump(2)
+                << "\n";
+      return 0;
+    };
   });
   auto* version = app.add_subcommand("version", "Print version, git commit and library versions");
   version->footer("Example:\n  cnclab version");
   version->callback([&action] { action = [] { return version_command(std::cout); }; });
+}
+
+void add_init_command(CLI::App& app, CommandAction& action) {
+  auto options = std::make_shared<InitOptions>();
+  auto* init = app.add_subcommand(
+      "init",
+      "Create a project folder: starter experiments per study, configs/, datasets/, "
+      "results/, README, .gitignore");
+  init->add_option("dir", options->dir, "Project folder (new or empty; created)")->required();
+  init->add_flag("--force", options->force,
+                 "Also into a non-empty folder; existing files are kept, never overwritten");
+  init->footer(
+      "Example:\n  cnclab init ~/studies/mill && cd ~/studies/mill && cnclab reproduce --quick\n"
+      "The project's configs/ come first for `include: configs/...`, then cnclab's installed "
+      "configs (`cnclab version` prints where they are).");
+  init->callback(
+      [options, &action] { action = [options] { return init_command(*options, std::cout); }; });
 }
 
 }  // namespace cnclab

@@ -70,6 +70,9 @@ TEST(SweepReport, StoredSummaryPrintsTheSameTable) {
   const StoredSummary back = read_summary(dir / "summary.h5");
   print_summary(shown, back.plan, back.outcomes, summarize(back.plan, back.outcomes), dir.path());
   EXPECT_EQ(shown.str(), merged.str());
+  std::ostringstream stored;  // what `cnclab show` prints: the same, no note
+  print_stored_summary(dir / "summary.h5", stored);
+  EXPECT_EQ(stored.str(), merged.str());
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "cnclab/nn/metrics.hpp"
 #include "cnclab/report/text_table.hpp"
+#include "cnclab/sweep/search_findings.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -116,6 +117,20 @@ void print_summary(std::ostream& out, const SweepPlan& plan,
     }
   }
   if (const std::string w = objective_warning(plan); !w.empty()) out << "WARNING " << w << "\n";
+}
+
+void print_stored_summary(const std::filesystem::path& file, std::ostream& out) {
+  const StoredSummary stored = read_summary(file);
+  const SweepSummary summary = summarize(stored.plan, stored.outcomes);
+  print_summary(out, stored.plan, stored.outcomes, summary, file.parent_path());
+  if (stored.search) print_search_findings(out, *stored.search);
+  const std::string best = summary.best_trial >= 0
+                               ? stored.plan.trials[static_cast<std::size_t>(summary.best_trial)].id
+                               : "";
+  if (best != stored.best_trial) {
+    out << "note: the file records best trial '" << stored.best_trial
+        << "' (chosen by an older rule); `cnclab sweep merge` rewrites it\n";
+  }
 }
 
 }  // namespace cnclab

@@ -22,4 +22,10 @@ void print_summary(std::ostream& out, const SweepPlan& plan,
                    const std::vector<TrialOutcome>& outcomes, const SweepSummary& summary,
                    const std::filesystem::path& dir, const std::string& name = "");
 
+// A sweep's summary.h5 as `sweep merge` prints it, read from the file alone
+// (its trials as the summary recorded them; the "best trial" path beside
+// the summary, as merge's), and a note when the file records another best
+// trial (chosen by an older rule). `cnclab show SUMMARY.h5`.
+void print_stored_summary(const std::filesystem::path& file, std::ostream& out);
+
 }  // namespace cnclab

@@ -1,4 +1,4 @@
-#include "cli/sweep_command.hpp"
+#include "cnclab/pipeline/sweep_command.hpp"
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/data/dataset_cache.hpp"

@@ -1,6 +1,6 @@
 #pragma once
-// `cnclab sweep` and `cnclab sweep merge` as library functions (exit codes as
-// in commands.hpp; an interrupted sweep returns 128 + the signal number).
+// `cnclab sweep` and `cnclab sweep merge` (exit codes: 0 done, 1 a trial
+// failed; an interrupted sweep returns 128 + the signal number).
 #include <cstdint>
 #include <filesystem>
 #include <optional>

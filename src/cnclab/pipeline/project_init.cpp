@@ -1,8 +1,6 @@
-#include "cli/init_command.hpp"
+#include "cnclab/pipeline/project_init.hpp"
 
 #include <algorithm>
-#include <iostream>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -80,23 +78,6 @@ int init_command(const InitOptions& options, std::ostream& out) {
   for (const auto& rel : kept) out << "  " << rel.string() << " (exists: kept)\n";
   out << "Next:\n  cd " << dir.string() << " && cnclab reproduce --quick\n";
   return 0;
-}
-
-void add_init_command(CLI::App& app, CommandAction& action) {
-  auto options = std::make_shared<InitOptions>();
-  auto* init = app.add_subcommand(
-      "init",
-      "Create a project folder: starter experiments per study, configs/, datasets/, "
-      "results/, README, .gitignore");
-  init->add_option("dir", options->dir, "Project folder (new or empty; created)")->required();
-  init->add_flag("--force", options->force,
-                 "Also into a non-empty folder; existing files are kept, never overwritten");
-  init->footer(
-      "Example:\n  cnclab init ~/studies/mill && cd ~/studies/mill && cnclab reproduce --quick\n"
-      "The project's configs/ come first for `include: configs/...`, then cnclab's installed "
-      "configs (`cnclab version` prints where they are).");
-  init->callback(
-      [options, &action] { action = [options] { return init_command(*options, std::cout); }; });
 }
 
 }  // namespace cnclab

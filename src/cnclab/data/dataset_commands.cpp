@@ -1,4 +1,4 @@
-#include "cli/dataset_commands.hpp"
+#include "cnclab/data/dataset_commands.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,7 +10,6 @@
 #include "cnclab/data/constant_targets.hpp"
 #include "cnclab/data/dataset_cache.hpp"
 #include "cnclab/data/dataset_file.hpp"
-#include "cnclab/experiment/spec.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;

@@ -1,9 +1,7 @@
-// `cnclab reproduce`: the experiment graph run by the library
-// (pipeline/reproduce_run.hpp), its summary and the tables of the studies
-// whose files ran.
+#include "cnclab/pipeline/reproduce_command.hpp"
+
 #include <iomanip>
 
-#include "cli/commands.hpp"
 #include "cnclab/pipeline/reproduce_run.hpp"
 #include "cnclab/report/tables.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
-// `cnclab dataset generate` and `cnclab dataset show` as library functions
-// (src/cli only wires arguments). Return the exit code; bad configuration
+// `cnclab dataset generate` and `cnclab dataset show` (src/cli wires their
+// arguments). Return the exit code; bad configuration
 // throws ConfigError (exit 2), unreadable files IoError (exit 1).
 #include <filesystem>
 #include <optional>

@@ -3,11 +3,8 @@
 // (SHARE/templates/project, core/share_paths.hpp): experiments/ with a
 // starter experiment per study, configs/ (a project's configs override the
 // installed ones), datasets/, results/, a README and a .gitignore.
-#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <ostream>
-
-#include "cli/cli_wiring.hpp"
 
 namespace cnclab {
 
@@ -22,8 +19,5 @@ struct InitOptions {
 // non-empty folder without force; IoError when it cannot be written.
 // Returns 0.
 int init_command(const InitOptions& options, std::ostream& out);
-
-// The `init` subcommand (called from main.cpp).
-void add_init_command(CLI::App& app, CommandAction& action);
 
 }  // namespace cnclab

@@ -1,16 +1,34 @@
-#include "cli/reproduce_slurm.hpp"
+#include "cnclab/pipeline/slurm_commands.hpp"
 
 #include <iomanip>
 
-#include "cli/commands.hpp"
 #include "cnclab/core/error.hpp"
+#include "cnclab/pipeline/reproduce_inputs.hpp"
 #include "cnclab/pipeline/reproduce_slurm.hpp"
 #include "cnclab/pipeline/slurm_sweep_submit.hpp"
-#include "cnclab/sweep/slurm_queue.hpp"
 #include "cnclab/sweep/slurm_reproduce_record.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
+
+int slurm_sweep_command(const fs::path& experiment, const std::vector<std::string>& words,
+                        std::optional<std::uint64_t> seed, const SweepCommandOptions& o,
+                        const SlurmOptions& slurm, std::ostream& out, std::ostream& log) {
+  slurm.validate();
+  if (!o.shard.empty()) throw ConfigError("--shard with --slurm: the array tasks are the shards");
+  if (o.jobs != 0) {
+    throw ConfigError("--jobs with --slurm: a task runs --cpus-per-task trials at once");
+  }
+  if (!o.trial_ids.empty()) throw ConfigError("--trial-ids with --slurm: the tasks set it");
+  if (o.rerun) {
+    throw ConfigError(
+        "--rerun with --slurm: an array gets only the trials without a result; train them "
+        "again with `cnclab sweep ... --rerun` (one job, or --shard K/N per job)");
+  }
+  if (!slurm.dry_run) check_slurm_clients();
+  const SweepSlurmResult r = submit_sweep_slurm(experiment, words, seed, o, slurm, {}, out, log);
+  return r.final_rejected ? 1 : 0;
+}
 
 int reproduce_slurm_command(const std::vector<std::string>& paths, const CommandOptions& options,
                             const SlurmOptions& slurm, std::ostream& out, std::ostream& log) {
@@ -42,31 +60,6 @@ int reproduce_slurm_command(const std::vector<std::string>& paths, const Command
         << "; run the same command again to submit what is missing or failed\n";
   }
   return run.exit_code;
-}
-
-int reproduce_status_command(const fs::path& results_dir, std::ostream& out) {
-  const ReproduceRecord record = read_reproduce_record(results_dir);
-  SlurmTaskStates jobs;
-  std::string note;
-  try {
-    jobs = squeue_jobs();
-  } catch (const Error& e) {
-    note = e.what();
-  }
-  out << "reproduce --slurm jobs of " << results_dir.string() << ": " << record.size() << "\n";
-  for (const auto& [file, e] : record) {
-    const auto state = jobs.find(e.job);
-    std::error_code ec;
-    // A result file, or a sweep folder with its summary.
-    const bool made = !e.output.empty() && (fs::is_regular_file(e.output, ec) ||
-                                            fs::exists(fs::path(e.output) / "summary.h5", ec));
-    out << "  " << std::left << std::setw(28) << e.name << " job " << e.job << " "
-        << (state == jobs.end() ? "(ended or unknown to Slurm)" : state->second)
-        << (made ? ", output present" : "") << (e.array.empty() ? "" : "; array " + e.array)
-        << "\n";
-  }
-  if (!note.empty()) out << "  note: " << note << "\n";
-  return 0;
 }
 
 }  // namespace cnclab
