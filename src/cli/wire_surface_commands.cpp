@@ -12,7 +12,6 @@
 #include "cnclab/report/cad_part_report.hpp"
 
 namespace cnclab {
-namespace fs = std::filesystem;
 
 namespace {
 
