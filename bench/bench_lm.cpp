@@ -11,6 +11,11 @@
 //   cnclab_bench_lm prepare DIR           writes (b)'s data and initial weights
 //                                         for scripts/bench_lm_scipy.py
 //   cnclab_bench_lm race DIR TARGET_SSE   LM on (b) until SSE <= TARGET_SSE
+//   cnclab_bench_lm gram [REPEATS]        J^T J of (c)'s closed-loop Jacobian
+//                                         at every instruction-set level this
+//                                         CPU runs, beside that level's Eigen
+//                                         GEMM rate (target at v4: GEMM /
+//                                         J^T J <= 1.3)
 //   cnclab_bench_lm forms [EPOCHS]        trainbr on the step-error MLP
 //                                         73-32-16-1 (2,913 weights, 936
 //                                         samples): the P x P primal with one
@@ -31,7 +36,9 @@
 #include <string>
 #include <vector>
 
+#include "cnclab/core/isa.hpp"
 #include "cnclab/core/rng.hpp"
+#include "cnclab/nn/kernels.hpp"
 #include "cnclab/nn/mlp.hpp"
 #include "cnclab/train/lm.hpp"
 #include "cnclab/train/mlp_residuals.hpp"
@@ -164,26 +171,103 @@ Seed000Problem seed000_problem() {
 // (RTRL Jacobian: "Jacobian" is the sequential simulation with the dynamic
 // derivatives, "trial SSE" one simulation without them). The tanh output
 // layer keeps the closed loop finite for any weights.
-void narx_iterations(int repeats, double gemm) {
+struct NarxProblem {
+  Narx narx;
+  Eigen::VectorXd v, e, w;
+};
+NarxProblem narx_problem() {
   constexpr Eigen::Index kSteps = 86000;
   NarxOptions o;
   o.hidden = 12;
   o.input_delays = 4;
   o.feedback_delays = 4;
-  const Narx narx(o);
+  NarxProblem p{Narx(o), Eigen::VectorXd::Zero(kSteps), Eigen::VectorXd::Zero(kSteps),
+                Eigen::VectorXd()};
   Rng rng(3);
-  Eigen::VectorXd v = Eigen::VectorXd::Zero(kSteps), e = Eigen::VectorXd::Zero(kSteps);
   for (Eigen::Index t = 1; t < kSteps; ++t) {
-    v[t] = 0.95 * v[t - 1] + 0.2 * rng.normal();
-    e[t] = 0.8 * e[t - 1] + 0.3 * v[t] - 0.1 * v[t - 1];
+    p.v[t] = 0.95 * p.v[t - 1] + 0.2 * rng.normal();
+    p.e[t] = 0.8 * p.e[t - 1] + 0.3 * p.v[t] - 0.1 * p.v[t - 1];
   }
-  Eigen::VectorXd w;
-  narx.initialise(w, rng);
-  const Eigen::Index n = kSteps - narx.first_step();
-  NarxOpenLoopObjective open(narx, v, e);
-  report("narx open loop 12/4", n, w.size(), time_iteration(open, w, repeats), gemm);
-  NarxClosedLoopObjective closed(narx, v, e);
-  report("narx closed loop 12/4", n, w.size(), time_iteration(closed, w, repeats), gemm);
+  p.narx.initialise(p.w, rng);
+  return p;
+}
+
+void narx_iterations(int repeats, double gemm) {
+  const NarxProblem p = narx_problem();
+  const Eigen::Index n = p.v.size() - p.narx.first_step();
+  NarxOpenLoopObjective open(p.narx, p.v, p.e);
+  report("narx open loop 12/4", n, p.w.size(), time_iteration(open, p.w, repeats), gemm);
+  NarxClosedLoopObjective closed(p.narx, p.v, p.e);
+  report("narx closed loop 12/4", n, p.w.size(), time_iteration(closed, p.w, repeats), gemm);
+}
+
+// Eigen's GEMM C = A B (n x n, 2 n^3 flops) at one level, through that
+// level's kernel table (the GEMM compiled with the level's flags).
+double level_gemm_gflops(const kernels::Table& t, int repeats) {
+  const Eigen::Index n = 1024;
+  Rng rng(1);
+  Eigen::MatrixXd a(n, n), b(n, n), c(n, n);
+  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = rng.normal();
+  for (Eigen::Index i = 0; i < b.size(); ++i) b.data()[i] = rng.normal();
+  std::vector<double> rates;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = Clock::now();
+    kernels::multiply(t, a, false, b, false, c);
+    rates.push_back(2.0 * n * n * n / seconds_since(t0) / 1e9);
+  }
+  if (!c.allFinite()) std::abort();
+  return median(rates);
+}
+
+// J^T J of the NARX 12/4 closed-loop Jacobian (86,000 x 121, evaluated once
+// in the row blocks NormalEquationBuilder uses) at every level this CPU
+// runs, rounds alternating between the levels so that the machine's load
+// falls on all of them alike; each level's GEMM rate in the same rounds.
+int gram(int repeats) {
+  const NarxProblem p = narx_problem();
+  NarxClosedLoopObjective closed(p.narx, p.v, p.e);
+  const Eigen::Index n = closed.num_residuals(), w = closed.num_parameters();
+  const Eigen::Index block = NormalEquationBuilder(closed).block_rows();
+  std::vector<Eigen::MatrixXd> blocks;
+  Eigen::VectorXd e(block);
+  for (Eigen::Index first = 0; first < n; first += block) {
+    const Eigen::Index count = std::min(block, n - first);
+    blocks.emplace_back(count, w);
+    closed.evaluate(p.w, first, count, e.head(count), &blocks.back());
+  }
+  std::vector<IsaLevel> levels;
+  for (const IsaLevel l : compiled_isa_levels()) {
+    if (cpu_supports(l)) levels.push_back(l);
+  }
+  const double flops = static_cast<double>(n) * static_cast<double>(w) * (w + 1.0);
+  std::vector<std::vector<double>> gram_rates(levels.size()), gemm_rates(levels.size());
+  Eigen::MatrixXd jtj(w, w);
+  for (int r = 0; r < repeats; ++r) {
+    for (std::size_t i = 0; i < levels.size(); ++i) {
+      const kernels::Table& t = kernels::table_for(levels[i]);
+      gemm_rates[i].push_back(level_gemm_gflops(t, 1));
+      jtj.setZero();
+      const auto t0 = Clock::now();
+      for (const Eigen::MatrixXd& j : blocks) {
+        t.dsyrk(true, w, j.rows(), j.data(), j.outerStride(), jtj.data(), jtj.outerStride());
+      }
+      gram_rates[i].push_back(flops / seconds_since(t0) / 1e9);
+      if (!jtj.allFinite()) std::abort();
+    }
+  }
+  std::printf(
+      "narx closed loop 12/4 J^T J (N %ld W %ld, blocks of %ld rows), 1 thread, median of "
+      "%d rounds:\n",
+      static_cast<long>(n), static_cast<long>(w), static_cast<long>(block), repeats);
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    const double g = median(gram_rates[i]), m = median(gemm_rates[i]);
+    const bool v4 = levels[i] == IsaLevel::v4;
+    std::printf(
+        "  %-8s J^T J %6.2f GFLOP/s, Eigen GEMM 1024^2 %6.2f GFLOP/s, GEMM / J^T J = %.2fx%s\n",
+        to_string(levels[i]), g, m, m / g,
+        v4 ? (m / g <= 1.3 ? " (target <= 1.3x) PASS" : " (target <= 1.3x) FAIL") : "");
+  }
+  return 0;
 }
 
 void write_binary(const std::filesystem::path& file, const double* data, Eigen::Index count) {
@@ -312,10 +396,11 @@ int main(int argc, char** argv) {
   if (mode == "iteration") return iteration(argc > 2 ? std::atoi(argv[2]) : 3);
   if (mode == "prepare" && argc > 2) return prepare(argv[2]);
   if (mode == "race" && argc > 3) return race(std::atof(argv[3]));
+  if (mode == "gram") return gram(argc > 2 ? std::atoi(argv[2]) : 3);
   if (mode == "forms") return forms(argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 5);
   std::fprintf(stderr,
-               "usage: %s iteration [REPEATS] | prepare DIR | race DIR TARGET_SSE | forms "
-               "[EPOCHS]\n",
+               "usage: %s iteration [REPEATS] | gram [REPEATS] | prepare DIR | race DIR TARGET_SSE "
+               "| forms [EPOCHS]\n",
                argv[0]);
   return 2;
 }

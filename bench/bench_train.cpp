@@ -4,10 +4,14 @@
 // Prints one line per batch size and precision (trainer.precision, sgdm.hpp):
 // "batch <b> samples_per_s <x> precision <float64|float32>" (median of
 // repeats). scripts/bench_train runs this beside the PyTorch equivalent.
+//
+//   cnclab_bench_train [REPEATS [BATCH [PRECISION]]]   (default 5, all batch
+//   sizes 1 / 32 / 256, both precisions; BATCH or PRECISION "all" = every one)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "cnclab/core/rng.hpp"
@@ -19,6 +23,12 @@ int main(int argc, char** argv) {
   using namespace cnclab;
   constexpr Eigen::Index kSamples = 13860;
   const int repeats = argc > 1 ? std::atoi(argv[1]) : 5;
+  const std::string only_batch = argc > 2 ? argv[2] : "all";
+  const std::string only_precision = argc > 3 ? argv[3] : "all";
+  if (repeats < 1) {
+    std::fprintf(stderr, "usage: cnclab_bench_train [REPEATS >= 1 [BATCH [PRECISION]]]\n");
+    return 2;
+  }
   Rng data_rng(1);
   Eigen::MatrixXd x(73, kSamples), y(1, kSamples);
   for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] = data_rng.normal();
@@ -35,7 +45,10 @@ int main(int argc, char** argv) {
   const Mlp mlp(mo);
 
   for (const Precision precision : {Precision::float64, Precision::float32}) {
+    const char* precision_name = precision == Precision::float32 ? "float32" : "float64";
+    if (only_precision != "all" && only_precision != precision_name) continue;
     for (std::size_t batch : {1, 32, 256}) {
+      if (only_batch != "all" && only_batch != std::to_string(batch)) continue;
       // Enough epochs for ~0.5 s per measurement at each batch size.
       const std::size_t epochs = batch == 1 ? 2 : 10;
       std::vector<double> rates;
@@ -62,7 +75,7 @@ int main(int argc, char** argv) {
       }
       std::sort(rates.begin(), rates.end());
       std::printf("batch %zu samples_per_s %.0f precision %s\n", batch, rates[rates.size() / 2],
-                  precision == Precision::float32 ? "float32" : "float64");
+                  precision_name);
     }
   }
   return 0;

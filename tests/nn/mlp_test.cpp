@@ -110,6 +110,34 @@ TEST(Mlp, DropoutMasksKeepShareAndInvertedScaling) {
   EXPECT_NEAR(m.mean(), 1.0, 5 * std::sqrt(0.7 / 0.3 / n));
 }
 
+// The masks are the Bernoulli draws r = [u < p] of the documented rule, u =
+// Rng::uniform() taken layer by layer in column-major order (the integer
+// comparison the code uses instead must give the same masks), in both
+// precisions, including keep probabilities that are not multiples of 2^-53
+// and one within an ulp of 1.
+TEST(Mlp, DropoutMasksAreUniformDrawsBelowTheKeepProbability) {
+  for (const double p : {0.5, 0.3, 1.0 / 3.0, 0.9, std::nextafter(1.0, 0.0), 0x1.0p-40}) {
+    auto o = options(Activation::relu, Activation::linear, {30, 20, 10}, 2, 1);
+    o.dropout_keep_probability = p;
+    const Mlp mlp(o);
+    Mlp::Workspace ws;
+    Mlp::Workspace32 ws32;
+    mlp.prepare(ws, 64);
+    mlp.prepare(ws32, 64);
+    Rng rng(9), rng32(9), reference(9);
+    mlp.draw_dropout_masks(ws, rng);
+    mlp.draw_dropout_masks(ws32, rng32);
+    for (std::size_t l = 1; l <= 2; ++l) {  // between_hidden: the first two hidden layers
+      for (Eigen::Index i = 0; i < ws.mask[l].size(); ++i) {
+        const bool keep = reference.uniform() < p;
+        ASSERT_EQ(ws.mask[l].data()[i], keep ? 1.0 / p : 0.0) << "p " << p << " layer " << l;
+        ASSERT_EQ(ws32.mask[l].data()[i], keep ? static_cast<float>(1.0 / p) : 0.0f);
+      }
+    }
+    EXPECT_EQ(rng.next_u64(), reference.next_u64()) << "p " << p;
+  }
+}
+
 TEST(Mlp, PredictIsDeterministicAndHasNoDropout) {
   auto o = options(Activation::relu, Activation::linear, {8, 8}, 3, 1);
   o.dropout_keep_probability = 0.5;

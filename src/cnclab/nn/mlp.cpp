@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/nn/kernels.hpp"
@@ -120,10 +121,20 @@ template <class T>
 void Mlp::draw_masks_impl(MlpWorkspace<T>& ws, Rng& rng) const {
   const double p = options_.dropout_keep_probability;
   const T scale = static_cast<T>(1.0 / p);
+  // r = 1 iff u < p with u = k 2^-53 (Rng::uniform, k the top 53 bits of the
+  // next 64-bit draw). k 2^-53 and p 2^53 are exact, so u < p iff
+  // k < p 2^53 iff k < ceil(p 2^53): the same masks as comparing uniform()
+  // with p, without the unpredictable branch per unit: k, threshold <= 2^53,
+  // so k - threshold wraps to a set top bit iff k < threshold.
+  const auto threshold = static_cast<std::uint64_t>(std::ceil(std::ldexp(p, 53)));
   for (std::size_t l = 0; l < sizes_.size(); ++l) {
     if (!dropout_[l]) continue;
-    T* m = ws.mask[l].data();
-    for (Eigen::Index i = 0; i < ws.mask[l].size(); ++i) m[i] = rng.uniform() < p ? scale : T(0);
+    T* const m = ws.mask[l].data();
+    const Eigen::Index size = ws.mask[l].size();
+    for (Eigen::Index i = 0; i < size; ++i) {
+      const std::uint64_t keep = ((rng.next_u64() >> 11) - threshold) >> 63;
+      m[i] = static_cast<T>(keep) * scale;
+    }
   }
 }
 
@@ -224,7 +235,7 @@ void Mlp::forward_impl(const Vector<T>& params, const Eigen::Ref<const Matrix<T>
   using ConstMap = Eigen::Map<const Matrix<T>>;
   using ConstVectorMap = Eigen::Map<const Vector<T>>;
   const kernels::Table& k = kernels::active();
-  ws.a[0] = x;
+  if (x.data() != ws.a[0].data()) ws.a[0] = x;  // a caller may gather into ws.a[0] itself
   for (std::size_t l = 1; l <= num_layers(); ++l) {
     const Eigen::Index in = sizes_[l - 1], out = sizes_[l];
     const ConstMap w(params.data() + weight_offset(l - 1), out, in);

@@ -128,7 +128,8 @@ class Mlp {
   void draw_dropout_masks(Workspace& ws, Rng& rng) const;
   void draw_dropout_masks(Workspace32& ws, Rng& rng) const;
   // Training-mode MSE and its gradient (overwritten) for the batch x, y,
-  // using the masks currently in ws. x: inputs x batch, y: outputs x batch.
+  // using the masks currently in ws. x: inputs x batch, y: outputs x batch;
+  // x may be ws.a[0] itself, filled after prepare() (then nothing is copied).
   // The float overload computes in float throughout (float32 training).
   double loss_and_gradient(const Eigen::VectorXd& params,
                            const Eigen::Ref<const Eigen::MatrixXd>& x,

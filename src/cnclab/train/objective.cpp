@@ -30,20 +30,30 @@ T MlpRegressionObjective::loss_and_gradient_impl(
     const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& inputs,
     const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& targets,
     std::span<const std::size_t> batch, Workspace& ws,
-    Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& x_batch,
     Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& y_batch,
     Eigen::Matrix<T, Eigen::Dynamic, 1>& gradient) {
   const auto b = static_cast<Eigen::Index>(batch.size());
-  if (x_batch.cols() != b) {
-    x_batch.resize(inputs.rows(), b);
-    y_batch.resize(targets.rows(), b);
-  }
+  if (y_batch.cols() != b) y_batch.resize(targets.rows(), b);
+  // The inputs are gathered into the network's input activations a_0, which
+  // Mlp::loss_and_gradient then uses in place (no second copy).
+  mlp_.prepare(ws, b);
+  auto& x_batch = ws.a[0];
+  // The batch's columns sit anywhere in the data (a shuffled order), so each
+  // one is a cache miss unless asked for early: the column kPrefetchAhead
+  // places on is requested while this one is copied.
+  constexpr std::size_t kPrefetchAhead = 8;
+  const auto line = static_cast<Eigen::Index>(64 / sizeof(T));
   for (Eigen::Index j = 0; j < b; ++j) {
-    const auto col = static_cast<Eigen::Index>(batch[static_cast<std::size_t>(j)]);
+    const auto at = static_cast<std::size_t>(j);
+    if (at + kPrefetchAhead < batch.size()) {
+      const T* ahead =
+          inputs.data() + static_cast<Eigen::Index>(batch[at + kPrefetchAhead]) * inputs.rows();
+      for (Eigen::Index r = 0; r < inputs.rows(); r += line) __builtin_prefetch(ahead + r);
+    }
+    const auto col = static_cast<Eigen::Index>(batch[at]);
     x_batch.col(j) = inputs.col(col);
     y_batch.col(j) = targets.col(col);
   }
-  mlp_.prepare(ws, b);
   if (any_dropout_) mlp_.draw_dropout_masks(ws, dropout_rng_);
   return mlp_.loss_and_gradient(params, x_batch, y_batch, ws, gradient);
 }
@@ -51,8 +61,8 @@ T MlpRegressionObjective::loss_and_gradient_impl(
 double MlpRegressionObjective::loss_and_gradient(const Eigen::VectorXd& params,
                                                  std::span<const std::size_t> batch,
                                                  Eigen::VectorXd& gradient) {
-  return loss_and_gradient_impl<double>(params, inputs_, targets_, batch, workspace_, x_batch_,
-                                        y_batch_, gradient);
+  return loss_and_gradient_impl<double>(params, inputs_, targets_, batch, workspace_, y_batch_,
+                                        gradient);
 }
 
 float MlpRegressionObjective::loss_and_gradient_float32(const Eigen::VectorXf& params,
@@ -63,7 +73,7 @@ float MlpRegressionObjective::loss_and_gradient_float32(const Eigen::VectorXf& p
     targets32_ = targets_.cast<float>();
   }
   return loss_and_gradient_impl<float>(params, inputs32_, targets32_, batch, workspace32_,
-                                       x_batch32_, y_batch32_, gradient);
+                                       y_batch32_, gradient);
 }
 
 }  // namespace cnclab

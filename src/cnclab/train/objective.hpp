@@ -52,7 +52,6 @@ class MlpRegressionObjective : public SeparableObjective {
                            const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& inputs,
                            const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& targets,
                            std::span<const std::size_t> batch, Workspace& ws,
-                           Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& x_batch,
                            Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>& y_batch,
                            Eigen::Matrix<T, Eigen::Dynamic, 1>& gradient);
 
@@ -61,9 +60,9 @@ class MlpRegressionObjective : public SeparableObjective {
   const Eigen::MatrixXd& targets_;
   Rng& dropout_rng_;
   Mlp::Workspace workspace_;
-  Eigen::MatrixXd x_batch_, y_batch_;
+  Eigen::MatrixXd y_batch_;  // the batch's targets (its inputs go into the workspace's a_0)
   Mlp::Workspace32 workspace32_;
-  Eigen::MatrixXf inputs32_, targets32_, x_batch32_, y_batch32_;
+  Eigen::MatrixXf inputs32_, targets32_, y_batch32_;
   bool any_dropout_ = false;
 };
 
