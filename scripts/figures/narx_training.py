@@ -14,8 +14,8 @@ state before the first step). Prints one line per network and stage (epochs,
 termination, SSE before -> after, mu and the curvature scale
 beta max diag(J^T J) at the start and the end, the final gradient 2 ||J^T e||
 beside its floor 2 (alpha/beta) ||w|| at trainbr's optimum, and the wall
-time per epoch) and the closed-loop validation RMS of the network, and draws the closed-loop stage's series per epoch
-(epoch 0: the initial state), failed stages (mu_max) in red, to
+time per epoch) and the closed-loop validation RMS of the network, and
+draws the closed-loop stage's series per epoch (epoch 0: the initial state), failed stages (mu_max) in red, to
 RESULTS_DIR/figures/narx_training/closed_loop_stage.png (or --out
 DIR/narx_training/, --format; style of paper_style.py).
 

@@ -67,9 +67,7 @@ class ConfigDocument {
   // experiment/profiles.hpp), so the names defined are kept (profiles()).
   // An entry's keys under `profile.` are settings of the profile, not
   // overrides: `profile.exclusive: true` says that a set of files given
-  // the profile runs only the files that define it (experiment/profiles.hpp;
-  // `reproduce --profile converged` of everything runs seed 002's studies,
-  // not every other study as written).
+  // the profile runs only the files that define it (experiment/profiles.hpp).
   // ConfigError when `profiles` is not a map of maps, an entry is not a
   // valid `key: value` override, or a `profile.` key is unknown or not a
   // boolean.

@@ -49,7 +49,7 @@ struct ProfileSet {
 ProfileSet check_profile_set(const std::vector<std::filesystem::path>& files,
                              const std::string& profile, const std::string& what);
 
-// "profile converged (exclusive): not run: the 3 files that do not define
+// "profile converged (exclusive): not run: the 3 file(s) that do not define
 // it (a.yaml, b.yaml, c.yaml)", at most 5 names, then "and N more"; "" for none.
 std::string excluded_profile_note(const std::vector<std::filesystem::path>& files,
                                   const std::string& profile);
