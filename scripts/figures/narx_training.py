@@ -3,7 +3,7 @@
 studies: the data for docs/narx_training.md.
 
 Usage: /usr/bin/python3 scripts/figures/narx_training.py [--format png|pdf|svg]
-       [--dpi N] [--out DIR] [--no-title] [RESULTS_DIR]
+       [--dpi N] [--out DIR] [--no-title] [--unfinished] [RESULTS_DIR]
 
 Reads the finished sweeps of experiments/contour_error/training_methods.yaml
 and architecture.yaml (RESULTS_DIR/<study>/sweep-<plan hash>/, chosen as
@@ -12,22 +12,30 @@ histories (result_narx.hpp: /history/<axis>/stage<k>/ with sse, mu, alpha,
 beta, gamma, gradient, curvature per epoch and the initial_* attributes, the
 state before the first step). Prints one line per network and stage (epochs,
 termination, SSE before -> after, mu and the curvature scale
-beta max diag(J^T J) at the start and the end) and the closed-loop validation
-RMS of the network, and draws the closed-loop stage's series per epoch
-(epoch 0: the initial state), failed stages (mu_max) in red, to
+beta max diag(J^T J) at the start and the end, the final gradient 2 ||J^T e||
+beside its floor 2 (alpha/beta) ||w|| at trainbr's optimum, and the wall
+time per epoch) and the closed-loop validation RMS of the network, and
+draws the closed-loop stage's series per epoch (epoch 0: the initial state), failed stages (mu_max) in red, to
 RESULTS_DIR/figures/narx_training/closed_loop_stage.png (or --out
 DIR/narx_training/, --format; style of paper_style.py).
+
+--unfinished: a study whose sweeps are all unfinished (a long run such as
+the converged profile, still going) is read from its newest sweep's
+finished trials, with a line saying how many of how many; no figure is
+drawn then.
 """
+import argparse
+import glob
 import os
 import sys
 
 import h5py
 import numpy as np
 import yaml
-from contour_error import Missing, newest_sweep, resolved_yaml, text
+from contour_error import Missing, finished, newest_sweep, resolved_yaml, sweep_trials, text
 from matplotlib.lines import Line2D
 from matplotlib.ticker import MaxNLocator
-from paper_style import DOUBLE, ERROR, Output, apply, parse_arguments, plt
+from paper_style import DOUBLE, ERROR, Output, add_arguments, apply, plt
 
 STUDIES = ["contour_error_training_methods", "contour_error_architecture"]
 SERIES = ["sse", "mu", "curvature", "alpha", "beta", "gamma", "gradient"]
@@ -51,6 +59,9 @@ def stage_record(group):
         values = group[name][()] if name in group else np.full(len(group["epoch"]), np.nan)
         start = group.attrs.get("initial_" + name, np.nan)
         rec[name] = np.concatenate([[start], values])
+    # E_W at the end and the stage's wall time (not in older files: nan).
+    for name in ("ssw", "wall_seconds"):
+        rec[name] = float(group[name][-1]) if name in group and len(group[name]) else np.nan
     return rec
 
 
@@ -101,34 +112,72 @@ def fmt(x):
     return "nan" if not np.isfinite(x) else f"{x:.3g}"
 
 
+def unfinished_sweep(results, study):
+    """The newest sweep-* folder of the study (by sweep.yaml's time) and its
+    finished trial files, with a note: "k of n trials finished"."""
+    dirs = [d for d in glob.glob(os.path.join(results, study, "sweep-*"))
+            if os.path.exists(os.path.join(d, "sweep.yaml"))]
+    if not dirs:
+        raise Missing(f"no sweep under {os.path.join(results, study)}/sweep-*")
+    d = max(dirs, key=lambda d: os.path.getmtime(os.path.join(d, "sweep.yaml")))
+    paths, _ = sweep_trials(d)
+    done = [p for p in paths if finished(p)]
+    return done, f"{os.path.basename(d)}: {len(done)} of {len(paths)} trials finished"
+
+
+def stage_text(s):
+    """One stage's line part (main's header names the fields)."""
+    epochs = len(s["sse"]) - 1
+    floor = 2 * s["alpha"][-1] / s["beta"][-1] * np.sqrt(s["ssw"])
+    per_epoch = s["wall_seconds"] / epochs if epochs else np.nan
+    return (f"{s['mode']}: {epochs} {s['termination']} {fmt(s['sse'][0])} -> "
+            f"{fmt(s['sse'][-1])}, mu {fmt(s['mu'][0])} -> {fmt(s['mu'][-1])}, curv "
+            f"{fmt(s['curvature'][0])} -> {fmt(s['curvature'][-1])}, grad "
+            f"{fmt(s['gradient'][-1])} (floor {fmt(floor)}), {fmt(per_epoch)} s/epoch")
+
+
 def main():
-    args = parse_arguments(__doc__)
-    rows = []
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("results", nargs="?", default="results",
+                        help="results folder (default: results)")
+    parser.add_argument("--unfinished", action="store_true",
+                        help="read the finished trials of a study's unfinished sweep")
+    add_arguments(parser)
+    args = parser.parse_args()
+    rows, partial = [], False
     for study in STUDIES:
         try:
             _, paths = newest_sweep(args.results, study)
         except Missing as e:
-            print(f"narx_training.py: {study}: {e}", file=sys.stderr)
-            continue
+            if not args.unfinished:
+                print(f"narx_training.py: {study}: {e}", file=sys.stderr)
+                continue
+            try:
+                paths, note = unfinished_sweep(args.results, study)
+            except Missing as e2:
+                print(f"narx_training.py: {study}: {e2}", file=sys.stderr)
+                continue
+            print(f"{study}: unfinished, {note}")
+            partial = True
         for p in paths:
             rows += trial_records(p)
     if not rows:
-        print("narx_training.py: no finished NARX sweep", file=sys.stderr)
+        print("narx_training.py: no finished NARX sweep" +
+              ("" if args.unfinished else " (--unfinished: the finished trials of one)"),
+              file=sys.stderr)
         return 3
     print("trial | axis | val RMS | stage: epochs termination SSE0 -> SSE, mu0 -> mu, "
-          "curvature0 -> curvature")
+          "curvature0 -> curvature, final gradient 2||J^T e|| (floor 2 (alpha/beta) ||w||), "
+          "wall time per epoch")
     for label, axis, rms, stages, _ in rows:
-        parts = []
-        for s in stages:
-            parts.append(f"{s['mode']}: {len(s['sse']) - 1} {s['termination']} "
-                         f"{fmt(s['sse'][0])} -> {fmt(s['sse'][-1])}, mu {fmt(s['mu'][0])} -> "
-                         f"{fmt(s['mu'][-1])}, curv {fmt(s['curvature'][0])} -> "
-                         f"{fmt(s['curvature'][-1])}")
-        print(f"{label} | {axis} | {fmt(rms)} | " + "; ".join(parts))
+        print(f"{label} | {axis} | {fmt(rms)} | " + "; ".join(stage_text(s) for s in stages))
 
     closed = [(f"{words}, stage {k + 1}", s) for label, _, _, stages, words in rows
               for k, s in enumerate(stages) if s["mode"] == "closed_loop" and "open_loop" in label]
-    if closed:
+    if partial:
+        print("narx_training.py: unfinished sweeps: no figure drawn", file=sys.stderr)
+    elif closed:
         apply()
         closed_loop_figure(Output(args, args.results, "narx_training"), closed)
     return 0

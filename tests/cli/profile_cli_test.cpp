@@ -2,7 +2,7 @@
 // every command that takes it: an unknown name is exit 2 with "did you
 // mean" and the names the files define, and nothing is written; a set of
 // files (reproduce) needs the name in one of them and says which files run
-// with their own settings.
+// with their own settings, or, for an exclusive profile, are left out.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -131,6 +131,25 @@ TEST_F(ProfileCli, ReproduceNeedsTheNameInOneFileAndNamesTheOthers) {
   };
   EXPECT_NE(show("a").find("after 2 epochs"), std::string::npos) << show("a");
   EXPECT_NE(show("b").find("after 1 epochs"), std::string::npos) << show("b");
+}
+
+// The repository's `converged` profile is exclusive: reproduce of every
+// experiment with it plans seed 002's three NARX files and nothing else (a
+// Slurm dry run: the plan, nothing written or submitted).
+TEST_F(ProfileCli, ConvergedReproducesOnlySeed002sNarxStudies) {
+  const auto r = cnclab("reproduce " + kSource +
+                        "/experiments --profile converged --slurm --dry-run --out out "
+                        "--data-dir data");
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.err.find("note: profile converged (exclusive): not run: the "), std::string::npos)
+      << r.err;
+  const auto summary = r.out.find("== cnclab reproduce --slurm (dry run): 3 experiment(s)");
+  ASSERT_NE(summary, std::string::npos) << r.out;
+  for (const char* name :
+       {"contour_error_narx ", "contour_error_training_methods ", "contour_error_architecture "}) {
+    EXPECT_NE(r.out.find(name, summary), std::string::npos) << name << "\n" << r.out;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
 }  // namespace

@@ -280,6 +280,26 @@ TEST(ConfigProfiles, CommandLineOverridesComeAfterTheProfile) {
   EXPECT_EQ(doc.root().get<std::int64_t>("a", 0), 3);
 }
 
+TEST(ConfigProfiles, ExclusiveIsASettingNotAnOverride) {
+  const std::string text =
+      "a: 1\nprofiles:\n  converged: {profile.exclusive: true, a: 2}\n"
+      "  quick: {a: 3}\n  off: {profile.exclusive: false}\n";
+  const auto doc = ConfigDocument::parse(text, "e.yaml", "converged");
+  EXPECT_EQ(doc.root().get<std::int64_t>("a", 0), 2);
+  EXPECT_EQ(doc.to_yaml().find("profile"), std::string::npos);  // not written into the tree
+  doc.check_all_consumed();
+  EXPECT_EQ(doc.profiles(), (std::vector<std::string>{"converged", "quick", "off"}));
+  EXPECT_EQ(doc.exclusive_profiles(), std::vector<std::string>{"converged"});
+  EXPECT_NE(config_error([] {
+              ConfigDocument::parse("profiles:\n  c: {profile.exclusiv: true}\n", "e.yaml");
+            }).find("profiles.c.profile.exclusiv: unknown profile setting"),
+            std::string::npos);
+  EXPECT_NE(config_error([] {
+              ConfigDocument::parse("profiles:\n  c: {profile.exclusive: 2}\n", "e.yaml");
+            }).find("profiles.c.profile.exclusive: must be true or false, not 2"),
+            std::string::npos);
+}
+
 TEST(ConfigProfiles, MalformedBlocksAreErrorsNamingTheKey) {
   EXPECT_NE(config_error([] {
               ConfigDocument::parse("profiles: [1, 2]\n", "e.yaml");

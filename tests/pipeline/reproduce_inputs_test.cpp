@@ -67,6 +67,33 @@ TEST(ReproduceInputs, JobsUpstreamJoinTheGraphOnce) {
   EXPECT_TRUE(in.profile_note.empty());
 }
 
+// An exclusive profile runs only the files that define it; any other
+// profile runs the files without it as written; a misspelt one is an error.
+TEST(ReproduceInputs, AnExclusiveProfileRunsOnlyTheFilesDefiningIt) {
+  TempDir tmp;
+  touch(tmp / "set/a.yaml",
+        "name: a\nprofiles:\n  converged: {profile.exclusive: true, x: 1}\n  quick: {x: 2}\n");
+  touch(tmp / "set/b.yaml", "name: b\nprofiles:\n  quick: {x: 2}\n");
+  touch(tmp / "set/c.yaml", "name: c\n");
+  const std::string set = (tmp / "set").string();
+  const ReproduceInputs converged = reproduce_inputs({set}, "converged");
+  EXPECT_EQ(converged.files, std::vector<fs::path>{tmp / "set/a.yaml"});
+  EXPECT_NE(converged.profile_note.find("profile converged (exclusive): not run: the 2 file(s)"),
+            std::string::npos)
+      << converged.profile_note;
+  const ReproduceInputs quick = reproduce_inputs({set}, "quick");
+  EXPECT_EQ(quick.files.size(), 3u);
+  EXPECT_NE(quick.profile_note.find("c.yaml, which run with their own settings"), std::string::npos)
+      << quick.profile_note;
+  try {
+    reproduce_inputs({set}, "convergd");
+    ADD_FAILURE() << "a misspelt profile ran";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'converged'"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(JobsPrework, EachKeyOnceInJobOrderAndNoneWithRegenerate) {
   const auto kind_with = [](std::vector<std::string> keys) {
     JobKind k;

@@ -273,6 +273,17 @@ void ConfigDocument::take_profiles(const std::string& profile) {
       const std::string dotted = e->first.as<std::string>();
       const std::string where = location(key + "." + dotted).str();
       if (!e->second.IsDefined() || e->second.IsNull()) fail(key + "." + dotted, "value is null");
+      if (dotted.rfind("profile.", 0) == 0) {  // a setting of the profile, not an override
+        if (dotted != "profile.exclusive") {
+          fail(key + "." + dotted, "unknown profile setting (the one there is: profile.exclusive)");
+        }
+        bool exclusive = false;
+        if (!e->second.IsScalar() || !YAML::convert<bool>::decode(e->second, exclusive)) {
+          fail(key + "." + dotted, "must be true or false, not " + node_text(e->second));
+        }
+        if (exclusive) exclusive_profiles_.push_back(name);
+        continue;
+      }
       // parse_override checks the key; the value is the YAML node itself.
       Override o;
       try {

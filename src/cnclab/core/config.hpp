@@ -65,8 +65,12 @@ class ConfigDocument {
   // unchanged here ("" selects none): whether an unknown name is an error is
   // the command's rule (a file of a set may lack a profile others define;
   // experiment/profiles.hpp), so the names defined are kept (profiles()).
-  // ConfigError when `profiles` is not a map of maps or an entry is not a
-  // valid `key: value` override.
+  // An entry's keys under `profile.` are settings of the profile, not
+  // overrides: `profile.exclusive: true` says that a set of files given
+  // the profile runs only the files that define it (experiment/profiles.hpp).
+  // ConfigError when `profiles` is not a map of maps, an entry is not a
+  // valid `key: value` override, or a `profile.` key is unknown or not a
+  // boolean.
   static ConfigDocument load(const std::filesystem::path& file, const std::string& profile = {},
                              const ConfigSearch& search = ConfigSearch::from_environment());
   // A document from YAML text (tests, fuzzing); `origin` names it in messages.
@@ -84,6 +88,8 @@ class ConfigDocument {
   // The profile names the file and its includes define (`profiles:` keys,
   // in file order), whichever profile was applied.
   const std::vector<std::string>& profiles() const { return profiles_; }
+  // Those of them whose entry says `profile.exclusive: true`.
+  const std::vector<std::string>& exclusive_profiles() const { return exclusive_profiles_; }
 
   // Location of a dotted key, or of its nearest located ancestor.
   SourceLocation location(const std::string& dotted_key) const;
@@ -101,6 +107,7 @@ class ConfigDocument {
   YAML::Node tree_;
   std::string origin_;
   std::vector<std::string> profiles_;
+  std::vector<std::string> exclusive_profiles_;
   std::shared_ptr<State> state_ = std::make_shared<State>();
 };
 

@@ -162,7 +162,14 @@ void add_loader_keys(json& s) {
        "named override sets, e.g. {quick: {trainer.epochs: 20}}, applied by --profile NAME; "
        "never part of the resolved config"},
       {"type", "object"},
-      {"additionalProperties", {{"type", "object"}}}};
+      {"additionalProperties",
+       {{"type", "object"},
+        {"properties",
+         {{"profile.exclusive",
+           {{"description",
+             "a setting, not an override: reproduce --profile NAME runs only the files that "
+             "define NAME"},
+            {"type", "boolean"}}}}}}}};
 }
 
 // A file with include: gets any key from its includes, so nothing is

@@ -33,16 +33,32 @@ std::string list_names(const std::vector<std::string>& names) {
                     " (--profile names a `profiles:` entry; without it the files run as written)");
 }
 
+struct Declared {
+  std::vector<std::string> names, exclusive;
+};
+
+// The names `file` defines and those it declares exclusive (declared_profiles).
+Declared declared(const fs::path& file) {
+  const ConfigDocument doc = ConfigDocument::load(file);
+  Declared d{doc.profiles(), doc.exclusive_profiles()};
+  if (const auto kind = find_job_kind(experiment_kind(file)); kind && kind->profile_sources) {
+    for (const auto& source : kind->profile_sources(file)) {
+      const Declared more = declared(source);
+      add_names(d.names, more.names);
+      add_names(d.exclusive, more.exclusive);
+    }
+  }
+  return d;
+}
+
+bool has(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 }  // namespace
 
 std::vector<std::string> declared_profiles(const fs::path& file) {
-  std::vector<std::string> names = ConfigDocument::load(file).profiles();
-  if (const auto kind = find_job_kind(experiment_kind(file)); kind && kind->profile_sources) {
-    for (const auto& source : kind->profile_sources(file)) {
-      add_names(names, declared_profiles(source));
-    }
-  }
-  return names;
+  return declared(file).names;
 }
 
 void check_profile(const fs::path& file, const std::string& profile) {
@@ -53,29 +69,47 @@ void check_profile(const fs::path& file, const std::string& profile) {
   }
 }
 
-std::vector<fs::path> check_profile_in_set(const std::vector<fs::path>& files,
-                                           const std::string& profile, const std::string& what) {
-  std::vector<fs::path> without;
-  if (profile.empty()) return without;
+ProfileSet check_profile_set(const std::vector<fs::path>& files, const std::string& profile,
+                             const std::string& what) {
+  ProfileSet set;
+  if (profile.empty()) return set;
   std::vector<std::string> names;
   std::optional<ConfigError> broken;  // the first file that does not load
   for (const auto& file : files) {
-    std::vector<std::string> own;
+    Declared own;
     try {
-      own = declared_profiles(file);
+      own = declared(file);
     } catch (const ConfigError& e) {
       if (!broken) broken = e;
       continue;  // the file reports its own error when it is loaded
     }
-    if (std::find(own.begin(), own.end(), profile) == own.end()) without.push_back(file);
-    add_names(names, own);
+    if (!has(own.names, profile)) set.without.push_back(file);
+    set.exclusive = set.exclusive || has(own.exclusive, profile);
+    add_names(names, own.names);
   }
-  if (std::find(names.begin(), names.end(), profile) == names.end()) {
+  if (!has(names, profile)) {
     // A file that does not load may be the one defining it: its error first.
     if (broken) throw *broken;
     unknown_profile(profile, names, what);
   }
-  return without;
+  return set;
+}
+
+std::vector<fs::path> check_profile_in_set(const std::vector<fs::path>& files,
+                                           const std::string& profile, const std::string& what) {
+  return check_profile_set(files, profile, what).without;
+}
+
+std::string excluded_profile_note(const std::vector<fs::path>& files, const std::string& profile) {
+  if (files.empty()) return "";
+  constexpr std::size_t kNamed = 5;
+  std::string list;
+  for (std::size_t i = 0; i < files.size() && i < kNamed; ++i) {
+    list += (list.empty() ? "" : ", ") + files[i].string();
+  }
+  if (files.size() > kNamed) list += " and " + std::to_string(files.size() - kNamed) + " more";
+  return "profile " + profile + " (exclusive): not run: the " + std::to_string(files.size()) +
+         " file(s) that do not define it (" + list + ")";
 }
 
 std::string undeclared_profile_note(const std::vector<fs::path>& files, const std::string& profile,

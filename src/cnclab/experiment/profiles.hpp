@@ -7,7 +7,12 @@
 //   trials load with the profile);
 // - a set of files (`reproduce`, `tables`): NAME is defined by at least one
 //   file of the set. A file of the set that does not define it runs (or is
-//   read) with its own settings, and the command says which files those are.
+//   read) with its own settings, and the command says which files those are;
+//   unless the profile is exclusive (`profile.exclusive: true` in its entry,
+//   core/config.hpp, in a file of the set, its includes or profile sources):
+//   then `reproduce` runs only the files that define it and says how many it
+//   left out. `quick` is a variant of every study (a file without it is
+//   already quick); `converged` is a variant of seed 002's studies only.
 // Anything else is a ConfigError (exit 2) naming the profile, the nearest
 // defined name ("did you mean") and the names defined, so a misspelt profile
 // never runs the full configuration quietly.
@@ -34,6 +39,20 @@ void check_profile(const std::filesystem::path& file, const std::string& profile
 std::vector<std::filesystem::path> check_profile_in_set(
     const std::vector<std::filesystem::path>& files, const std::string& profile,
     const std::string& what);
+
+// check_profile_in_set's rule and its result, and whether a file of the set
+// declares `profile` exclusive.
+struct ProfileSet {
+  std::vector<std::filesystem::path> without;  // the files that do not define it
+  bool exclusive = false;
+};
+ProfileSet check_profile_set(const std::vector<std::filesystem::path>& files,
+                             const std::string& profile, const std::string& what);
+
+// "profile converged (exclusive): not run: the 3 file(s) that do not define
+// it (a.yaml, b.yaml, c.yaml)", at most 5 names, then "and N more"; "" for none.
+std::string excluded_profile_note(const std::vector<std::filesystem::path>& files,
+                                  const std::string& profile);
 
 // "profile quick: not defined by a.yaml, b.yaml, which run with their own
 // settings" for check_profile_in_set's files ("" when there are none).

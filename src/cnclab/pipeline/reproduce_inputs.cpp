@@ -40,13 +40,19 @@ std::vector<fs::path> find_experiments(const std::vector<std::string>& paths) {
 
 ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths,
                                  const std::string& profile) {
-  const auto found = find_experiments(paths);
+  auto found = find_experiments(paths);
   if (found.empty()) throw ConfigError("reproduce: no experiment files found");
   ReproduceInputs inputs;
-  inputs.profile_note = undeclared_profile_note(
-      check_profile_in_set(found, profile,
-                           "the " + std::to_string(found.size()) + " experiment file(s) given"),
-      profile);
+  const ProfileSet set = check_profile_set(
+      found, profile, "the " + std::to_string(found.size()) + " experiment file(s) given");
+  if (set.exclusive) {  // only the files that define it (profiles.hpp)
+    std::erase_if(found, [&](const fs::path& f) {
+      return std::find(set.without.begin(), set.without.end(), f) != set.without.end();
+    });
+    inputs.profile_note = excluded_profile_note(set.without, profile);
+  } else {
+    inputs.profile_note = undeclared_profile_note(set.without, profile);
+  }
   for (const auto& file : found) {
     std::optional<JobKind> kind;
     try {

@@ -27,13 +27,15 @@ struct ReproduceInputs {
   std::vector<std::filesystem::path> files;
   std::vector<std::pair<std::filesystem::path, JobKind>> jobs;
   // The files found under `paths` that do not define the profile (they run
-  // with their own settings; experiment/profiles.hpp): one line, or "".
+  // with their own settings, or, for an exclusive profile, are left out;
+  // experiment/profiles.hpp): one line, or "".
   std::string profile_note;
 };
 // The experiment files under `paths` split into training experiments and
 // `kind:` jobs; the training experiments a job reads (JobKind::upstream,
 // loaded with `profile`) are added to the training files once. ConfigError
-// when no file found defines `profile` (the set rule of profiles.hpp).
+// when no file found defines `profile` (the set rule of profiles.hpp). With
+// an exclusive profile, the files that do not define it are not run.
 ReproduceInputs reproduce_inputs(const std::vector<std::string>& paths, const std::string& profile);
 
 // What the jobs need that does not wait for training (their datasets), each
