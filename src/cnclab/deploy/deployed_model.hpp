@@ -61,7 +61,7 @@ struct DeployedModel {
   std::string result_file, experiment, identity, config_hash;
   std::string trained_utc;  // the run's end time
   std::string cnclab_version, git_commit;
-  std::string generator;                  // the training dataset's generator ("step_error", ...)
+  std::string generator;                  // the training dataset's generator (its registered name)
   std::string dataset_file;               // the training dataset's file when it ran (a cache file)
   std::string dataset_hash;               // the training dataset's content hash
   std::uint64_t generator_seed = 0;       // its generator seed (provenance "generator")

@@ -30,7 +30,7 @@ struct ExtraCode {
 };
 
 struct SequenceExtension {
-  std::string generator;  // the dataset generator it serves ("following_error")
+  std::string generator;  // the registered name of the dataset generator it serves
   std::string owner;      // who registered it, for messages ("contour_error (seed 002)")
   // Fills model.physical_inputs and physical_targets (one per network, in
   // model.networks order) from the training dataset. Throws ConfigError
