@@ -12,7 +12,8 @@ the sweep again continues it.
 
 Messages (field "op"):
   hello                      -> {"optuna": version}
-  open {journal, study, directions, sampler{name, seed}, pruner{name, ...},
+  check {sampler, pruner, params}  -> {} when open would accept them (nothing written)
+  open {journal, study, directions, sampler{name, seed, options{...}}, pruner{name, ...},
         params[{name, type float|int|categorical, low, high, log, step, choices}],
         holder{host, pid}}   -> {"reaped": [numbers failed because their holder died]}
   ask {limit}                -> {"number": n, "params": {...}} or {"number": null}
@@ -76,18 +77,53 @@ def process_ended(pid):
     return paren >= 0 and stat[paren + 2:paren + 3] in ("Z", "X")
 
 
+# Each sampler's options a sweep block may set (sweep.sampler), with their
+# types: Optuna 3.1's keyword arguments that take a plain value (callables,
+# other samplers and trial lists are left out). Optuna's defaults otherwise.
+SAMPLERS = {
+    "tpe": (optuna.samplers.TPESampler, {
+        "n_startup_trials": int, "n_ei_candidates": int, "multivariate": bool, "group": bool,
+        "constant_liar": bool, "consider_endpoints": bool, "consider_prior": bool,
+        "prior_weight": float, "consider_magic_clip": bool}),
+    "cmaes": (optuna.samplers.CmaEsSampler, {
+        "n_startup_trials": int, "sigma0": float, "restart_strategy": str, "popsize": int,
+        "inc_popsize": int, "consider_pruned_trials": bool, "use_separable_cma": bool,
+        "with_margin": bool}),
+    "nsga2": (optuna.samplers.NSGAIISampler, {
+        "population_size": int, "mutation_prob": float, "crossover_prob": float,
+        "swapping_prob": float}),
+    # Scrambled by default (an unscrambled Sobol sequence starts at the corner).
+    "qmc": (optuna.samplers.QMCSampler, {"qmc_type": str, "scramble": bool}),
+}
+
+
+def option_value(sampler, key, value, kind):
+    """value as kind (an integer stands for a float; a bool is not an integer)."""
+    if kind is float and isinstance(value, int) and not isinstance(value, bool):
+        return float(value)
+    if isinstance(value, kind) and not (kind is int and isinstance(value, bool)):
+        return value
+    raise Bad("sampler %s: option %s must be %s (got %r)" % (
+        sampler, key, {int: "an integer", float: "a number", bool: "true or false",
+                       str: "a word"}[kind], value))
+
+
 def make_sampler(spec):
+    """spec: {name, seed, options{...}}."""
     name = spec.get("name")
-    seed = spec.get("seed")
-    if name == "tpe":
-        return optuna.samplers.TPESampler(seed=seed)
-    if name == "cmaes":
-        return optuna.samplers.CmaEsSampler(seed=seed)
-    if name == "nsga2":
-        return optuna.samplers.NSGAIISampler(seed=seed)
-    if name == "qmc":
-        return optuna.samplers.QMCSampler(seed=seed, scramble=True)
-    raise Bad("unknown sampler %r (known: tpe, cmaes, nsga2, qmc)" % name)
+    if name not in SAMPLERS:
+        raise Bad("unknown sampler %r (known: %s)" % (name, ", ".join(SAMPLERS)))
+    cls, known = SAMPLERS[name]
+    options = {"scramble": True} if name == "qmc" else {}
+    for key, value in (spec.get("options") or {}).items():
+        if key not in known:
+            raise Bad("sampler %s: unknown option %r (known: %s)" % (
+                name, key, ", ".join(sorted(known))))
+        options[key] = option_value(name, key, value, known[key])
+    try:
+        return cls(seed=spec.get("seed"), **options)
+    except (TypeError, ValueError) as e:
+        raise Bad("sampler %s: %s" % (name, e))
 
 
 PRUNERS = {
@@ -150,13 +186,26 @@ class Helper:
     def op_hello(self, m):
         return {"optuna": optuna.__version__}
 
+    def settings(self, m, what):
+        """The sampler, pruner and space of message m (Bad on any error)."""
+        try:
+            return (make_sampler(m.get("sampler", {})), make_pruner(m.get("pruner", {})),
+                    {p["name"]: distribution(p) for p in m["params"]})
+        except KeyError as e:
+            raise Bad("%s: missing field %s" % (what, e))
+        except (TypeError, ValueError) as e:
+            raise Bad("%s: %s" % (what, e))
+
+    def op_check(self, m):
+        self.settings(m, "check")
+        return {}
+
     def op_open(self, m):
+        # Settings first: a bad option is answered before the journal exists.
+        sampler, pruner, self.space = self.settings(m, "open")
         try:
             storage = JournalStorage(JournalFileStorage(m["journal"]))
             directions = m.get("directions", ["minimize"])
-            sampler = make_sampler(m.get("sampler", {}))
-            pruner = make_pruner(m.get("pruner", {}))
-            self.space = {p["name"]: distribution(p) for p in m["params"]}
             holder = m.get("holder", {})
             self.holder = (str(holder.get("host", socket.gethostname())),
                            int(holder.get("pid", os.getppid())))

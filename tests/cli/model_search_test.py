@@ -9,7 +9,8 @@ importance, strings parameter, doubles value of the same length, descending,
 attribute evaluator = "fanova"); the journal read by Optuna itself lists the
 same trials and states as the summary; running again with more trials
 continues the same study without retraining; a Python without Optuna is exit
-2 naming python3-optuna while grid search still works.
+2 naming python3-optuna while grid search still works; a misspelt sampler
+option is exit 2 naming it, and sampler options on a grid are refused.
 
 Usage: model_search_test.py CNCLAB SOURCE_DIR
 """
@@ -137,6 +138,19 @@ with tempfile.TemporaryDirectory() as work:
                           "model.hidden=[8]", "trainer.learning_rate=1e-3,1e-2",
                           "--data-dir", "data", "--dir", "grid", "--quiet"], env=env)
     check(code == 0, "grid without optuna exit 0 (got %d: %s)" % (code, err[-500:]))
+
+    # Sampler options: a misspelt one is exit 2 naming it, before any trial;
+    # on a grid (no sampler) exit 2 as well.
+    code, out, err = run(sweep_args(2)[:-3] + ["sweep.sampler={multivariat: true}",
+                                               "--dir", "misspelt", "--quiet"])
+    no_trial = not os.path.isdir("misspelt/trials") or not os.listdir("misspelt/trials")
+    check(code == 2 and "multivariat" in err and no_trial,
+          "misspelt sampler option: exit 2 naming it, no trial (got %d: %s)" % (code, err[-500:]))
+    code, out, err = run(["sweep", experiment, "trainer.learning_rate=1e-3,1e-2",
+                          "sweep.sampler={multivariate: true}", "--data-dir", "data",
+                          "--dir", "grid-sampler", "--quiet"])
+    check(code == 2 and "model-based" in err,
+          "sampler options on a grid: exit 2 (got %d: %s)" % (code, err[-500:]))
 
     # Two workers on one study (as two Slurm array tasks), one killed with
     # SIGKILL while it trains: the other ends, a restarted worker fails the

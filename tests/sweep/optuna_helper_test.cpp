@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include "cnclab/core/error.hpp"
 #include "common/process.hpp"
@@ -246,6 +247,84 @@ TEST(OptunaHelper, DummyParameterHasTheLowestImportance) {
     const auto at = r.out.find(names[i] + "=");
     ASSERT_NE(at, std::string::npos) << r.out;
     EXPECT_NEAR(std::stod(r.out.substr(at + names[i].size() + 1)), values[i], 1e-12);
+  }
+}
+
+// The sweep block's sampler options reach Optuna: the helper's trials equal
+// those of Optuna's own TPESampler built with the same options and seed and
+// told the same values (a separate Python process), and differ from the
+// default sampler's after the shorter start-up. Unknown options and wrong
+// types are errors naming the option.
+TEST(OptunaHelper, SamplerOptionsReachOptuna) {
+  TempDir tmp;
+  const auto f = [](double lr, double x) {
+    return std::pow(std::log10(lr) + 2.0, 2) + 0.3 * std::pow(x - 0.5, 2);
+  };
+  constexpr int kTrials = 8;
+  OptunaHelper h(options());
+  json m = open_message(tmp.path() / "study.journal");
+  m["pruner"] = {{"name", "none"}};
+  m["sampler"]["options"] = {{"n_startup_trials", 3}, {"multivariate", true}};
+  h.request(m);
+  std::vector<double> ours;
+  for (int i = 0; i < kTrials; ++i) {
+    const json a = h.request({{"op", "ask"}, {"limit", kTrials}});
+    const double lr = a.at("params").at("lr"), x = a.at("params").at("x");
+    ours.insert(ours.end(), {lr, x});
+    h.request({{"op", "tell"},
+               {"number", a.at("number")},
+               {"state", "complete"},
+               {"values", {f(lr, x)}}});
+  }
+  // Optuna alone: the same space, seed and values; argv[1]: the options.
+  write_script(tmp.path(), "reference.py", R"py(import math, sys, warnings
+import optuna
+warnings.simplefilter("ignore")
+D = optuna.distributions
+space = {"lr": D.FloatDistribution(1e-4, 1e-1, log=True), "x": D.FloatDistribution(0.0, 1.0),
+         "dummy": D.CategoricalDistribution(["a", "b", "c"])}
+study = optuna.create_study(
+    sampler=optuna.samplers.TPESampler(seed=7, **eval("dict(%s)" % sys.argv[1])))
+out = []
+for i in range(int(sys.argv[2])):
+    t = study.ask(space)
+    lr, x = t.params["lr"], t.params["x"]
+    out += [lr, x]
+    study.tell(t, (math.log10(lr) + 2) ** 2 + 0.3 * (x - 0.5) ** 2)
+print(" ".join("%.17g" % v for v in out))
+)py");
+  const auto reference = [&](const std::string& sampler_options) {
+    const auto r =
+        testing::run_shell(tmp.path(), "/usr/bin/python3 reference.py '" + sampler_options + "' " +
+                                           std::to_string(kTrials));
+    EXPECT_EQ(r.code, 0) << r.err;
+    std::vector<double> v;
+    std::istringstream in(r.out);
+    for (double x; in >> x;) v.push_back(x);
+    return v;
+  };
+  const std::vector<double> same = reference("n_startup_trials=3, multivariate=True");
+  ASSERT_EQ(same.size(), ours.size());
+  for (std::size_t i = 0; i < ours.size(); ++i) EXPECT_NEAR(ours[i], same[i], 1e-12 * same[i]);
+  const std::vector<double> defaults = reference("");
+  ASSERT_EQ(defaults.size(), ours.size());
+  EXPECT_NE(std::vector<double>(ours.begin() + 6, ours.end()),
+            std::vector<double>(defaults.begin() + 6, defaults.end()));
+
+  for (const auto& [bad_options, named] : std::vector<std::pair<json, std::string>>{
+           {{{"multivariat", true}}, "multivariat"},
+           {{{"multivariate", "yes"}}, "multivariate"},
+           {{{"n_startup_trials", 2.5}}, "n_startup_trials"},
+           {{{"n_startup_trials", true}}, "n_startup_trials"}}) {
+    OptunaHelper bad(options());
+    json b = open_message(tmp.path() / ("bad-" + named + ".journal"));
+    b["sampler"]["options"] = bad_options;
+    try {
+      bad.request(b);
+      ADD_FAILURE() << "no error for " << bad_options.dump();
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(named), std::string::npos) << e.what();
+    }
   }
 }
 

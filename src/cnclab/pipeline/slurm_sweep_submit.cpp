@@ -201,6 +201,7 @@ SweepSlurmResult submit_sweep_slurm(const fs::path& experiment,
   SweepSlurmResult result;
   result.dir = prepared.dir;
   const fs::path& dir = prepared.dir;
+  if (study) check_study_settings(prepared.plan, prepared.spec);  // before any file or job
   if (slurm.dry_run) {
     if (fs::exists(dir / "sweep.yaml") && load_plan(dir).hash() != prepared.plan.hash()) {
       store_plan(dir, prepared.plan);  // throws: another sweep's folder

@@ -34,7 +34,6 @@ int model_search_command(const PreparedSweep& prepared, const SweepCommandOption
                       ": --shard and --trial-ids split a fixed plan; a study's workers share its "
                       "journal instead (run the same command in each, e.g. as Slurm array tasks)");
   }
-  store_plan(prepared.dir, prepared.plan);
   clean_stale_partials({o.common.results_dir, prepared.dir, o.common.datasets_dir}, log);
   const ModelSearch s =
       run_model_search(prepared.plan, prepared.spec, prepared.source, prepared.dir, prepared.exec,

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/field_schema.hpp"
 #include "cnclab/core/format.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/io/lock_file.hpp"
@@ -209,40 +210,49 @@ OptunaHelperOptions helper_options(const SweepPlan& header) {
   return ho;
 }
 
-// Opens (or creates) the study of `header` in `dir`; `spec` null: only to
-// read it (no space, no pruner). Fails the running trials whose worker on
-// this host has ended (model_search.hpp); returns the helper's answer.
+// The helper's message `op` with the sampler, pruner and space of `header`
+// and `spec` (null: only to read a study: no space, no pruner, no options).
+json study_message(const char* op, const SweepPlan& header, const SweepSpec* spec) {
+  json pruner{{"name", spec ? spec->pruner.name : std::string("none")}};
+  json sampler{{"name", header.method},
+               {"seed", (header.sampler_seed + worker_index()) % (1ULL << 32)}};
+  json params = json::array();
+  if (spec) {
+    for (const auto& [k, v] : spec->pruner.options) pruner[k] = v;
+    for (const auto& [k, v] : spec->sampler) sampler["options"][k] = yaml_to_json(YAML::Node(v));
+    for (const auto& p : spec->parameters) params.push_back(distribution(p));
+  }
+  return {{"op", op}, {"sampler", sampler}, {"pruner", pruner}, {"params", params}};
+}
+
+// Opens (or creates) the study of `header` in `dir`; `spec` as in
+// study_message. Fails the running trials whose worker on this host has
+// ended (model_search.hpp); returns the helper's answer.
 json open_study(OptunaHelper& helper, const SweepPlan& header, const SweepSpec* spec,
                 const fs::path& dir) {
   std::vector<Objective> one;
   json directions = json::array();
   for (const auto& objective : objectives_of(header, one))
     directions.push_back(objective.maximize ? "maximize" : "minimize");
-  json pruner{{"name", spec ? spec->pruner.name : std::string("none")}};
-  json params = json::array();
-  if (spec) {
-    for (const auto& [k, v] : spec->pruner.options) pruner[k] = v;
-    for (const auto& p : spec->parameters) params.push_back(distribution(p));
-  }
   const std::string holder = LockFile::holder_text(static_cast<long>(::getpid()));
   const std::string host = holder.substr(0, holder.find(' '));
-  return helper.request(
-      {{"op", "open"},
-       {"journal", fs::absolute(study_journal(dir)).string()},
-       {"study", "cnclab"},
-       {"directions", directions},
-       {"sampler",
-        {{"name", header.method}, {"seed", (header.sampler_seed + worker_index()) % (1ULL << 32)}}},
-       {"pruner", pruner},
-       {"params", params},
-       {"holder", {{"host", host}, {"pid", static_cast<long long>(::getpid())}}}},
-      true);
+  json m = study_message("open", header, spec);
+  m["journal"] = fs::absolute(study_journal(dir)).string();
+  m["study"] = "cnclab";
+  m["directions"] = directions;
+  m["holder"] = {{"host", host}, {"pid", static_cast<long long>(::getpid())}};
+  return helper.request(m, true);
 }
 
 }  // namespace
 
 fs::path study_journal(const fs::path& dir) {
   return dir / "study.journal";
+}
+
+void check_study_settings(const SweepPlan& header, const SweepSpec& spec) {
+  OptunaHelper helper(helper_options(header));
+  helper.request(study_message("check", header, &spec), true);
 }
 
 std::size_t study_finished(const SweepPlan& header, const fs::path& dir) {
@@ -269,6 +279,8 @@ ModelSearch run_model_search(const SweepPlan& header, const SweepSpec& spec,
   ModelSearch s;
   s.plan = header;
   OptunaHelper helper(helper_options(header));
+  helper.request(study_message("check", header, &spec), true);  // before any file
+  store_plan(dir, header);
   fs::create_directories(dir / "trials");
   s.reaped = open_study(helper, header, &spec, dir).at("reaped").size();
   if (note && s.reaped) {
@@ -346,7 +358,8 @@ ModelSearch run_model_search(const SweepPlan& header, const SweepSpec& spec,
   pool.run.datasets_dir = o.common.datasets_dir;
   pool.trial_timeout_seconds = o.trial_timeout;
   if (note) {
-    *note << "sweep " << dir.string() << ": " << header.method << " study "
+    *note << "sweep " << dir.string() << ": " << header.method
+          << (header.sampler.empty() ? std::string() : " (" + header.sampler + ")") << " study "
           << study_journal(dir).string() << ", " << spec.trials << " trials (complete or pruned)"
           << (prune ? ", pruner " + header.pruner : std::string()) << ", " << pool.jobs
           << " job(s)\n";

@@ -77,11 +77,19 @@ std::size_t study_finished(const SweepPlan& header, const std::filesystem::path&
 // of a Slurm array). `finished` as in run_model_search.
 ModelSearch read_study(const SweepPlan& header, const std::filesystem::path& dir);
 
-// Runs the study of `header` (plan_sweep of a model-based `spec`, stored in
-// `dir`) until it has spec.trials complete or pruned trials. One line per
-// finished point to `note` (nullptr: silent). ConfigError (exit 2) when
-// Optuna is missing (naming python3-optuna) or the sampled space makes a bad
-// config; Error when the helper fails.
+// ConfigError (exit 2) naming the option when Optuna would refuse the
+// sampler, pruner or space of a model-based `spec` (plan_sweep's `header`);
+// nothing is written. (run_model_search checks them itself; this is for a
+// submission that only plans workers, `sweep --slurm`.)
+void check_study_settings(const SweepPlan& header, const SweepSpec& spec);
+
+// Runs the study of `header` (plan_sweep of a model-based `spec`) in `dir`
+// until it has spec.trials complete or pruned trials: checks the settings
+// (check_study_settings), then stores the plan (store_plan; ConfigError when
+// `dir` holds another sweep) and opens the study. One line per finished
+// point to `note` (nullptr: silent). ConfigError (exit 2) when Optuna is
+// missing (naming python3-optuna), refuses a setting or the sampled space
+// makes a bad config; Error when the helper fails.
 ModelSearch run_model_search(const SweepPlan& header, const SweepSpec& spec,
                              const SearchSource& source, const std::filesystem::path& dir,
                              const SweepExecuteOptions& options, std::ostream* note);

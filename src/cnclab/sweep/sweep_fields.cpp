@@ -82,6 +82,26 @@ YAML::Node pruner_node(const SweepSpec& w) {
   return n;
 }
 
+// sampler: {OPTION: scalar, ...} (SweepSpec::sampler).
+void read_sampler(const ConfigReader& s, SweepSpec& spec) {
+  if (!s.has("sampler")) return;
+  const YAML::Node node = s.raw("sampler");
+  if (!node.IsMap()) s.fail("sampler", "expected {option: value, ...} (e.g. {multivariate: true})");
+  for (const auto& kv : node) {
+    if (!kv.first.IsScalar() || !kv.second.IsScalar() || kv.second.Scalar().empty()) {
+      s.fail("sampler", "each option is a name and one value (true, false, a number or a word)");
+    }
+    spec.sampler[kv.first.Scalar()] = kv.second.Scalar();
+  }
+}
+
+YAML::Node sampler_node(const SweepSpec& w) {
+  YAML::Node n(YAML::NodeType::Map);
+  for (const auto& [k, v] : w.sampler) n[k] = v;
+  n.SetStyle(YAML::EmitterStyle::Flow);
+  return n;
+}
+
 // objectives: [{metric: M, mode: min|max}, ...] or ["M:min", ...].
 void read_objectives(const ConfigReader& s, SweepSpec& spec) {
   if (!s.has("objectives")) return;
@@ -193,6 +213,16 @@ const FieldList<SweepSpec>& sweep_fields() {
                               "min_resource, max_resource, reduction_factor)"),
                   read_pruner, pruner_node,
                   [](const S& w) { return w.pruner.name != "none" || !w.pruner.options.empty(); })
+          .custom(custom_info("sampler",
+                              "model-based methods: the sampler's options, {OPTION: value} with "
+                              "Optuna's arguments (tpe: n_startup_trials, n_ei_candidates, "
+                              "multivariate, group, constant_liar, consider_endpoints, "
+                              "consider_prior, prior_weight, consider_magic_clip; cmaes: "
+                              "n_startup_trials, sigma0, restart_strategy, popsize, inc_popsize, "
+                              "consider_pruned_trials, use_separable_cma, with_margin; nsga2: "
+                              "population_size, mutation_prob, crossover_prob, swapping_prob; "
+                              "qmc: qmc_type, scramble (default true))"),
+                  read_sampler, sampler_node, [](const S& w) { return !w.sampler.empty(); })
           .field("report_every", &S::report_every,
                  "model-based methods: epochs between reports of the validation objective to "
                  "the pruner",

@@ -183,7 +183,7 @@ SweepJobOutcome run_sweep_job(const SweepJob& job, const CommandOptions& options
   SweepJobOutcome r;
   r.state = sweep_job_state(job, options.results_dir);
   SweepJobState& s = r.state;
-  store_plan(s.dir, s.plan);
+  if (!model_based(s.plan)) store_plan(s.dir, s.plan);  // a study's: run_model_search
   SweepExecuteOptions exec;
   exec.common = options;
   exec.jobs = job.jobs;

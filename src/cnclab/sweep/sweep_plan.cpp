@@ -89,6 +89,7 @@ std::string SweepPlan::to_yaml() const {
     out << Key << "space" << Value << YAML::Flow << YAML::DoubleQuoted << space;
     out << Key << "sampler_seed" << Value << sampler_seed;
     out << Key << "pruner" << Value << pruner;
+    if (!sampler.empty()) out << Key << "sampler" << Value << sampler;
     out << Key << "report_every" << Value << report_every;
     if (!objectives.empty()) {
       out << Key << "objectives" << Value << YAML::Flow << YAML::BeginSeq;
@@ -191,6 +192,8 @@ SweepPlan plan_sweep(const fs::path& file, const std::vector<std::string>& overr
     plan.sampler_seed = spec.seed.value_or(base.spec.seed);
     plan.pruner = spec.pruner.name;
     for (const auto& [k, v] : spec.pruner.options) plan.pruner += " " + k + "=" + std::to_string(v);
+    for (const auto& [k, v] : spec.sampler)
+      plan.sampler += (plan.sampler.empty() ? "" : " ") + k + "=" + v;
     plan.report_every = spec.report_every;
     return plan;
   }
@@ -342,6 +345,7 @@ SweepPlan plan_from(const ConfigDocument& doc, const std::string& origin) {
       plan.space = r.require<std::vector<std::string>>("space");
       plan.sampler_seed = r.require<std::uint64_t>("sampler_seed");
       plan.pruner = r.require<std::string>("pruner");
+      plan.sampler = r.get<std::string>("sampler", "");
       plan.report_every = r.require<std::size_t>("report_every");
       for (const auto& o : r.get<std::vector<std::string>>("objectives", {}))
         plan.objectives.push_back(parse_objective(o));

@@ -54,6 +54,7 @@ struct SweepPlan {
   std::vector<std::string> space;
   std::uint64_t sampler_seed = 0;
   std::string pruner;
+  std::string sampler;  // the sampler's options, "k=v ..." (written when any)
   std::size_t report_every = 1;
   std::vector<Objective> objectives;
 

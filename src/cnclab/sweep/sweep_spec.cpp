@@ -248,10 +248,15 @@ void SweepSpec::validate() const {
   }
   if (repeats < 1) throw ConfigError("sweep: repeats = 0: must be at least 1");
   const SweepMethod m = resolved_method();
-  if (!model_based(m) && (pruner.name != "none" || !objectives.empty())) {
-    throw ConfigError(std::string("sweep: ") +
-                      (objectives.empty() ? "pruner " + pruner.name : std::string("objectives")) +
-                      " needs a model-based method (tpe, cmaes, nsga2, qmc), not " + to_string(m));
+  if (!model_based(m)) {
+    const std::string what = !sampler.empty()        ? "sampler options need"
+                             : !objectives.empty()   ? "objectives need"
+                             : pruner.name != "none" ? "pruner " + pruner.name + " needs"
+                                                     : "";
+    if (!what.empty()) {
+      throw ConfigError("sweep: " + what + " a model-based method (tpe, cmaes, nsga2, qmc), not " +
+                        to_string(m));
+    }
   }
   if (model_based(m)) {
     if (trials < 1) {

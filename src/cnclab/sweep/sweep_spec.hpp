@@ -105,6 +105,11 @@ struct SweepSpec {
   // Model-based methods only. `trials` is the study's number of complete or
   // pruned trials; `seed` the sampler's seed.
   SweepPruner pruner;
+  // The sampler's own options (Optuna's keyword arguments, e.g. tpe's
+  // multivariate: true, constant_liar: true, n_startup_trials: 5), as YAML
+  // scalar text by name; the Optuna helper checks names and types. Empty:
+  // Optuna's defaults (qmc: scrambled).
+  std::map<std::string, std::string> sampler;
   std::size_t report_every = 1;  // epochs between reports to the pruner (>= 1)
   // Several objectives (metric and mode each): Optuna optimises them
   // together (nsga2, tpe) and the summary lists the Pareto front; the first
