@@ -4,6 +4,7 @@
 Two tiny experiments run (one also with its quick profile), then one is
 edited and re-run, and one run is made with an override: the results and
 datasets that no experiment file still produces are known by construction.
+A NARX stage cache folder is added: gc lists it always (a cache).
 Checks that the dry run lists exactly those and removes nothing, that --yes
 removes exactly those, that foreign files are never touched, and that
 `reproduce` afterwards reuses every current result (nothing was removed
@@ -90,8 +91,17 @@ with tempfile.TemporaryDirectory() as tmp:
         with h5py.File(f, "w") as h:
             h["x"] = [1, 2, 3]
 
+    # The NARX stage cache: a folder gc always lists (a cache) and --yes removes.
+    stage_cache = os.path.join(data, "narx-stages")
+    os.makedirs(stage_cache)
+    stage_file = os.path.realpath(os.path.join(stage_cache, "0123456789abcdef.h5"))
+    with h5py.File(stage_file, "w") as h:
+        h["x"] = [1.0]
+
     stale = {f for f in b_old | a_override if f.endswith(".h5")}
     check(len(stale) == 3, f"three stale files by construction (got {sorted(stale)})")
+    stale_files = stale | {stage_file}
+    stale = stale | {os.path.realpath(stage_cache)}
     everything = files_under(res, data)
     r = run(["gc", "experiments", "--out", "results", "--data-dir", "datasets"], tmp)
     listed = {os.path.realpath(line.split("\t")[-1]) for line in r.stdout.splitlines()
@@ -101,7 +111,8 @@ with tempfile.TemporaryDirectory() as tmp:
     check(files_under(res, data) == everything, "the dry run removes nothing")
     run(["gc", "experiments", "--out", "results", "--data-dir", "datasets", "--yes"], tmp)
     left = files_under(res, data)
-    check(left == everything - stale, "--yes removes exactly the stale files")
+    check(left == everything - stale_files, "--yes removes exactly the stale files")
+    check(not os.path.exists(stage_cache), "--yes removes the stage cache folder")
     check(all(os.path.exists(f) for f in foreign), "foreign files are left alone")
     again = run(["gc", "experiments", "--out", "results", "--data-dir", "datasets"], tmp)
     check(again.stdout.startswith("0 stale items"), "nothing stale after --yes")

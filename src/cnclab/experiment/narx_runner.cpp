@@ -13,6 +13,7 @@
 #include "cnclab/core/progress.hpp"
 #include "cnclab/core/rng.hpp"
 #include "cnclab/data/dataset_cache.hpp"
+#include "cnclab/experiment/narx_stage_cache.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/run_warnings.hpp"
 #include "cnclab/experiment/sequence_metrics.hpp"
@@ -216,6 +217,7 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
   narx_rec.predictions.resize(static_cast<Eigen::Index>(rows.size()), n - half);
   narx_rec.targets.resize(static_cast<Eigen::Index>(rows.size()), n - half);
   rec.trainer = stages_text(spec.stages);
+  const NarxStageCache stage_cache(options.datasets_dir / "narx-stages");
   std::string message;
   bool ok = true;
   for (std::size_t a = 0; a < rows.size(); ++a) {
@@ -249,13 +251,29 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
     const auto t0 = std::chrono::steady_clock::now();
     message += (message.empty() ? "" : "; ") + net.axis + ":";
     // One stage from `params`, recorded; its termination.
+    // A stage another run trained on the same series from the same weights
+    // is read from the stage cache instead (narx_stage_cache.hpp).
     const auto run_stage = [&](const TrainingStage& stage, bool fallback) {
       const std::string label = to_string(stage.mode) + (fallback ? " (second try)" : "");
-      Progress progress(spec.name + " " + net.axis + " " + label, trainer_epochs(stage.trainer),
-                        options.log ? *options.log : std::cerr,
-                        {options.log ? options.progress : ProgressMode::quiet, 10.0, 0.1});
-      Summary s = train_stage(narx, stage, v_train, e_train, train_starts, params, progress);
-      progress.finish(to_string(s.termination));
+      const std::string key =
+          stage_cache.key(narx.options(), stage, v_train, e_train, train_starts, params);
+      Summary s;
+      if (std::optional<CachedNarxStage> cached = stage_cache.find(key)) {
+        s = std::move(cached->summary);
+        params = std::move(cached->params);
+        if (options.log) {
+          *options.log << "  " << spec.name << " " << net.axis << " " << label
+                       << ": trained before, read from " << (stage_cache.dir() / key).string()
+                       << ".h5\n";
+        }
+      } else {
+        Progress progress(spec.name + " " + net.axis + " " + label, trainer_epochs(stage.trainer),
+                          options.log ? *options.log : std::cerr,
+                          {options.log ? options.progress : ProgressMode::quiet, 10.0, 0.1});
+        s = train_stage(narx, stage, v_train, e_train, train_starts, params, progress);
+        progress.finish(to_string(s.termination));
+        stage_cache.store(key, {s, params});
+      }
       message += " " + label + " " + std::to_string(s.history.size()) + " epochs (" +
                  to_string(s.termination) + ")";
       const Termination t = s.termination;

@@ -215,6 +215,12 @@ GcPlan plan_gc(const GcOptions& o) {
       }
     }
   }
+  // The stage cache (experiment/narx_stage_cache.hpp) is only ever a cache:
+  // it holds stages of every program that trained, so it is always listed.
+  const fs::path stages = o.datasets_dir / "narx-stages";
+  if (fs::is_directory(stages, ec)) {
+    plan.stale.push_back({normal(stages), size_of(stages), "stage cache"});
+  }
   std::sort(plan.stale.begin(), plan.stale.end(),
             [](const GcItem& a, const GcItem& b) { return a.path < b.path; });
   plan.stale.erase(std::unique(plan.stale.begin(), plan.stale.end(),

@@ -15,7 +15,8 @@
 //   - a dataset a current training experiment would read from the cache.
 // Stale: the other cnclab results (root attribute format cnclab-result),
 // their outputs and sweep folders, and dataset cache files (format
-// cnclab-dataset). Anything else (foreign files, unreadable .h5, READMEs, the
+// cnclab-dataset), and the NARX stage cache folder <datasets>/narx-stages
+// (a cache: removing it costs only training time). Anything else (foreign files, unreadable .h5, READMEs, the
 // runs index, which gc refreshes as `cnclab runs` does) is never removed. An experiment file that does not load stops
 // gc (exit 2): what it produces cannot be told.
 #include <cstdint>
@@ -36,7 +37,7 @@ struct GcOptions {
 struct GcItem {
   std::filesystem::path path;  // a file or a sweep folder
   std::uintmax_t bytes = 0;
-  std::string what;  // "result", "job output", "sweep folder", "dataset"
+  std::string what;  // "result", "job output", "sweep folder", "dataset", "stage cache"
 };
 
 struct GcPlan {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/data/dataset_file.hpp"
@@ -218,6 +219,74 @@ TEST(NarxTrial, SecondTryKeepsTheLowerWholeSeriesSse) {
     }
   }
   EXPECT_GT(retried, 0u) << "no closed-loop stage stopped on mu_max: the test checks nothing";
+}
+
+// The number of stage files in a datasets folder's stage cache.
+std::size_t cached_stages(const RunOptions& options) {
+  const fs::path dir = options.datasets_dir / "narx-stages";
+  if (!fs::is_directory(dir)) return 0;
+  return static_cast<std::size_t>(
+      std::distance(fs::directory_iterator(dir), fs::directory_iterator{}));
+}
+
+// Shared stages (experiment/narx_stage_cache.hpp): a two-stage run whose
+// open-loop stages another run trained reads them back and ends bit for bit
+// where a run that trains everything ends (checked against such a run in a
+// folder of its own); other starting weights or options are other stages;
+// a damaged cache file is trained again.
+TEST(NarxTrial, SharedStagesEndBitForBitWhereTrainingEnds) {
+  register_metrics_once();
+  TempDir dir;  // one per test: two folders in it
+  RunOptions fresh, shared;
+  fresh.results_dir = dir / "fresh_results";
+  fresh.datasets_dir = dir / "fresh_datasets";
+  shared.results_dir = dir / "shared_results";
+  shared.datasets_dir = dir / "shared_datasets";
+  const auto run = [](const std::string& yaml, const RunOptions& options) {
+    const RunOutcome o = run_experiment(parse_experiment(yaml, "t.yaml"), options);
+    EXPECT_TRUE(o.ok) << o.message;
+    return read_result(o.result_file);
+  };
+  const RunRecord trained = run(tiny_trial(kTwoStage), fresh);
+  EXPECT_EQ(cached_stages(fresh), 4u);  // 2 axes x 2 stages
+
+  run(tiny_trial(kOpenOnly), shared);
+  EXPECT_EQ(cached_stages(shared), 2u);
+  const RunRecord reused = run(tiny_trial(kTwoStage), shared);
+  EXPECT_EQ(cached_stages(shared), 4u);  // only the closed-loop stages were new
+  ASSERT_EQ(reused.narx->networks.size(), trained.narx->networks.size());
+  for (std::size_t a = 0; a < trained.narx->networks.size(); ++a) {
+    const NarxNetworkRecord &x = trained.narx->networks[a], &y = reused.narx->networks[a];
+    EXPECT_EQ(x.parameters, y.parameters) << x.axis;  // exact
+    ASSERT_EQ(x.stages.size(), y.stages.size());
+    for (std::size_t k = 0; k < x.stages.size(); ++k) {
+      const Summary &p = x.stages[k].summary, &q = y.stages[k].summary;
+      EXPECT_EQ(p.termination, q.termination);
+      ASSERT_EQ(p.lm_history.size(), q.lm_history.size());
+      for (std::size_t i = 0; i < p.lm_history.size(); ++i) {
+        EXPECT_EQ(p.lm_history[i].sse, q.lm_history[i].sse);
+        EXPECT_EQ(p.lm_history[i].mu, q.lm_history[i].mu);
+      }
+      EXPECT_EQ(p.lm_initial->sse, q.lm_initial->sse);
+    }
+  }
+  EXPECT_EQ(trained.metrics, reused.metrics);
+
+  // Another seed (other starting weights) and another epoch count are new stages.
+  std::string seed2 = tiny_trial(kOpenOnly);
+  seed2.replace(seed2.find("seed: 1"), 7, "seed: 2");
+  run(seed2, shared);
+  EXPECT_EQ(cached_stages(shared), 6u);
+  std::string epochs = tiny_trial(kOpenOnly);
+  epochs.replace(epochs.find("epochs: 30"), 10, "epochs: 29");
+  run(epochs, shared);
+  EXPECT_EQ(cached_stages(shared), 8u);
+
+  // Damaged files are trained again and replaced.
+  for (const auto& f : fs::directory_iterator(shared.datasets_dir / "narx-stages")) {
+    std::ofstream(f.path(), std::ios::trunc) << "not hdf5";
+  }
+  EXPECT_EQ(run(tiny_trial(kTwoStage), shared).metrics, trained.metrics);
 }
 
 }  // namespace
