@@ -258,7 +258,8 @@ RunOutcome run_narx_experiment(const LoadedExperiment& experiment, const RunOpti
       const std::string key =
           stage_cache.key(narx.options(), stage, v_train, e_train, train_starts, params);
       Summary s;
-      if (std::optional<CachedNarxStage> cached = stage_cache.find(key)) {
+      std::optional<CachedNarxStage> cached = stage_cache.find(key);
+      if (cached && cached->params.size() == params.size()) {
         s = std::move(cached->summary);
         params = std::move(cached->params);
         if (options.log) {

@@ -4,12 +4,14 @@
 
 #include <fstream>
 
+#include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
 #include "cnclab/core/isa.hpp"
 #include "cnclab/experiment/result_layout.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
+#include "cnclab/io/isolated_read.hpp"
 
 namespace cnclab {
 namespace fs = std::filesystem;
@@ -74,10 +76,10 @@ std::optional<CachedNarxStage> NarxStageCache::find(const std::string& key) cons
   const fs::path file = dir_ / (key + ".h5");
   std::error_code ec;
   if (!enabled() || !fs::is_regular_file(file, ec)) return std::nullopt;
-  try {
+  const auto read = [&] {
     const H5File f = H5File::open_read(file);
     require_format(f, kStageFormat, kStageFormatVersion);
-    if (f.attribute_string("/", "key") != key) return std::nullopt;
+    if (f.attribute_string("/", "key") != key) throw IoError(file.string() + ": another key");
     NarxStageRecord record;
     ResultLayoutReader io(f);
     result_layout::narx_stage(io, "/stage", record);
@@ -86,6 +88,11 @@ std::optional<CachedNarxStage> NarxStageCache::find(const std::string& key) cons
     stage.params =
         Eigen::Map<const Eigen::VectorXd>(params.data(), static_cast<Eigen::Index>(params.size()));
     return stage;
+  };
+  try {
+    // As every HDF5 file cnclab reads: first in a child (io/isolated_read.hpp).
+    probe_in_child(file, [&] { (void)read(); });
+    return read();
   } catch (const std::exception&) {
     return std::nullopt;
   }

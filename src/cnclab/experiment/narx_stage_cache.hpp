@@ -57,7 +57,8 @@ class NarxStageCache {
                   const Eigen::VectorXd& start) const;
 
   // The stage stored under `key`; nullopt when there is none or it does not
-  // read back whole (a foreign or damaged file is trained again, and replaced).
+  // read back whole (a foreign or damaged file is trained again, and
+  // replaced; it is read first in a child process, io/isolated_read.hpp).
   std::optional<CachedNarxStage> find(const std::string& key) const;
 
   // Stores a stage's outcome under `key`. A cache that cannot be written
