@@ -329,6 +329,7 @@ TEST(DeployNarx, ANewPathConfigIsPredictedThroughTheTrainingRanges) {
   // geometry: the same predictions.
   std::filesystem::path generated;
   for (const auto& e : std::filesystem::directory_iterator(dir / "data")) {
+    if (!e.is_regular_file()) continue;  // narx-stages/: the trained stages
     const Dataset d = read_dataset(e.path());
     if (d.num_samples() == 900) generated = e.path();
   }
