@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include "common/temp_dir.hpp"
+
 namespace cnclab {
 namespace {
 
@@ -14,6 +18,19 @@ TEST(Hash, MatchesPublishedFnv1aVectors) {
 
 TEST(Hash, IncrementalEqualsWhole) {
   EXPECT_EQ(Hasher().add("foo").add("bar").hex(), hash_hex("foobar"));
+}
+
+// A file of several read chunks (1 MiB each) hashes as its bytes do; an
+// unreadable file has no hash.
+TEST(Hash, FileHashIsTheHashOfItsBytes) {
+  testing::TempDir dir;
+  std::string bytes;
+  for (std::size_t i = 0; i < 2'500'000; ++i) bytes.push_back(static_cast<char>((i * 7919) % 251));
+  std::ofstream(dir / "f.bin", std::ios::binary) << bytes;
+  EXPECT_EQ(file_hash_hex(dir / "f.bin"), hash_hex(bytes));
+  std::ofstream(dir / "empty.bin", std::ios::binary);
+  EXPECT_EQ(file_hash_hex(dir / "empty.bin"), "cbf29ce484222325");
+  EXPECT_EQ(file_hash_hex(dir / "missing.bin"), std::nullopt);
 }
 
 }  // namespace

@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <iterator>
 
 #include "cnclab/cad/occt_nurbs.hpp"
@@ -72,10 +71,9 @@ class OcctFaceDomain : public FaceDomain {
 };
 
 std::string file_content_hash(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ConfigError(file.string() + ": cannot be opened for reading");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return hash_hex(bytes);
+  std::optional<std::string> hash = file_hash_hex(file);
+  if (!hash) throw ConfigError(file.string() + ": cannot be opened for reading");
+  return *hash;
 }
 
 // Whether every edge of the outer loop runs along a side of the face's

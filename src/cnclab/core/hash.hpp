@@ -3,6 +3,8 @@
 // 64-bit, printed as 16 hex digits. Not cryptographic; collisions between the
 // few thousand configs of a study are negligible (birthday bound ~2^-40).
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -25,5 +27,8 @@ class Hasher {
 inline std::string hash_hex(std::string_view bytes) {
   return Hasher().add(bytes).hex();
 }
+
+// hash_hex of a file's bytes, read in chunks; nullopt when it cannot be read.
+std::optional<std::string> file_hash_hex(const std::filesystem::path& file);
 
 }  // namespace cnclab

@@ -2,8 +2,6 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <fstream>
-
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/hash.hpp"
 #include "cnclab/core/isa.hpp"
@@ -20,18 +18,6 @@ namespace {
 constexpr const char* kStageFormat = "cnclab-narx-stage";
 constexpr int kStageFormatVersion = 1;
 
-// The running executable's content hash ("" when it cannot be read).
-std::string executable_hash() {
-  std::ifstream in("/proc/self/exe", std::ios::binary);
-  if (!in) return "";
-  Hasher h;
-  std::string buffer(1 << 20, '\0');
-  while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0) {
-    h.add(std::string_view(buffer.data(), static_cast<std::size_t>(in.gcount())));
-  }
-  return in.bad() ? "" : h.hex();
-}
-
 void add_matrix(Hasher& h, const Eigen::MatrixXd& m) {
   h.add(static_cast<std::uint64_t>(m.rows())).add(static_cast<std::uint64_t>(m.cols()));
   h.add(std::span<const double>(m.data(), static_cast<std::size_t>(m.size())));
@@ -40,8 +26,10 @@ void add_matrix(Hasher& h, const Eigen::MatrixXd& m) {
 }  // namespace
 
 NarxStageCache::NarxStageCache(fs::path dir) : dir_(std::move(dir)) {
-  const std::string exe = executable_hash();
-  if (!exe.empty()) program_ = exe + " " + to_string(active_isa());
+  // The running executable's content: a rebuilt program has other keys.
+  if (const std::optional<std::string> exe = file_hash_hex("/proc/self/exe")) {
+    program_ = *exe + " " + to_string(active_isa());
+  }
 }
 
 std::string NarxStageCache::key(const NarxOptions& narx, const TrainingStage& stage,

@@ -16,9 +16,10 @@
 // Stale: the other cnclab results (root attribute format cnclab-result),
 // their outputs and sweep folders, and dataset cache files (format
 // cnclab-dataset), and the NARX stage cache folder <datasets>/narx-stages
-// (a cache: removing it costs only training time). Anything else (foreign files, unreadable .h5, READMEs, the
-// runs index, which gc refreshes as `cnclab runs` does) is never removed. An experiment file that does not load stops
-// gc (exit 2): what it produces cannot be told.
+// (a cache: removing it costs only training time). Anything else (foreign
+// files, unreadable .h5, READMEs, the runs index, which gc refreshes as
+// `cnclab runs` does) is never removed. An experiment file that does not
+// load stops gc (exit 2): what it produces cannot be told.
 #include <cstdint>
 #include <filesystem>
 #include <ostream>
