@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <vector>
 
 #include "cnclab/core/hash.hpp"
 #include "cnclab/experiment/result_file.hpp"
@@ -119,6 +120,43 @@ TEST_F(Store, FailedRunsOnlyWhenAccepted) {
   }
   EXPECT_EQ(store.get(dir_ / "a.yaml", Accept::complete_or_failed).record.provenance.status,
             "failed");
+}
+
+// get_all reads many results with one isolated child; each file's answer is
+// what get() gives for it alone, errors included.
+TEST_F(Store, GetAllGivesWhatGetGivesForEachFile) {
+  std::ofstream(dir_ / "c.yaml") << "include: a.yaml\nseed: 6\n";
+  ASSERT_TRUE(run("a.yaml").ok);
+  ASSERT_TRUE(run("c.yaml").ok);
+  const ResultStore store(dir_ / "results");
+  const std::vector<fs::path> files = {dir_ / "a.yaml", dir_ / "c.yaml", dir_ / "a.yaml"};
+  const std::vector<StoredResult> all = store.get_all(files);
+  ASSERT_EQ(all.size(), files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const StoredResult one = store.get(files[i]);
+    EXPECT_EQ(all[i].file, one.file);
+    EXPECT_EQ(all[i].record.config_hash, one.record.config_hash);
+    EXPECT_EQ(all[i].record.test_predictions, one.record.test_predictions);
+  }
+  EXPECT_NE(all[0].file, all[1].file);
+  // c's file without the `complete` mark: get_all throws get()'s MissingResults.
+  const fs::path c_path = all[1].file;
+  {
+    H5File f = H5File::create(c_path);
+    write_format(f, kResultFormat, kResultFormatVersion);
+    f.close();
+  }
+  const std::string alone = message_of(store, "c.yaml");
+  try {
+    store.get_all(files);
+    ADD_FAILURE() << "an incomplete result was returned";
+  } catch (const MissingResults& e) {
+    EXPECT_EQ(std::string(e.what()), alone);
+  }
+  // No file at all: the same.
+  fs::remove(c_path);
+  EXPECT_THROW(store.get_all(files), MissingResults);
+  EXPECT_EQ(store.get_all({dir_ / "a.yaml"}).front().file, all[0].file);
 }
 
 TEST_F(Store, CommandNamesProfileAndFolder) {

@@ -10,8 +10,10 @@
 #include <map>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "cnclab/experiment/run_record.hpp"
+#include "cnclab/io/isolated_read.hpp"
 
 namespace cnclab {
 
@@ -37,6 +39,9 @@ void write_result(const std::filesystem::path& path, const RunRecord& record);
 // Reads and checks a result file: format, version, completeness, shapes.
 // Throws IoError naming the file and the object on anything else.
 RunRecord read_result(const std::filesystem::path& path);
+// Many files: read_result's value or exception per file, with one isolated
+// child for a run of readable files (io/isolated_read.hpp).
+std::vector<ReadOutcome<RunRecord>> read_results(const std::vector<std::filesystem::path>& paths);
 
 // What sweeps need of each trial: a result's status and metrics, checked
 // like read_result (safe read, format, version, completeness) but without
@@ -50,6 +55,9 @@ struct ResultStatus {
   std::vector<UpstreamRef> upstream;                // the upstream results it was made from
 };
 ResultStatus read_result_status(const std::filesystem::path& path);
+// Many files, as read_results.
+std::vector<ReadOutcome<ResultStatus>> read_result_statuses(
+    const std::vector<std::filesystem::path>& paths);
 
 // The parts every result has, shared with job results (job_result.hpp):
 // root attributes format, kind (jobs only), experiment, config_hash, status,

@@ -133,4 +133,13 @@ RunRecord read_result(const std::filesystem::path& path) {
   return read_result_in_process(path);
 }
 
+std::vector<ReadOutcome<RunRecord>> read_results(const std::vector<std::filesystem::path>& paths) {
+  return read_each_isolated<RunRecord>(paths, read_result_in_process);
+}
+
+std::vector<ReadOutcome<ResultStatus>> read_result_statuses(
+    const std::vector<std::filesystem::path>& paths) {
+  return read_each_isolated<ResultStatus>(paths, read_status_in_process);
+}
+
 }  // namespace cnclab

@@ -48,32 +48,37 @@ std::string ResultStore::missing_text(const ResultKey& key, const std::string& w
          make_command(key) + "`";
 }
 
-std::optional<StoredResult> ResultStore::existing(const ResultKey& key) const {
-  const fs::path file = path_of(key);
-  std::error_code ec;
-  if (!fs::exists(file, ec)) return std::nullopt;
-  StoredResult r{file, read_result(file)};  // IoError unless complete and readable
+StoredResult ResultStore::checked(const ResultKey& key, StoredResult r) const {
   // A training result of format 1 has the test split's metrics only, not the
   // per-split ones selections need (result_file.hpp): made again, not reused.
   if (r.record.kind == "train" && r.record.format_version < kResultFormatVersion) {
-    throw OutdatedResult(file.string() + ": result format " +
+    throw OutdatedResult(r.file.string() + ": result format " +
                          std::to_string(r.record.format_version) +
                          " (written before metrics per split; `cnclab show` still reads it): not "
                          "reused, run it again");
   }
   // The file name holds 8 hex digits of the identity; the file the full hash.
   if (r.record.config_hash != hash_hex(key.resolved_yaml)) {
-    throw IoError(file.string() + ": config_hash " + r.record.config_hash +
+    throw IoError(r.file.string() + ": config_hash " + r.record.config_hash +
                   " is not the hash of this resolved config (" + hash_hex(key.resolved_yaml) +
                   "): the result of another config");
   }
   return r;
 }
 
-StoredResult ResultStore::get(const ResultKey& key, Accept accept) const {
+std::optional<StoredResult> ResultStore::existing(const ResultKey& key) const {
+  const fs::path file = path_of(key);
+  std::error_code ec;
+  if (!fs::exists(file, ec)) return std::nullopt;
+  return checked(key, {file, read_result(file)});  // IoError unless complete and readable
+}
+
+StoredResult ResultStore::accepted(const ResultKey& key,
+                                   const std::function<std::optional<StoredResult>()>& existing,
+                                   Accept accept) const {
   std::optional<StoredResult> r;
   try {
-    r = existing(key);
+    r = existing();
   } catch (const IoError& e) {
     throw MissingResults(missing_text(key, "no complete result (" + std::string(e.what()) + ")"));
   }
@@ -85,16 +90,51 @@ StoredResult ResultStore::get(const ResultKey& key, Accept accept) const {
   return std::move(*r);
 }
 
+StoredResult ResultStore::get(const ResultKey& key, Accept accept) const {
+  return accepted(
+      key, [&] { return existing(key); }, accept);
+}
+
 StoredResult ResultStore::get(const LoadedExperiment& experiment, Accept accept) const {
   return get(result_key(experiment), accept);
 }
 
-StoredResult ResultStore::get(const fs::path& experiment_file, Accept accept) const {
+ResultKey ResultStore::key_of(const fs::path& experiment_file) const {
   std::error_code ec;
   if (!fs::exists(experiment_file, ec)) {
     throw MissingResults(experiment_file.string() + ": experiment file not found");
   }
-  return get(load(experiment_file), accept);
+  return result_key(load(experiment_file));
+}
+
+StoredResult ResultStore::get(const fs::path& experiment_file, Accept accept) const {
+  return get(key_of(experiment_file), accept);
+}
+
+std::vector<StoredResult> ResultStore::get_all(const std::vector<fs::path>& experiment_files,
+                                               Accept accept) const {
+  std::vector<ResultKey> keys;
+  std::vector<fs::path> files;  // the keys' result files that exist
+  for (const auto& experiment_file : experiment_files) {
+    keys.push_back(key_of(experiment_file));
+    std::error_code ec;
+    if (fs::exists(path_of(keys.back()), ec)) files.push_back(path_of(keys.back()));
+  }
+  std::vector<ReadOutcome<RunRecord>> read = read_results(files);
+  std::vector<StoredResult> out;
+  std::size_t k = 0;
+  for (const auto& key : keys) {
+    const bool exists = k < files.size() && files[k] == path_of(key);
+    out.push_back(accepted(
+        key,
+        [&]() -> std::optional<StoredResult> {
+          if (!exists) return std::nullopt;
+          return checked(key, {files[k], std::move(read[k]).get()});
+        },
+        accept));
+    k += exists;
+  }
+  return out;
 }
 
 std::string source_path_text(const fs::path& file) {

@@ -21,8 +21,10 @@
 //   to another file.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/run_record.hpp"
@@ -93,6 +95,11 @@ class ResultStore {
   // when the file itself does not exist.
   StoredResult get(const std::filesystem::path& experiment_file,
                    Accept accept = Accept::complete) const;
+  // get(file, accept) of each file, in order, the results read with one
+  // isolated child for all readable ones (read_results); throws what a
+  // failing get() would (an absent experiment file before any result).
+  std::vector<StoredResult> get_all(const std::vector<std::filesystem::path>& experiment_files,
+                                    Accept accept = Accept::complete) const;
 
   // What reuse needs: the result at key's path as it stands (failed runs
   // included); nullopt when no file is there; IoError when a file is there
@@ -101,6 +108,16 @@ class ResultStore {
 
  private:
   std::string missing_text(const ResultKey& key, const std::string& why) const;
+  // The key of an experiment file (MissingResults when the file is absent).
+  ResultKey key_of(const std::filesystem::path& experiment_file) const;
+  // `r`, read from key's path, when it is a current result of key's config:
+  // OutdatedResult or IoError otherwise.
+  StoredResult checked(const ResultKey& key, StoredResult r) const;
+  // get()'s rules over what `existing` (existing() or a read done before)
+  // gives for key.
+  StoredResult accepted(const ResultKey& key,
+                        const std::function<std::optional<StoredResult>()>& existing,
+                        Accept accept) const;
   std::filesystem::path results_dir_;
   std::string profile_;
 };

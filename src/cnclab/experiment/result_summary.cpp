@@ -1,7 +1,5 @@
 #include "cnclab/experiment/result_summary.hpp"
 
-#include <algorithm>
-
 #include "cnclab/core/error.hpp"
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/io/file_format.hpp"
@@ -36,25 +34,14 @@ ResultSummary read_result_summary(const std::filesystem::path& path) {
 }
 
 std::vector<SummaryOrError> read_result_summaries(const std::vector<std::filesystem::path>& files) {
-  constexpr std::size_t kBatch = 256;
   std::vector<SummaryOrError> out(files.size());
-  for (std::size_t begin = 0; begin < files.size(); begin += kBatch) {
-    const std::size_t end = std::min(files.size(), begin + kBatch);
-    bool batch_clean = true;
+  std::vector<ReadOutcome<ResultSummary>> read =
+      read_each_isolated<ResultSummary>(files, read_summary_in_process);
+  for (std::size_t i = 0; i < files.size(); ++i) {
     try {
-      probe_in_child(files[begin], [&] {
-        for (std::size_t i = begin; i < end; ++i) read_summary_in_process(files[i]);
-      });
-    } catch (const Error&) {
-      batch_clean = false;  // some file in it is bad: probe each below
-    }
-    for (std::size_t i = begin; i < end; ++i) {
-      try {
-        out[i].summary =
-            batch_clean ? read_summary_in_process(files[i]) : read_result_summary(files[i]);
-      } catch (const Error& e) {
-        out[i].error = e.what();
-      }
+      out[i].summary = std::move(read[i]).get();
+    } catch (const Error& e) {
+      out[i].error = e.what();
     }
   }
   return out;

@@ -30,9 +30,9 @@ struct ResultSummary {
 // Throws IoError naming the file on anything but a complete cnclab result.
 ResultSummary read_result_summary(const std::filesystem::path& path);
 
-// Many at once: each file's summary or its error message. The isolated
-// probe runs once per batch of files (one fork for up to 256 files) and per
-// file only when a batch failed, so listing thousands of files stays fast.
+// Many at once: each file's summary or its error message, with one isolated
+// child for a run of readable files (read_each_isolated), so listing
+// thousands of files stays fast.
 struct SummaryOrError {
   ResultSummary summary;
   std::string error;  // "" when summary is valid

@@ -48,11 +48,14 @@ std::vector<std::string> markdown_cells(const std::string& line) {
   return cells;
 }
 
-// The run behind a number: provenance, metrics, training history.
-void add_run(Builder& b, const fs::path& file, int level) {
-  const std::string key = fs::absolute(file).lexically_normal().string();
-  if (!b.runs_shown.insert(key).second) return;
-  const RunRecord r = read_result(file);
+// Whether `file`'s run is not on the page yet (and from now on it is).
+bool first_showing(Builder& b, const fs::path& file) {
+  return b.runs_shown.insert(fs::absolute(file).lexically_normal().string()).second;
+}
+
+// The run behind a number (`r`, read from `file`): provenance, metrics,
+// training history.
+void add_run(Builder& b, const fs::path& file, const RunRecord& r, int level) {
   // A sweep trial keeps its base experiment's name: the overrides in the heading say which
   // point of the sweep it is (e.g. keep 0.8 of a sweep whose base file is named keep_0.5).
   std::string heading = "Run " + r.experiment;
@@ -115,6 +118,10 @@ void add_run(Builder& b, const fs::path& file, int level) {
                                         "loss (normalised MSE)", true}),
                   "loss per epoch: " + file.filename().string());
   }
+}
+
+void add_run(Builder& b, const fs::path& file, int level) {
+  if (first_showing(b, file)) add_run(b, file, read_result(file), level);
 }
 
 void add_study(Builder& b, const TableEntry& entry, const ReportOptions& o) {
@@ -193,7 +200,14 @@ void add_study(Builder& b, const TableEntry& entry, const ReportOptions& o) {
   }
   add_study_figures(b.page, figures);
   if (!sources.empty()) b.page.heading(3, "Runs behind these numbers", "");
-  for (const auto& f : sources) add_run(b, f, 4);
+  std::vector<fs::path> unseen;
+  for (const auto& f : sources) {
+    if (first_showing(b, f)) unseen.push_back(f);
+  }
+  std::vector<ReadOutcome<RunRecord>> records = read_results(unseen);  // one isolated child
+  for (std::size_t i = 0; i < unseen.size(); ++i) {
+    add_run(b, unseen[i], std::move(records[i]).get(), 4);
+  }
 }
 
 void add_sweep(Builder& b, const fs::path& dir) {

@@ -137,14 +137,18 @@ std::string to_string(TrialOutcome::Status status) {
   return "?";
 }
 
-TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) {
+namespace {
+
+// A trial's outcome: from its result file's status when it has one (`read`:
+// the status, or the error reading it), else from its error note.
+TrialOutcome trial_outcome(const fs::path& dir, const PlannedTrial& trial,
+                           ReadOutcome<ResultStatus>* read) {
   TrialOutcome o;
-  const fs::path result = trial_result_path(dir, trial.id);
   std::error_code ec;
-  if (fs::exists(result, ec)) {
+  if (read) {
     try {
-      ResultStatus r = read_result_status(result);
-      o.result_file = fs::relative(result, dir, ec).string();
+      ResultStatus r = std::move(*read).get();
+      o.result_file = fs::relative(trial_result_path(dir, trial.id), dir, ec).string();
       o.upstream = std::move(r.upstream);
       if (r.status == "complete") {
         o.status = TrialOutcome::Status::complete;
@@ -174,9 +178,33 @@ TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) 
   return o;
 }
 
+}  // namespace
+
+TrialOutcome read_trial_outcome(const fs::path& dir, const PlannedTrial& trial) {
+  const fs::path result = trial_result_path(dir, trial.id);
+  std::error_code ec;
+  if (!fs::exists(result, ec)) return trial_outcome(dir, trial, nullptr);
+  return trial_outcome(dir, trial, &read_result_statuses({result}).front());
+}
+
 std::vector<TrialOutcome> read_trial_outcomes(const fs::path& dir, const SweepPlan& plan) {
+  const std::vector<PlannedTrial>& trials = plan.trials;
+  std::vector<fs::path> results;
+  std::vector<std::size_t> with_result;  // trials[with_result[k]] has results[k]
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    const fs::path result = trial_result_path(dir, trials[i].id);
+    std::error_code ec;
+    if (fs::exists(result, ec)) {
+      results.push_back(result);
+      with_result.push_back(i);
+    }
+  }
+  std::vector<ReadOutcome<ResultStatus>> read = read_result_statuses(results);
   std::vector<TrialOutcome> out;
-  for (const auto& t : plan.trials) out.push_back(read_trial_outcome(dir, t));
+  for (std::size_t i = 0, k = 0; i < trials.size(); ++i) {
+    const bool has_result = k < with_result.size() && with_result[k] == i;
+    out.push_back(trial_outcome(dir, trials[i], has_result ? &read[k++] : nullptr));
+  }
   return out;
 }
 

@@ -73,7 +73,8 @@ std::string to_string(TrialOutcome::Status status);
 
 // Reads the trial's result status (read_result_status) or error note from `dir`.
 TrialOutcome read_trial_outcome(const std::filesystem::path& dir, const PlannedTrial& trial);
-// The same for every trial of the plan (plan order).
+// The same for every trial of the plan (plan order), the results read with
+// one isolated child for all readable ones (read_result_statuses).
 std::vector<TrialOutcome> read_trial_outcomes(const std::filesystem::path& dir,
                                               const SweepPlan& plan);
 

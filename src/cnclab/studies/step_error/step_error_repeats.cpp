@@ -94,7 +94,14 @@ RepeatedSweep load_repeated_sweep(const fs::path& file, const TablesOptions& o) 
   out.file = file;
   out.dir = state.dir;
   out.key = state.plan.keys.front();
-  for (std::size_t i = 0; i < state.plan.trials.size(); ++i) {
+  std::vector<fs::path> paths;  // the complete trials' results, in plan order
+  for (const TrialOutcome& outcome : state.outcomes) {
+    if (outcome.status == TrialOutcome::Status::complete) {
+      paths.push_back(state.dir / outcome.result_file);
+    }
+  }
+  std::vector<ReadOutcome<RunRecord>> records = read_results(paths);
+  for (std::size_t i = 0, k = 0; i < state.plan.trials.size(); ++i) {
     const PlannedTrial& t = state.plan.trials[i];
     if (t.point >= out.points.size()) {
       out.points.resize(t.point + 1);
@@ -102,10 +109,9 @@ RepeatedSweep load_repeated_sweep(const fs::path& file, const TablesOptions& o) 
     }
     RepeatedPoint& point = out.points[t.point];
     ++point.planned;
-    const TrialOutcome& outcome = state.outcomes[i];
-    if (outcome.status != TrialOutcome::Status::complete) continue;
-    const fs::path path = state.dir / outcome.result_file;
-    const StepErrorRun run = step_error_run(read_result(path), path);
+    if (state.outcomes[i].status != TrialOutcome::Status::complete) continue;
+    const fs::path& path = paths[k];
+    const StepErrorRun run = step_error_run(std::move(records[k++]).get(), path);
     point.runs.push_back(run_figures(run));
     point.seeds.push_back(t.seed);
     out.sources.push_back(path);

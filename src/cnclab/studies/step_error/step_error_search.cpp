@@ -55,16 +55,19 @@ SearchedSpace load_searched_space(const fs::path& file, const TablesOptions& o) 
                          "; run `" + store.make_command(sweep_job_key(job, state.plan)) +
                          "` first");
   }
-  for (std::size_t i = 0; i < state.plan.trials.size(); ++i) {
-    const TrialOutcome& outcome = state.outcomes[i];
+  std::vector<fs::path> paths;  // the trials with a result, in plan order
+  for (const TrialOutcome& outcome : state.outcomes) {
     if (outcome.result_file.empty()) continue;
-    const fs::path path = state.dir / outcome.result_file;
-    const RunRecord r = read_result(path);
+    paths.push_back(state.dir / outcome.result_file);
     ++out.trainings;
     out.complete += outcome.status == TrialOutcome::Status::complete;
     out.pruned += outcome.status == TrialOutcome::Status::pruned;
+  }
+  std::vector<ReadOutcome<RunRecord>> records = read_results(paths);
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    const RunRecord r = std::move(records[k]).get();
     out.epochs += r.training.history.size();
-    out.sources.push_back(path);
+    out.sources.push_back(paths[k]);
     out.configs.push_back(r.resolved_yaml);
   }
   const PointStats& best = state.summary.points.front();  // ranked: complete trials only

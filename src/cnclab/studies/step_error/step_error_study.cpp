@@ -7,14 +7,6 @@
 
 namespace cnclab {
 namespace fs = std::filesystem;
-namespace {
-
-StepErrorRun load_run(const fs::path& experiment, const ResultStore& store) {
-  StoredResult stored = store.get(experiment, Accept::complete_or_failed);
-  return step_error_run(std::move(stored.record), stored.file);
-}
-
-}  // namespace
 
 StepErrorRun step_error_run(RunRecord record, const fs::path& file) {
   StepErrorRun run;
@@ -93,9 +85,13 @@ StepErrorStudy load_step_error_study(const TablesOptions& o) {
     files.push_back(n.surface2);
     files.push_back(n.surface3);
   }
-  const ResultStore store = table_store(o);
+  std::vector<fs::path> unique;
   for (const auto& f : files) {
-    if (!s.runs.count(f)) s.runs.emplace(f, load_run(f, store));
+    if (std::find(unique.begin(), unique.end(), f) == unique.end()) unique.push_back(f);
+  }
+  std::vector<StoredResult> stored = table_store(o).get_all(unique, Accept::complete_or_failed);
+  for (std::size_t i = 0; i < unique.size(); ++i) {
+    s.runs.emplace(unique[i], step_error_run(std::move(stored[i].record), stored[i].file));
   }
   for (const auto& v : s.manifest.variants) {
     for (const auto& [p, f] : v.table2) files.erase(std::find(files.begin(), files.end(), f));
