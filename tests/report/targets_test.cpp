@@ -171,14 +171,50 @@ TEST(Targets, ProfileChecksOnlyItsDeclaredValues) {
   options.configs_dir = dir.path();
   options.profile = "quick";
   std::ostringstream out;
-  const TableCheck c = check_table(table, options, out);
+  const TableCheck c = check_table(table, load_tables(table, options), options, out);
   EXPECT_EQ(c.passed, 1u);
   EXPECT_EQ(c.failed, 0u);  // 99.71 < 99.9 would fail, but not in the quick profile
   EXPECT_EQ(c.unchecked, 1u);
   EXPECT_NE(out.str().find("not checked"), std::string::npos) << out.str();
   options.profile = "";
   std::ostringstream full;
-  EXPECT_EQ(check_table(table, options, full).failed, 1u);
+  EXPECT_EQ(check_table(table, load_tables(table, options), options, full).failed, 1u);
+}
+
+// A table with `load`: `tables --check` prints and measures from one load, and
+// never calls the entry's own print or measure (which would load again).
+TEST(Targets, CheckPrintsAndMeasuresFromOneLoad) {
+  static int loads = 0;
+  static const bool registered = [] {
+    TableEntry e{"fake-load-once", "a table loaded once",
+                 [](const TablesOptions&, std::ostream&) { ADD_FAILURE() << "print loaded again"; },
+                 [](const TablesOptions&) {
+                   ADD_FAILURE() << "measure loaded again";
+                   return Measurements{};
+                 },
+                 "studies/fake.yaml"};
+    e.load = [](const TablesOptions&) {
+      ++loads;
+      return LoadedTables{[](std::ostream& out) { out << "fake table, loaded once\n"; },
+                          [] { return kMeasured; }};
+    };
+    register_table(e);
+    return true;
+  }();
+  ASSERT_TRUE(registered);
+  testing::TempDir dir;
+  write(dir / "studies/fake.yaml",
+        "targets:\n  - {name: fake.surface1.test_samples, op: \"==\", value: 5940, source: "
+        "paper}\n");
+  TablesOptions options;
+  options.configs_dir = dir.path();
+  options.check = true;
+  std::ostringstream out;
+  loads = 0;
+  EXPECT_EQ(tables_command("fake-load-once", options, out), 0);
+  EXPECT_EQ(loads, 1);
+  EXPECT_NE(out.str().find("fake table, loaded once"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("1 PASS, 0 FAIL"), std::string::npos) << out.str();
 }
 
 TEST(Targets, AvailableTablesReportMalformedTargetsAsExit2) {

@@ -129,7 +129,8 @@ void add_study(Builder& b, const TableEntry& entry, const ReportOptions& o) {
   TablesOptions t = o.tables;
   t.format = TableFormat::markdown;
   std::ostringstream md;
-  entry.print(t, md);
+  const LoadedTables loaded = load_tables(entry, t);
+  loaded.print(md);
   std::istringstream in(md.str());
   TextTable table;
   std::string caption;
@@ -173,7 +174,7 @@ void add_study(Builder& b, const TableEntry& entry, const ReportOptions& o) {
   if (entry.measure && !entry.manifest.empty()) {
     const fs::path manifest = t.config_file(entry.manifest);
     const auto targets = read_targets(manifest);
-    const auto results = check_targets(targets, entry.measure(t), t.profile);
+    const auto results = check_targets(targets, loaded.measure(), t.profile);
     TextTable check;
     check.header = {"quantity", "target", "measured", "result", "source"};
     for (const auto& r : results) {

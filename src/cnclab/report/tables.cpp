@@ -149,6 +149,14 @@ void print_tables_body(const std::string& name, const TablesOptions& options,
 
 }  // namespace
 
+LoadedTables load_tables(const TableEntry& entry, const TablesOptions& options) {
+  if (entry.load) return entry.load(options);
+  LoadedTables loaded;
+  loaded.print = [&entry, options](std::ostream& out) { entry.print(options, out); };
+  if (entry.measure) loaded.measure = [&entry, options] { return entry.measure(options); };
+  return loaded;
+}
+
 void print_table_document(const TableEntry& entry, const TablesOptions& options,
                           std::ostream& out) {
   print_tables_body(
@@ -190,8 +198,9 @@ int tables_command(const std::string& name, const TablesOptions& options, std::o
       print_tables_body(
           t.name, options,
           [&](std::ostream& o) {
-            t.print(options, o);
-            if (options.check) code = check_table(t, options, o).failed > 0 ? 1 : 0;
+            const LoadedTables loaded = load_tables(t, options);
+            loaded.print(o);
+            if (options.check) code = check_table(t, loaded, options, o).failed > 0 ? 1 : 0;
           },
           out);
       return code;
@@ -215,9 +224,11 @@ int print_available_tables(const TablesOptions& options, std::ostream& out,
   TableCheck total;
   std::size_t checked_tables = 0;
   for (const auto& t : registered_tables()) {
+    LoadedTables loaded;
     try {
       if (ran && !table_related(t, options, ran_files)) continue;
-      t.print(options, out);
+      loaded = load_tables(t, options);
+      loaded.print(out);
     } catch (const Error& e) {
       // Missing or failed inputs: the runs' summary above stands; say why
       // the table is absent (`cnclab tables NAME` reports it as an error).
@@ -226,7 +237,7 @@ int print_available_tables(const TablesOptions& options, std::ostream& out,
     }
     if (!options.check) continue;
     try {
-      const TableCheck c = check_table(t, options, out);
+      const TableCheck c = check_table(t, loaded, options, out);
       total.passed += c.passed;
       total.failed += c.failed;
       total.unchecked += c.unchecked;

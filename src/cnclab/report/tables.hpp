@@ -53,6 +53,14 @@ using Measurements = std::map<std::string, double>;
 // (experiment/result_store.hpp), whose message names the command that makes
 // them. Tables find their results through a ResultStore{results_dir, profile}.
 
+// A study's tables over one load of its results: print() writes the tables
+// (TableEntry::print's output), measure() gives their quantities
+// (TableEntry::measure's; empty when the entry has none).
+struct LoadedTables {
+  std::function<void(std::ostream&)> print;
+  std::function<Measurements()> measure;
+};
+
 struct TableEntry {
   std::string name;     // `cnclab tables <name>`
   std::string summary;  // one line
@@ -73,7 +81,15 @@ struct TableEntry {
   // Optional: the folders under RESULTS/figures/ that scripts/figures/ draws
   // for this study ("step_error"); `cnclab report` embeds their PNG files.
   std::vector<std::string> figure_topics = {};
+  // Optional: the results read once for both print and measure, for a study
+  // whose loading is most of its cost (what `--check`, `reproduce` and
+  // `report` call through load_tables). Throws as print does.
+  std::function<LoadedTables(const TablesOptions&)> load = {};
 };
+
+// entry.load(options), or print and measure with the options, each reading
+// the results itself.
+LoadedTables load_tables(const TableEntry& entry, const TablesOptions& options);
 
 // Test MSE in the normalised units the network was trained in: the mean of
 // (T(prediction) - T(target))^2 with T the run's target scaling.

@@ -218,7 +218,8 @@ void print_target_results(std::ostream& out, TableFormat format, const std::stri
   print_table_notes(out, format, notes);
 }
 
-TableCheck check_table(const TableEntry& table, const TablesOptions& options, std::ostream& out) {
+TableCheck check_table(const TableEntry& table, const LoadedTables& loaded,
+                       const TablesOptions& options, std::ostream& out) {
   TableCheck c;
   if (table.manifest.empty() || !table.measure) {
     print_table_notes(out, options.format, {"table " + table.name + ": no targets declared"});
@@ -233,7 +234,7 @@ TableCheck check_table(const TableEntry& table, const TablesOptions& options, st
     return c;
   }
   c.declared = true;
-  const Measurements measured = table.measure(options);
+  const Measurements measured = loaded.measure();
   const std::vector<TargetResult> results = check_targets(targets, measured, options.profile);
   print_target_results(out, options.format, table.name, manifest, options.profile, results);
   for (const auto& r : results) {

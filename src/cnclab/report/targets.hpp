@@ -77,10 +77,11 @@ struct TableCheck {
   bool declared = false;  // the table has a manifest with targets
 };
 
-// `--check` of one table whose tables were printed: reads its manifest's
-// targets, measures, prints the results. A table without a manifest or
-// targets prints one line saying so. ConfigError as read_targets and
-// check_targets.
-TableCheck check_table(const TableEntry& table, const TablesOptions& options, std::ostream& out);
+// `--check` of one table whose tables were printed (from `loaded`,
+// load_tables): reads its manifest's targets, measures, prints the results.
+// A table without a manifest or targets prints one line saying so.
+// ConfigError as read_targets and check_targets.
+TableCheck check_table(const TableEntry& table, const LoadedTables& loaded,
+                       const TablesOptions& options, std::ostream& out);
 
 }  // namespace cnclab

@@ -402,8 +402,8 @@ void print_normaliser_table(const Study& s, TableFormat format, std::ostream& ou
 
 }  // namespace
 
-void print_step_error_tables(const TablesOptions& options, std::ostream& out) {
-  const Study study = load_step_error_study(options);
+void print_step_error_study(const StepErrorStudy& study, const TablesOptions& options,
+                            std::ostream& out) {
   const TableFormat f = options.format;
   print_table2(study, f, out);
   print_table2_over_seeds(study, f, out);
@@ -416,6 +416,10 @@ void print_step_error_tables(const TablesOptions& options, std::ostream& out) {
   print_normaliser_table(study, f, out);
   print_step_error_spread(study, f, out);
   print_step_error_table8(study, options, out);
+}
+
+void print_step_error_tables(const TablesOptions& options, std::ostream& out) {
+  print_step_error_study(load_step_error_study(options), options, out);
 }
 
 }  // namespace cnclab

@@ -7,9 +7,15 @@
 #include <ostream>
 
 #include "cnclab/report/tables.hpp"
+#include "cnclab/studies/step_error/step_error_study.hpp"
 
 namespace cnclab {
 
+// The tables of a loaded study (`options`: format, and where Table 8's job
+// file is).
+void print_step_error_study(const StepErrorStudy& study, const TablesOptions& options,
+                            std::ostream& out);
+// Loads the study (load_step_error_study) and prints it: TableEntry::print.
 void print_step_error_tables(const TablesOptions& options, std::ostream& out);
 
 }  // namespace cnclab

@@ -1,5 +1,6 @@
 #include "cnclab/studies/step_error/study.hpp"
 
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cnclab/core/field_schema.hpp"
@@ -43,15 +44,24 @@ JobKind step_error_timing_kind() {
 
 void register_step_error_study() {
   register_job_kind(step_error_timing_kind());
-  register_table(
-      {"step-error",
-       "seed 000 Tables 2-8 (step-error BP network: dropout, surface 1, fine-tuning on surfaces 2 "
-       "and 3, timing), ours vs paper, and the normaliser keep/refit comparison",
-       print_step_error_tables,
-       measure_step_error_tables,
-       "studies/step_error_tables.yaml",
-       step_error_experiment_files,
-       {"step_error"}});
+  TableEntry tables{
+      "step-error",
+      "seed 000 Tables 2-8 (step-error BP network: dropout, surface 1, fine-tuning on surfaces 2 "
+      "and 3, timing), ours vs paper, and the normaliser keep/refit comparison",
+      print_step_error_tables,
+      measure_step_error_tables,
+      "studies/step_error_tables.yaml",
+      step_error_experiment_files,
+      {"step_error"}};
+  // Loading is most of the cost (about 150 result files, the sweeps' plans):
+  // once for both the tables and their targets.
+  tables.load = [](const TablesOptions& options) {
+    const auto study = std::make_shared<const StepErrorStudy>(load_step_error_study(options));
+    return LoadedTables{
+        [study, options](std::ostream& out) { print_step_error_study(*study, options, out); },
+        [study] { return step_error_measures(*study); }};
+  };
+  register_table(std::move(tables));
 }
 
 }  // namespace cnclab
