@@ -1,7 +1,8 @@
 // The direction features of a commanded velocity against their definitions
 // worked out by hand on a short series (motion/axis_direction.hpp): sign
 // with its deadband, the direction held through standstill, and the
-// reversal pulse d exp(-(t - t_c) / tau) restarting at each change.
+// reversal pulse d exp(-(t - t_c) / tau) restarting at each change, and
+// t - t_c itself.
 #include "cnclab/motion/axis_direction.hpp"
 
 #include <gtest/gtest.h>
@@ -32,6 +33,14 @@ TEST(AxisDirection, FeaturesOfAHandSeries) {
     EXPECT_EQ(f[1][t], dir[t]) << t;
     EXPECT_NEAR(f[2][t], dir[t] * std::exp(-since[t] * 1e-3 / 0.004), 1e-15) << t;
   }
+  // The time since the change itself: infinity before the first motion.
+  AxisDirection a(o);
+  for (std::size_t t = 0; t < v.size(); ++t) {
+    a.step(v[t]);
+    EXPECT_EQ(a.since_change(), t < 2 ? INFINITY : since[t] * 1e-3) << t;
+  }
+  a.reset();
+  EXPECT_EQ(a.since_change(), INFINITY);
 }
 
 TEST(AxisDirection, ResetForgetsAndNonFiniteIsStandstill) {

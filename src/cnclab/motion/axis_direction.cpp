@@ -50,6 +50,7 @@ void AxisDirection::reset() noexcept {
   sign_ = 0.0;
   direction_ = 0.0;
   decay_ = 1.0;
+  ticks_since_change_ = -1;
 }
 
 void AxisDirection::step(double velocity) noexcept {
@@ -58,7 +59,9 @@ void AxisDirection::step(double velocity) noexcept {
   if (moving && sign_ != direction_) {
     direction_ = sign_;
     decay_ = 1.0;  // t_c = this tick
+    ticks_since_change_ = 0;
   } else {
+    if (ticks_since_change_ >= 0) ++ticks_since_change_;
     // Flushed to 0 long after the change (no denormals on long runs).
     decay_ = decay_ < 1e-12 ? 0.0 : decay_ * per_tick_;
   }
@@ -66,6 +69,11 @@ void AxisDirection::step(double velocity) noexcept {
 
 double AxisDirection::reversal() const noexcept {
   return direction_ * decay_;
+}
+
+double AxisDirection::since_change() const noexcept {
+  return ticks_since_change_ < 0 ? INFINITY
+                                 : static_cast<double>(ticks_since_change_) * options_.period;
 }
 
 double AxisDirection::value(AxisFeature feature) const noexcept {

@@ -15,6 +15,8 @@
 //             the network how long ago the direction changed, over the few
 //             servo time constants the stick-slip transient lasts
 //             (1/Kp = 25 ms at the router's Kp = 40 1/s); 0 before any motion
+//   since_change  t - t_c [s], infinity before any motion (the feedrate
+//             loop's margins after a reversal, margin_calibration.hpp)
 //
 // Every feature is in [-1, 1] by construction (a network input needs no
 // normalisation). The dataset generator (data/following_error.hpp) and the
@@ -57,11 +59,15 @@ class AxisDirection {
   double direction() const noexcept { return direction_; }
   double reversal() const noexcept;
   double value(AxisFeature feature) const noexcept;
+  // Time since d last changed, t - t_c [s]: 0 at the tick of the change,
+  // infinity before any motion.
+  double since_change() const noexcept;
 
  private:
   AxisDirectionOptions options_;
   double sign_ = 0.0, direction_ = 0.0;
-  double decay_ = 1.0;  // exp(-(t - t_c) / tau) at the current tick
+  double decay_ = 1.0;                 // exp(-(t - t_c) / tau) at the current tick
+  long long ticks_since_change_ = -1;  // -1: no motion yet
   double per_tick_ = 1.0;
 };
 

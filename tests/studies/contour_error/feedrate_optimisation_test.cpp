@@ -172,6 +172,106 @@ TEST(FeedrateOptimisation, MarginsPerFeedBandHoldTickByTick) {
   }
 }
 
+// Margins after a change of direction, on a hand-made reference: +x from
+// rest at tick 2, -x from tick 6, a window of 2 ms (ticks 2-4 and 6-8).
+TEST(FeedrateOptimisation, MarginsAfterAChangeOfDirectionHoldForTheWindow) {
+  ReferenceTrajectory r;
+  const std::vector<double> vx = {0, 0, 60, 60, 60, 60, -20, -20, -20, -20, -20};
+  r.velocity = Eigen::MatrixX2d::Zero(static_cast<Eigen::Index>(vx.size()), 2);
+  r.position = r.velocity;
+  for (std::size_t k = 0; k < vx.size(); ++k) r.velocity(static_cast<Eigen::Index>(k), 0) = vx[k];
+  FeedrateOptimisationOptions o;
+  o.margin_bands = {{50.0}, {0.001, 0.002}, 0.002, {0.005, 0.006}};
+  EXPECT_EQ(o.tick_margins(r), (std::vector<double>{0.001, 0.001, 0.006, 0.006, 0.006, 0.002, 0.005,
+                                                    0.005, 0.005, 0.001, 0.001}));
+  o.margin_bands.reversal_window = 0;  // one class: after_reversal must be empty
+  try {
+    o.validate();
+    FAIL() << "no error";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "margin_bands.after_reversal");
+  }
+  o.margin_bands.after_reversal.clear();
+  EXPECT_EQ(o.tick_margins(r), (std::vector<double>{0.001, 0.001, 0.002, 0.002, 0.002, 0.002, 0.001,
+                                                    0.001, 0.001, 0.001, 0.001}));
+}
+
+// The loop keeps every tick of its plan within eps_max - m_k, m_k of the
+// tick's class: the first 100 ms after each axis starts (the S-bend has no
+// reversal; the ticks since a start are counted here by hand), where the
+// margin leaves 0.3 eps_max.
+TEST(FeedrateOptimisation, MarginsAfterAStartHoldTickByTick) {
+  VerificationOptions v;
+  const FeedrateProfile free = plan_feedrate(test_path());
+  const ContourCheck free_check = check_on_machine(test_path(), interpolate(test_path(), free), v);
+  FeedrateOptimisationOptions o;
+  o.tolerance = 0.6 * free_check.max;
+  o.margin_bands = {
+      {30.0}, {0.05 * o.tolerance, 0.1 * o.tolerance}, 0.1, {0.7 * o.tolerance, 0.7 * o.tolerance}};
+  const ContourErrorModel machine = [&](const ReferenceTrajectory& r) {
+    return check_on_machine(test_path(), r, v).simulated;
+  };
+  const FeedrateOptimisationResult res = optimise_feedrate(test_path(), machine, o);
+  ASSERT_EQ(res.status, OptimisationStatus::converged) << res.reason;
+  Eigen::Index started[2] = {-1, -1};
+  std::size_t after = 0;
+  for (Eigen::Index k = 0; k < res.reference.samples(); ++k) {
+    for (int a = 0; a < 2; ++a) {
+      if (started[a] < 0 && std::abs(res.reference.velocity(k, a)) > 1e-3) started[a] = k;
+    }
+    const bool recent =
+        (started[0] >= 0 && k - started[0] <= 100) || (started[1] >= 0 && k - started[1] <= 100);
+    const double speed = res.reference.velocity.row(k).norm();
+    const double m = recent ? 0.7 * o.tolerance : (speed < 30.0 ? 0.05 : 0.1) * o.tolerance;
+    after += recent ? 1 : 0;
+    ASSERT_LE(res.predicted[static_cast<std::size_t>(k)], o.tolerance - m + 1e-15) << k;
+  }
+  EXPECT_GE(after, 101u);
+}
+
+// A model that predicts twice the tolerance at every tick slower than
+// 1 mm/s (a start-up transient: the plan's first and last jerk-limited ticks,
+// the same under any cap) and the machine's error elsewhere: no plan meets
+// the bound at every tick; with standstill_speed 1 mm/s those ticks are not
+// held to it and every other tick is.
+TEST(FeedrateOptimisation, TicksAtStandstillAreNotHeldToTheBoundWhenAsked) {
+  VerificationOptions v;
+  const FeedrateProfile free = plan_feedrate(test_path());
+  const ContourCheck free_check = check_on_machine(test_path(), interpolate(test_path(), free), v);
+  FeedrateOptimisationOptions o;
+  o.tolerance = 0.6 * free_check.max;
+  const ContourErrorModel transient = [&](const ReferenceTrajectory& r) {
+    std::vector<double> e = check_on_machine(test_path(), r, v).simulated;
+    for (Eigen::Index k = 0; k < r.samples(); ++k) {
+      if (r.velocity.row(k).norm() < 1.0) e[static_cast<std::size_t>(k)] = 2 * o.tolerance;
+    }
+    return e;
+  };
+  const FeedrateOptimisationResult judged = optimise_feedrate(test_path(), transient, o);
+  EXPECT_EQ(judged.status, OptimisationStatus::infeasible) << judged.reason;
+  o.standstill_speed = 1.0;
+  const FeedrateOptimisationResult res = optimise_feedrate(test_path(), transient, o);
+  ASSERT_EQ(res.status, OptimisationStatus::converged) << res.reason;
+  std::size_t standstill = 0;
+  for (Eigen::Index k = 0; k < res.reference.samples(); ++k) {
+    const double eps = res.predicted[static_cast<std::size_t>(k)];
+    if (res.reference.velocity.row(k).norm() < 1.0) {
+      ++standstill;
+      EXPECT_EQ(eps, 2 * o.tolerance) << k;
+    } else {
+      ASSERT_LE(eps, o.tolerance) << k;
+    }
+  }
+  EXPECT_GT(standstill, 0u);
+  o.standstill_speed = 2.0;  // above min_speed
+  try {
+    o.validate();
+    FAIL() << "no error";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "standstill_speed");
+  }
+}
+
 TEST(FeedrateOptimisation, ModelOfTheWrongLengthIsAnError) {
   const ContourErrorModel short_model = [](const ReferenceTrajectory&) {
     return std::vector<double>(3, 0.0);

@@ -79,6 +79,12 @@ TEST(FeedrateSectionsTables, MeasuresEveryDeclaredSection) {
           [](RunRecord& r, const FeedrateJob&) {
             r.metrics["s03_eps20um_constrained_share_within"] = 0.997;
             r.metrics["s05_eps25um_ratio_uniform_constrained"] = 0.97;
+            // Margins of two bands, and of two after a change of direction.
+            r.metrics["calibration_margin_band0"] = 6.5;
+            r.metrics["calibration_margin_band1"] = 11.5;
+            r.metrics["calibration_margin_after_reversal_band0"] = 13.25;
+            r.metrics["calibration_margin_after_reversal_band1"] = 8.0;
+            r.facts["calibration_inputs"] = "v_x, direction_x";
           });
   f.write("contour_error/any_path/feedrate_unseen_path.yaml", 0.9995, 1.05, 1.04);
   const Measurements m = measure_feedrate_sections_tables(f.options);
@@ -94,6 +100,7 @@ TEST(FeedrateSectionsTables, MeasuresEveryDeclaredSection) {
   // Unseen path: the oracle gains 4 %, the plan 5 %: more than all of it.
   EXPECT_NEAR(m.at("unseen_path.min_oracle_gain_share"), 1.25, 1e-12);
   EXPECT_EQ(m.at("predictor.lowest_slowed_rms"), 1.0);
+  EXPECT_EQ(m.at("predictor.max_margin_um"), 13.25);  // the largest of either class
   const auto pass = f.check();
   EXPECT_TRUE(pass.at("validation_path.sections_meeting_all"));
   EXPECT_TRUE(pass.at("validation_path.min_share_within"));
@@ -106,6 +113,12 @@ TEST(FeedrateSectionsTables, MeasuresEveryDeclaredSection) {
   print_feedrate_sections_tables(f.options, out);
   EXPECT_NE(out.str().find("15 sections of the validation half"), std::string::npos) << out.str();
   EXPECT_NE(out.str().find("14/15"), std::string::npos);
+  // The job declares a 50 ms reversal window: its margins are listed, and
+  // the planning predictor's inputs.
+  EXPECT_NE(out.str().find("within 50 ms of a change of direction of either axis: 13.25 µm"),
+            std::string::npos)
+      << out.str();
+  EXPECT_NE(out.str().find("v_x, direction_x"), std::string::npos);
 }
 
 TEST(FeedrateSectionsTables, MissesFailTheirTargets) {

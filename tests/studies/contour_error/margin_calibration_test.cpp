@@ -78,6 +78,89 @@ TEST(MarginCalibration, ZeroPredictorGivesTheQuantilesOfTheSimulatedError) {
   EXPECT_EQ(pooled.margins.margin[1], sorted_quantile(all, 0.95));
 }
 
+// With a reversal window the validation ticks split in two classes: at
+// most the window after either axis's commanded velocity changed sign
+// outside the deadband (0 -> +-1 at a start included), counted here by hand
+// over each run's pieces in dataset order, and the others; each class has
+// its own quantile per band. Window 0 gives the one-class margins.
+TEST(MarginCalibration, ReversalWindowGivesTheTicksAfterAChangeOfDirectionTheirOwnMargins) {
+  const Dataset& d = plans();
+  ContourPredictor zero(zero_model(), zero_model());
+  MarginCalibrationOptions o;
+  o.quantile = 0.95;
+  o.feed_bands = {150};
+  o.min_ticks = 1;
+  const MarginCalibration one = calibrate_margins(zero, d, o);
+  o.reversal_window = 0.03;
+  const MarginCalibration c = calibrate_margins(zero, d, o);
+  const auto row = [&](const char* name) { return d.metadata_row(name); };
+  std::vector<double> steady[2], after[2];
+  double run = NAN, piece = NAN;
+  double direction[2] = {0, 0}, since[2] = {INFINITY, INFINITY};
+  // The dataset holds each run's first half, then every run's second half:
+  // a run's ticks in time order are its rows of one feed factor.
+  for (const double factor : {0.5, 1.0}) {
+    for (Eigen::Index k = 0; k < d.metadata.cols(); ++k) {
+      if (d.metadata(row("feed_factor"), k) != factor) continue;
+      if (factor != run || d.metadata(row("piece"), k) != piece) {
+        direction[0] = direction[1] = 0;
+        since[0] = since[1] = INFINITY;
+      }
+      run = factor;
+      piece = d.metadata(row("piece"), k);
+      for (int a = 0; a < 2; ++a) {
+        const double v = d.metadata(row(a == 0 ? "v_ref_x" : "v_ref_y"), k);
+        const double sign = std::abs(v) > 1e-3 ? (v > 0 ? 1.0 : -1.0) : 0.0;
+        if (sign != 0 && sign != direction[a]) {
+          direction[a] = sign;
+          since[a] = 0;
+        } else {
+          since[a] += 1e-3;
+        }
+      }
+      if (d.metadata(row("validation"), k) != 1.0) continue;
+      const double exact = d.metadata(row("contour_exact"), k) * 1e-3;
+      const double speed = std::hypot(d.metadata(row("v_ref_x"), k), d.metadata(row("v_ref_y"), k));
+      (std::min(since[0], since[1]) <= 0.03 + 1e-6 ? after : steady)[speed < 150 ? 0 : 1].push_back(
+          exact);
+    }
+  }
+  ASSERT_GT(after[0].size() + after[1].size(), 0u);
+  ASSERT_GT(steady[0].size() + steady[1].size(), 0u);
+  EXPECT_EQ(c.band_ticks, (std::vector<std::size_t>{steady[0].size(), steady[1].size()}));
+  EXPECT_EQ(c.after_reversal_band_ticks,
+            (std::vector<std::size_t>{after[0].size(), after[1].size()}));
+  EXPECT_EQ(c.margins.reversal_window, 0.03);
+  for (std::size_t b = 0; b < 2; ++b) {
+    if (!steady[b].empty()) {
+      EXPECT_EQ(c.margins.margin[b], sorted_quantile(steady[b], 0.95)) << b;
+    }
+    if (!after[b].empty()) {
+      EXPECT_EQ(c.margins.after_reversal[b], sorted_quantile(after[b], 0.95)) << b;
+    }
+  }
+  // The residual summaries do not depend on the classes; window 0 is one class.
+  EXPECT_EQ(c.validation.underprediction_p99, one.validation.underprediction_p99);
+  EXPECT_TRUE(one.margins.after_reversal.empty());
+  EXPECT_TRUE(one.after_reversal_band_ticks.empty());
+  EXPECT_EQ(one.margins.reversal_window, 0.0);
+  EXPECT_NO_THROW(c.margins.validate());
+
+  // A band of a class with fewer than min_ticks takes the quantile of its
+  // class, or of all ticks when the class has fewer too.
+  std::vector<double> all_after = after[0], all;
+  all_after.insert(all_after.end(), after[1].begin(), after[1].end());
+  for (const auto* v : {&steady[0], &steady[1], &after[0], &after[1]}) {
+    all.insert(all.end(), v->begin(), v->end());
+  }
+  o.min_ticks = std::max(after[0].size(), after[1].size()) + 1;
+  const double expected = all_after.size() >= o.min_ticks ? sorted_quantile(all_after, 0.95)
+                                                          : sorted_quantile(all, 0.95);
+  const MarginCalibration pooled = calibrate_margins(zero, d, o);
+  EXPECT_EQ(pooled.margins.after_reversal[0], expected);
+  EXPECT_EQ(pooled.margins.after_reversal[1], expected);
+}
+
 TEST(MarginCalibration, BadOptionsAndPlansAreNamed) {
   MarginCalibrationOptions o;
   o.feed_bands = {100, 50};
@@ -86,6 +169,14 @@ TEST(MarginCalibration, BadOptionsAndPlansAreNamed) {
     FAIL() << "no error";
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "feed_bands");
+  }
+  o = {};
+  o.reversal_window = -0.01;
+  try {
+    o.validate();
+    FAIL() << "no error";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "reversal_window");
   }
   ContourPredictor zero(zero_model(), zero_model());
   Dataset no_columns = plans();

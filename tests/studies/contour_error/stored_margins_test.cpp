@@ -67,6 +67,22 @@ TEST(StoredMargins, RoundTripKeepsEveryField) {
   expect_same_residuals(r->calibration.slowed, m.calibration.slowed);
   EXPECT_EQ(r->provenance.start_utc, m.provenance.start_utc);
   EXPECT_EQ(r->provenance.git_commit, m.provenance.git_commit);
+  EXPECT_EQ(r->options.reversal_window, 0.0);
+  EXPECT_TRUE(r->calibration.margins.after_reversal.empty());
+
+  // With margins after a change of direction.
+  StoredMargins w = m;
+  w.options.reversal_window = w.calibration.margins.reversal_window = 0.05;
+  w.calibration.margins.after_reversal = {0.0093, 0.0121};
+  w.calibration.after_reversal_band_ticks = {310, 95};
+  write_stored_margins(file, w);
+  const std::optional<StoredMargins> rw = read_stored_margins(file);
+  ASSERT_TRUE(rw.has_value());
+  EXPECT_EQ(rw->options.reversal_window, 0.05);
+  EXPECT_EQ(rw->calibration.margins.reversal_window, 0.05);
+  EXPECT_EQ(rw->calibration.margins.after_reversal, w.calibration.margins.after_reversal);
+  EXPECT_EQ(rw->calibration.after_reversal_band_ticks, w.calibration.after_reversal_band_ticks);
+  EXPECT_EQ(rw->calibration.margins.margin, m.calibration.margins.margin);
 }
 
 TEST(StoredMargins, AFileThatIsNotCompleteIsNamed) {
@@ -82,6 +98,12 @@ TEST(StoredMargins, AFileThatIsNotCompleteIsNamed) {
             }).find("do not fit together"),
             std::string::npos);
   EXPECT_FALSE(fs::exists(dir.path() / "bad-margins.h5"));
+  bad = crafted_margins();
+  bad.calibration.margins.after_reversal = {0.01, 0.02};  // without their tick counts
+  EXPECT_NE(testing::error_message<Error>([&] {
+              write_stored_margins(dir.path() / "bad-margins.h5", bad);
+            }).find("do not fit together"),
+            std::string::npos);
 }
 
 TEST(StoredMargins, TheStoredOnesAreUsedForTheSameResultAndOptionsOnly) {
@@ -119,6 +141,17 @@ TEST(StoredMargins, TheStoredOnesAreUsedForTheSameResultAndOptionsOnly) {
       predictor_margins(zero, d, "abc123", result, "identity-b", other, options_note);
   EXPECT_EQ(third.calibration.margins.margin, calibrate_margins(zero, d, other).margins.margin);
   EXPECT_NE(options_note.str().find("other calibration options"), std::string::npos);
+
+  // Another reversal window is other options too.
+  MarginCalibrationOptions window = other;
+  window.reversal_window = 0.03;
+  std::ostringstream window_note;
+  const StoredMargins fourth =
+      predictor_margins(zero, d, "abc123", result, "identity-b", window, window_note);
+  EXPECT_NE(window_note.str().find("other calibration options"), std::string::npos);
+  EXPECT_EQ(fourth.calibration.margins.after_reversal,
+            calibrate_margins(zero, d, window).margins.after_reversal);
+  EXPECT_FALSE(fourth.calibration.margins.after_reversal.empty());
 }
 
 }  // namespace

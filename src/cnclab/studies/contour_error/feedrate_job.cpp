@@ -53,7 +53,13 @@ const FieldList<MarginCalibrationOptions>& feedrate_job_calibration_fields() {
           .field("feed_bands", &C::feed_bands,
                  "band edges of the tick's path speed [mm/s], ascending", Rule::positive())
           .field("min_ticks", &C::min_ticks,
-                 "a band with fewer held-out ticks takes the quantile of all", Rule::at_least(1));
+                 "a band with fewer held-out ticks takes the quantile of its class, or of all",
+                 Rule::at_least(1))
+          .field("reversal_window", &C::reversal_window,
+                 "[s]: ticks this long after either axis changed direction (or started) get "
+                 "margins of their own per band (0: one class)",
+                 Rule::non_negative())
+          .omit_default();
   return fields;
 }
 
@@ -84,7 +90,12 @@ const FieldList<FeedrateOptimisationOptions>& feedrate_job_optimisation_fields()
           .field("max_iterations", &O::max_iterations, "plans, the first included",
                  Rule::at_least(1))
           .field("min_speed", &O::min_speed, "a cap below this [mm/s]: infeasible",
-                 Rule::positive());
+                 Rule::positive())
+          .field("standstill_speed", &O::standstill_speed,
+                 "ticks of a plan slower than this [mm/s] are not held to the bound (the "
+                 "jerk-limited start and stop no cap changes); at most min_speed",
+                 Rule::non_negative())
+          .omit_default();
   return fields;
 }
 

@@ -51,6 +51,12 @@ void feedrate_run_calibration(RunRecord& rec, const std::string& prefix,
     feedrate_run_metric(rec, band, c.margins.margin[b] * 1e3, "µm");
     feedrate_run_metric(rec, band + "_ticks", static_cast<double>(c.band_ticks[b]), "1");
   }
+  for (std::size_t b = 0; b < c.margins.after_reversal.size(); ++b) {
+    const std::string band = prefix + "margin_after_reversal_band" + std::to_string(b);
+    feedrate_run_metric(rec, band, c.margins.after_reversal[b] * 1e3, "µm");
+    feedrate_run_metric(rec, band + "_ticks", static_cast<double>(c.after_reversal_band_ticks[b]),
+                        "1");
+  }
   feedrate_run_residuals(rec, prefix + "validation_", c.validation);
   feedrate_run_residuals(rec, prefix + "slowed_", c.slowed);
 }
@@ -124,10 +130,18 @@ JobReport run_feedrate_job(const FeedrateJob& job, const JobContext& c) {
       cal = calibrate_margins(predictor, dataset, job.calibration);
     }
     feedrate_run_calibration(rec, "calibration_", cal);
+    rec.facts["calibration_inputs"] = join(model.upstream.record.narx->networks.at(0).inputs, ", ");
     report << "margins per feed band (quantile " << shortest_double(job.calibration.quantile)
            << " of simulated - predicted on " << cal.validation.ticks << " held-out ticks):";
     for (std::size_t b = 0; b < cal.margins.margin.size(); ++b) {
       report << " " << fixed_decimals(cal.margins.margin[b] * 1e3, 2) << " um";
+    }
+    if (!cal.margins.after_reversal.empty()) {
+      report << "; within " << shortest_double(cal.margins.reversal_window * 1e3)
+             << " ms of a change of direction:";
+      for (const double m : cal.margins.after_reversal) {
+        report << " " << fixed_decimals(m * 1e3, 2) << " um";
+      }
     }
     report << "; slowed runs: p99 under-prediction "
            << fixed_decimals(cal.slowed.underprediction_p99 * 1e3, 2) << " um\n";

@@ -7,6 +7,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/motion/axis_direction.hpp"
 
 namespace cnclab {
 namespace {
@@ -41,13 +42,15 @@ std::size_t optimisation_lower_caps(const FeedrateOptimisationOptions& o,
                                     const std::vector<double>& predicted,
                                     const std::vector<double>& s_knots, double top,
                                     PathSpeedCap& cap) {
+  const std::vector<double> margins = o.tick_margins(r);
   const PathSpeedCap before = cap;
   if (o.raise_caps) std::fill(cap.speed.begin(), cap.speed.end(), top);
   std::size_t over = 0;
   for (Eigen::Index k = 0; k < r.samples(); ++k) {
     const double eps = predicted[static_cast<std::size_t>(k)];
     const double v = r.velocity.row(k).norm();
-    const double bound = o.tolerance - o.margin_at(v);
+    if (o.at_standstill(v)) continue;
+    const double bound = o.tolerance - margins[static_cast<std::size_t>(k)];
     const double target = std::max(0.0, o.safety_factor * bound);
     if (eps > bound) ++over;
     const bool below = !(eps > target);
@@ -84,8 +87,9 @@ std::size_t FeedBandMargins::band(double speed) const noexcept {
                                   edges.begin());
 }
 
-double FeedBandMargins::max() const noexcept {
-  return margin.empty() ? 0.0 : *std::max_element(margin.begin(), margin.end());
+double FeedBandMargins::at(double speed, double since_change) const noexcept {
+  const std::size_t b = band(speed);
+  return after_reversal_at(since_change) ? after_reversal[b] : margin[b];
 }
 
 void FeedBandMargins::validate() const {
@@ -104,6 +108,36 @@ void FeedBandMargins::validate() const {
       throw OptionError("margin", shortest_double(m), "must be >= 0 and finite [mm]");
     }
   }
+  if (!(reversal_window >= 0.0 && std::isfinite(reversal_window))) {
+    throw OptionError("reversal_window", shortest_double(reversal_window),
+                      "must be >= 0 and finite [s]");
+  }
+  if (after_reversal.size() != (reversal_window > 0.0 ? margin.size() : 0)) {
+    throw OptionError("after_reversal", std::to_string(after_reversal.size()) + " values",
+                      reversal_window > 0.0
+                          ? "must be one per band: " + std::to_string(margin.size())
+                          : std::string("must be empty without a reversal_window"));
+  }
+  for (const double m : after_reversal) {
+    if (!(m >= 0.0 && std::isfinite(m))) {
+      throw OptionError("after_reversal", shortest_double(m), "must be >= 0 and finite [mm]");
+    }
+  }
+}
+
+std::vector<double> FeedrateOptimisationOptions::tick_margins(const ReferenceTrajectory& r) const {
+  std::vector<double> out(static_cast<std::size_t>(r.samples()), prediction_margin);
+  if (margin_bands.empty()) return out;
+  AxisDirectionOptions clock;
+  clock.period = r.period;
+  AxisDirection x(clock), y(clock);
+  for (Eigen::Index k = 0; k < r.samples(); ++k) {
+    x.step(r.velocity(k, 0));
+    y.step(r.velocity(k, 1));
+    out[static_cast<std::size_t>(k)] =
+        margin_bands.at(r.velocity.row(k).norm(), std::min(x.since_change(), y.since_change()));
+  }
+  return out;
 }
 
 void FeedrateOptimisationOptions::validate() const {
@@ -141,6 +175,10 @@ void FeedrateOptimisationOptions::validate() const {
   }
   if (!(min_speed > 0.0 && std::isfinite(min_speed))) {
     throw OptionError("min_speed", shortest_double(min_speed), "must be > 0 [mm/s]");
+  }
+  if (!(standstill_speed >= 0.0 && standstill_speed <= min_speed)) {
+    throw OptionError("standstill_speed", shortest_double(standstill_speed),
+                      "must be in [0, min_speed " + shortest_double(min_speed) + "] [mm/s]");
   }
   try {
     planner.validate();
@@ -191,13 +229,16 @@ FeedrateOptimisationResult optimise_feedrate(const PlanarPath& path, ContourPred
 
 namespace {
 
-// max over the ticks of predicted + m(|v|) - eps_max [mm]: <= 0 within.
+// max over the ticks (but those at standstill) of predicted + m_k - eps_max
+// [mm]: <= 0 within.
 double optimisation_worst_excess(const FeedrateOptimisationOptions& o, const ReferenceTrajectory& r,
                                  const std::vector<double>& predicted) {
+  const std::vector<double> margins = o.tick_margins(r);
   double worst = -INFINITY;
   for (Eigen::Index k = 0; k < r.samples(); ++k) {
-    worst = std::max(worst, predicted[static_cast<std::size_t>(k)] +
-                                o.margin_at(r.velocity.row(k).norm()) - o.tolerance);
+    if (o.at_standstill(r.velocity.row(k).norm())) continue;
+    const auto i = static_cast<std::size_t>(k);
+    worst = std::max(worst, predicted[i] + margins[i] - o.tolerance);
   }
   return worst;
 }

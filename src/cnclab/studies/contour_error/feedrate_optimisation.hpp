@@ -12,18 +12,20 @@
 //  1. plan the minimum-time feedrate under the axis limits (plan_feedrate);
 //  2. interpolate its 1 ms reference and run the predictor over it from rest:
 //     predicted |eps_c| per tick;
-//  3. for every tick k with |eps_k| > s (eps_max - m) (s = safety_factor < 1,
-//     m = prediction_margin, an allowance for the predictor's own error),
+//  3. for every tick k with |eps_k| > s (eps_max - m_k) (s = safety_factor < 1,
+//     m_k = prediction_margin, or the tick's margin_bands entry: an allowance
+//     for the predictor's own error),
 //     lower the path-speed cap (PathSpeedCap, a bound on the NLP's path
 //     speed at grid nodes) at every cap knot within `margin` mm of arc length
 //     of the tick to
-//        v_k (s (eps_max - m) / |eps_k|)^(1 / error_exponent),
+//        v_k (s (eps_max - m_k) / |eps_k|)^(1 / error_exponent),
 //     v_k the tick's path speed in this plan (so a cap only ever falls);
-//  4. replan under the axis limits and the cap; repeat from 2 until the worst
-//     predicted |eps| <= eps_max - m (converged) or max_iterations plans.
+//  4. replan under the axis limits and the cap; repeat from 2 until
+//     |eps_k| <= eps_max - m_k at every tick (converged; ticks slower than
+//     standstill_speed excepted) or max_iterations plans.
 // With raise_caps, step 3 sets each knot to the smallest such speed over its
 // window, also above the current cap, and the fastest plan within
-// eps_max - m of all plans is the result.
+// eps_max - m_k of all plans is the result.
 // The knots of the cap are the unconstrained plan's grid nodes (about
 // planner.grid_spacing apart), starting at the largest path speed the axis
 // velocity limits allow (no effect).
@@ -40,14 +42,28 @@ namespace cnclab {
 
 // A prediction margin per feed band [mm]: margin[b] applies to a tick whose
 // path speed |v| lies in band b = [edges[b-1], edges[b]) (edges[-1] = 0,
-// edges[size] = infinity). Empty: no bands.
+// edges[size] = infinity). Empty: no bands. With a reversal window, a tick
+// at most reversal_window after either axis's commanded direction last
+// changed (AxisDirection::since_change: a reversal, or the start from rest)
+// takes after_reversal[b] instead: the stick-slip transient there is what
+// the predictor misses most (docs/motion.md, "Calibrated
+// margins").
 struct FeedBandMargins {
-  std::vector<double> edges;   // ascending, > 0 [mm/s]
-  std::vector<double> margin;  // edges.size() + 1 values [mm], >= 0
+  std::vector<double> edges;                // ascending, > 0 [mm/s]
+  std::vector<double> margin;               // edges.size() + 1 values [mm], >= 0
+  double reversal_window = 0.0;             // [s], >= 0; 0: no reversal class
+  std::vector<double> after_reversal = {};  // empty, or as margin when reversal_window > 0 [mm]
   bool empty() const noexcept { return margin.empty(); }
   std::size_t band(double speed) const noexcept;
-  double at(double speed) const noexcept { return margin[band(speed)]; }
-  double max() const noexcept;
+  // Whether a tick since_change [s] after the last change of direction of
+  // either axis is in the window (a tick at its end counts: 1 ns slack for
+  // the rounding of ticks * period).
+  bool after_reversal_at(double since_change) const noexcept {
+    return reversal_window > 0.0 && since_change <= reversal_window + 1e-9;
+  }
+  // The margin of a tick at path speed |v| [mm/s], since_change [s] after
+  // the last change of direction of either axis.
+  double at(double speed, double since_change) const noexcept;
   void validate() const;  // OptionError naming the field
 };
 
@@ -65,10 +81,9 @@ struct FeedrateOptimisationOptions {
   // whose margin reaches eps_max leaves nothing to plan for at that feed:
   // the loop slows down out of it, or ends infeasible.
   FeedBandMargins margin_bands;
-  // The margin at a tick of path speed |v| [mm].
-  double margin_at(double speed) const noexcept {
-    return margin_bands.empty() ? prediction_margin : margin_bands.at(speed);
-  }
+  // The margin of every tick of a reference [mm] (its axis velocities give
+  // the path speed and the time since a change of direction).
+  std::vector<double> tick_margins(const ReferenceTrajectory& reference) const;
   // p in |eps| ~ v^p near a tick: the cap scales by (s eps_max/|eps|)^(1/p).
   // The lag error of a P position loop grows like v (tangential) and the
   // centripetal part like v^2 (normal): 1 is cautious (more slowdown, fewer
@@ -102,6 +117,15 @@ struct FeedrateOptimisationOptions {
   // slowing down (the predictor's error at standstill, or its bias, exceeds
   // it): the optimisation stops with status infeasible. > 0.
   double min_speed = 1.0;
+  // Ticks of a plan slower than this path speed [mm/s] are not held to the
+  // bound (0: every tick is). A plan from rest starts and ends with the same
+  // few jerk-limited ticks under any cap or factor, so the loop cannot
+  // change their error: a predictor's start-up transient there makes every
+  // plan infeasible (measured on the any-path study: 12 um predicted 3 ms
+  // after a cold start, at 0.23 mm/s, where the machine has 2.6 um). The
+  // verification on the machine still judges every tick. In [0, min_speed].
+  double standstill_speed = 0.0;
+  bool at_standstill(double speed) const noexcept { return speed < standstill_speed; }
   FeedratePlannerOptions planner;  // axis limits, grid; its speed_cap is set by the loop
 
   void validate() const;  // OptionError naming the field

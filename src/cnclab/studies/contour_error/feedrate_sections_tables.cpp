@@ -39,6 +39,19 @@ double sections_metric(const RunRecord& r, const std::string& name) {
   return it == r.metrics.end() ? NAN : it->second;
 }
 
+// The largest margin of a calibration recorded under `prefix` (every feed
+// band, after a reversal too) [µm]; NaN without one.
+double sections_largest_margin(const RunRecord& rec, const std::string& prefix) {
+  double largest = NAN;
+  for (const char* kind : {"margin_band", "margin_after_reversal_band"}) {
+    for (std::size_t b = 0; rec.metrics.count(prefix + kind + std::to_string(b)); ++b) {
+      const double v = sections_metric(rec, prefix + kind + std::to_string(b));
+      largest = std::isnan(largest) ? v : std::max(largest, v);
+    }
+  }
+  return largest;
+}
+
 double sections_median(std::vector<double> v) {
   v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return std::isnan(x); }), v.end());
   if (v.empty()) return NAN;
@@ -148,12 +161,7 @@ void measure_predictors(const SectionsResult& r, Measurements& m) {
   m["predictor.slowed_underprediction_p99_um"] =
       sections_metric(rec, "calibration_slowed_underprediction_p99");
   m["predictor.slowed_rms_um"] = own;
-  double max_margin = NAN;
-  for (std::size_t b = 0; rec.metrics.count("calibration_margin_band" + std::to_string(b)); ++b) {
-    const double v = sections_metric(rec, "calibration_margin_band" + std::to_string(b));
-    max_margin = std::isnan(max_margin) ? v : std::max(max_margin, v);
-  }
-  m["predictor.max_margin_um"] = max_margin;
+  m["predictor.max_margin_um"] = sections_largest_margin(rec, "calibration_");
   bool lowest = !std::isnan(own);
   for (std::size_t i = 0; rec.facts.count("compare" + std::to_string(i) + "_name"); ++i) {
     const std::string p = "compare" + std::to_string(i) + "_";
@@ -246,11 +254,7 @@ void print_predictors(const SectionsResult& r, TableFormat format, std::ostream&
                number_column("correlation", "slowed_correlation"),
                number_column("largest band margin [µm]", "max_margin", "µm")};
   const auto row = [&](const std::string& name, const std::string& inputs, const std::string& p) {
-    double max_margin = NAN;
-    for (std::size_t b = 0; rec.metrics.count(p + "margin_band" + std::to_string(b)); ++b) {
-      const double v = sections_metric(rec, p + "margin_band" + std::to_string(b));
-      max_margin = std::isnan(max_margin) ? v : std::max(max_margin, v);
-    }
+    const double max_margin = sections_largest_margin(rec, p);
     const double rms = sections_metric(rec, p + "slowed_rms");
     const double p99 = sections_metric(rec, p + "slowed_underprediction_p99");
     const double corr = sections_metric(rec, p + "slowed_correlation");
@@ -260,7 +264,9 @@ void print_predictors(const SectionsResult& r, TableFormat format, std::ostream&
                       number_cell(corr, fixed_decimals(corr, 3)),
                       number_cell(max_margin, fixed_decimals(max_margin, 2))});
   };
-  row(r.job.predictor + " (plans)", "", "calibration_");
+  const auto own_inputs = rec.facts.find("calibration_inputs");  // absent in older results
+  row(r.job.predictor + " (plans)", own_inputs == rec.facts.end() ? "" : own_inputs->second,
+      "calibration_");
   for (std::size_t i = 0; rec.facts.count("compare" + std::to_string(i) + "_name"); ++i) {
     const std::string p = "compare" + std::to_string(i) + "_";
     row(r.job.compare_predictors.at(i), rec.facts.at(p + "inputs"), p);
@@ -279,6 +285,16 @@ void print_predictors(const SectionsResult& r, TableFormat format, std::ostream&
     const std::string band = "calibration_margin_band" + std::to_string(b);
     margins += " " + fixed_decimals(sections_metric(rec, band), 2) + " µm (" +
                shortest_double(sections_metric(rec, band + "_ticks")) + " ticks)";
+  }
+  if (r.job.calibration.reversal_window > 0.0) {
+    margins += "; within " + shortest_double(r.job.calibration.reversal_window * 1e3) +
+               " ms of a change of direction of either axis:";
+    for (std::size_t b = 0;
+         rec.metrics.count("calibration_margin_after_reversal_band" + std::to_string(b)); ++b) {
+      const std::string band = "calibration_margin_after_reversal_band" + std::to_string(b);
+      margins += " " + fixed_decimals(sections_metric(rec, band), 2) + " µm (" +
+                 shortest_double(sections_metric(rec, band + "_ticks")) + " ticks)";
+    }
   }
   notes.push_back(margins + (r.job.calibrate_margin ? "" : "; not used by this job"));
   print_table_notes(out, format, notes);

@@ -6,6 +6,7 @@
 
 #include "cnclab/core/error.hpp"
 #include "cnclab/core/format.hpp"
+#include "cnclab/motion/axis_direction.hpp"
 
 namespace cnclab {
 namespace {
@@ -63,6 +64,10 @@ void MarginCalibrationOptions::validate() const {
     }
   }
   if (min_ticks < 1) throw OptionError("min_ticks", "0", "must be >= 1");
+  if (!(reversal_window >= 0.0 && std::isfinite(reversal_window))) {
+    throw OptionError("reversal_window", shortest_double(reversal_window),
+                      "must be >= 0 and finite [s]");
+  }
 }
 
 double empirical_quantile(std::vector<double>& values, double q) {
@@ -92,15 +97,35 @@ MarginCalibration calibrate_margins(ContourPredictor& predictor, const Dataset& 
     runs[factor_row < 0 ? 1.0 : d.metadata(factor_row, k)].push_back(k);
   }
   const std::size_t bands = options.feed_bands.size() + 1;
-  std::vector<std::vector<double>> by_band(bands);
+  const bool window = options.reversal_window > 0.0;
+  // [class][band]: class 1 within the reversal window.
+  std::vector<std::vector<double>> by_band[2] = {std::vector<std::vector<double>>(bands),
+                                                 std::vector<std::vector<double>>(bands)};
   std::vector<double> all_r, val_pred, val_sim, slow_pred, slow_sim;
-  FeedBandMargins locate{options.feed_bands, std::vector<double>(bands, 0.0)};
+  FeedBandMargins locate;  // for band() and after_reversal_at(): edges and window only
+  locate.edges = options.feed_bands;
+  locate.reversal_window = options.reversal_window;
+  // The time since a change of direction, counted in the dataset's ticks.
+  if (runs.empty()) throw Error("margin calibration: the plans have no samples");
+  AxisDirectionOptions clock;
+  const std::vector<Eigen::Index>& first_run = runs.begin()->second;
+  if (const Eigen::Index t = d.metadata_row("time"); t >= 0 && first_run.size() > 1) {
+    const double period = d.metadata(t, first_run[1]) - d.metadata(t, first_run[0]);
+    if (period > 0.0 && std::isfinite(period)) clock.period = period;
+  }
+  AxisDirection turn_x(clock), turn_y(clock);
   for (const auto& [factor, samples] : runs) {
     double piece = NAN;
     for (const Eigen::Index k : samples) {
       const double here = piece_row < 0 ? 0.0 : d.metadata(piece_row, k);
-      if (here != piece) predictor.reset();
+      if (here != piece) {
+        predictor.reset();
+        turn_x.reset();
+        turn_y.reset();
+      }
       piece = here;
+      turn_x.step(d.metadata(vx, k));
+      turn_y.step(d.metadata(vy, k));
       PathPoint p;
       p.position = {d.metadata(rx, k), d.metadata(ry, k)};
       p.d1 = {d.metadata(d1x, k), d.metadata(d1y, k)};
@@ -115,8 +140,9 @@ MarginCalibration calibrate_margins(ContourPredictor& predictor, const Dataset& 
       if (d.metadata(validation, k) != 1.0) continue;
       const double predicted = std::abs(out.contour_error), simulated = d.metadata(exact, k) * 1e-3;
       const double r = simulated - predicted;
-      const std::size_t band = locate.band(v.norm());
-      by_band[band].push_back(r);
+      const bool after_reversal =
+          locate.after_reversal_at(std::min(turn_x.since_change(), turn_y.since_change()));
+      by_band[after_reversal ? 1 : 0][locate.band(v.norm())].push_back(r);
       all_r.push_back(r);
       val_pred.push_back(predicted);
       val_sim.push_back(simulated);
@@ -130,11 +156,26 @@ MarginCalibration calibrate_margins(ContourPredictor& predictor, const Dataset& 
   MarginCalibration c;
   c.margins.edges = options.feed_bands;
   const double overall = std::max(0.0, empirical_quantile(all_r, options.quantile));
-  for (auto& r : by_band) {
-    c.band_ticks.push_back(r.size());
-    c.margins.margin.push_back(r.size() < options.min_ticks
-                                   ? overall
-                                   : std::max(0.0, empirical_quantile(r, options.quantile)));
+  // The margins of one class per band; a band with fewer than min_ticks
+  // takes the quantile of its class, or of all ticks.
+  const auto class_margins = [&](std::vector<std::vector<double>>& classes,
+                                 std::vector<double>& margins, std::vector<std::size_t>& ticks) {
+    std::vector<double> pooled;
+    for (const auto& r : classes) pooled.insert(pooled.end(), r.begin(), r.end());
+    const double fallback = pooled.size() < options.min_ticks
+                                ? overall
+                                : std::max(0.0, empirical_quantile(pooled, options.quantile));
+    for (auto& r : classes) {
+      ticks.push_back(r.size());
+      margins.push_back(r.size() < options.min_ticks
+                            ? fallback
+                            : std::max(0.0, empirical_quantile(r, options.quantile)));
+    }
+  };
+  class_margins(by_band[0], c.margins.margin, c.band_ticks);
+  if (window) {
+    c.margins.reversal_window = options.reversal_window;
+    class_margins(by_band[1], c.margins.after_reversal, c.after_reversal_band_ticks);
   }
   c.validation = calibration_summary(val_pred, val_sim);
   c.slowed = calibration_summary(slow_pred, slow_sim);

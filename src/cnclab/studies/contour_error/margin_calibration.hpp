@@ -11,7 +11,13 @@
 // at a tick only where r > margin, on at most 1 - quantile of the ticks if
 // the plan's residuals are distributed as the calibration's (a split-
 // conformal bound, per band). quantile = the required share (0.999) makes
-// that bound the verification's criterion.
+// that bound the verification's criterion. With a reversal_window, the ticks
+// within it after either axis's commanded direction changed (a reversal or
+// the start from rest, AxisDirection::since_change) are a class of their
+// own with their own margins per band: the predictor's largest misses are
+// the stick-slip spikes there, and one quantile over all ticks charges
+// their margin to every tick (docs/motion.md, "Calibrated
+// margins").
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -26,8 +32,13 @@ struct MarginCalibrationOptions {
   double quantile = 0.999;  // of r per band, in (0, 1)
   // Band edges [mm/s], ascending, > 0: bands [0, e0), [e0, e1), ..., [e_last, inf).
   std::vector<double> feed_bands = {50, 100, 150, 200};
-  // A band with fewer validation ticks takes the quantile of all ticks.
+  // A band with fewer validation ticks takes the quantile of all ticks of
+  // its class (of all ticks when the class has fewer too).
   std::size_t min_ticks = 1000;
+  // [s], >= 0: ticks at most this long after a change of direction form the
+  // after-reversal class (0: one class). The stick-slip transient lasts a
+  // few servo time constants (1/Kp = 25 ms on the router).
+  double reversal_window = 0.0;
 
   void validate() const;  // OptionError naming the field
 };
@@ -42,9 +53,10 @@ struct ResidualSummary {
 
 struct MarginCalibration {
   FeedBandMargins margins;
-  std::vector<std::size_t> band_ticks;  // validation ticks per band
-  ResidualSummary validation;           // every validation tick
-  ResidualSummary slowed;               // those of runs with feed_factor < 1 (ticks 0: none)
+  std::vector<std::size_t> band_ticks;  // validation ticks per band (outside the reversal window)
+  std::vector<std::size_t> after_reversal_band_ticks = {};  // within it (empty: no window)
+  ResidualSummary validation;                               // every validation tick
+  ResidualSummary slowed;  // those of runs with feed_factor < 1 (ticks 0: none)
 };
 
 // Runs `predictor` over every run of `plans` (a following_error dataset:

@@ -35,7 +35,8 @@ ResidualSummary read_residuals(const H5File& f, const std::string& g) {
 }
 
 bool same_options(const MarginCalibrationOptions& a, const MarginCalibrationOptions& b) {
-  return a.quantile == b.quantile && a.feed_bands == b.feed_bands && a.min_ticks == b.min_ticks;
+  return a.quantile == b.quantile && a.feed_bands == b.feed_bands && a.min_ticks == b.min_ticks &&
+         a.reversal_window == b.reversal_window;
 }
 
 }  // namespace
@@ -47,10 +48,14 @@ fs::path stored_margins_path(const fs::path& predictor_result) {
 void write_stored_margins(const fs::path& file, const StoredMargins& m) {
   const MarginCalibration& c = m.calibration;
   if (c.margins.margin.size() != c.margins.edges.size() + 1 ||
-      c.band_ticks.size() != c.margins.margin.size()) {
+      c.band_ticks.size() != c.margins.margin.size() ||
+      c.after_reversal_band_ticks.size() != c.margins.after_reversal.size()) {
     throw Error("margins for " + file.string() + ": " + std::to_string(c.margins.margin.size()) +
                 " margins, " + std::to_string(c.band_ticks.size()) + " tick counts and " +
-                std::to_string(c.margins.edges.size()) + " band edges do not fit together");
+                std::to_string(c.margins.edges.size()) + " band edges (" +
+                std::to_string(c.margins.after_reversal.size()) + " and " +
+                std::to_string(c.after_reversal_band_ticks.size()) +
+                " after a reversal) do not fit together");
   }
   AtomicOutput out(file);
   {
@@ -66,6 +71,13 @@ void write_stored_margins(const fs::path& file, const StoredMargins& m) {
     f.write_vector("margins", c.margins.margin, "mm");
     std::vector<std::int64_t> ticks(c.band_ticks.begin(), c.band_ticks.end());
     f.write_int64s("band_ticks", ticks, "1");
+    f.write_double("reversal_window", m.options.reversal_window, "s");
+    if (m.options.reversal_window > 0.0) {
+      f.write_vector("after_reversal_margins", c.margins.after_reversal, "mm");
+      std::vector<std::int64_t> after(c.after_reversal_band_ticks.begin(),
+                                      c.after_reversal_band_ticks.end());
+      f.write_int64s("after_reversal_band_ticks", after, "1");
+    }
     write_residuals(f, "validation", c.validation);
     write_residuals(f, "slowed", c.slowed);
     write_provenance(f, "provenance", m.provenance);
@@ -96,14 +108,27 @@ std::optional<StoredMargins> read_stored_margins(const fs::path& file) {
   for (const std::int64_t t : f.read_int64s("band_ticks")) {
     c.band_ticks.push_back(static_cast<std::size_t>(t));
   }
+  // Files written before the reversal class have no window: one class.
+  m.options.reversal_window = f.exists("reversal_window") ? f.read_double("reversal_window") : 0.0;
+  if (m.options.reversal_window > 0.0) {
+    c.margins.reversal_window = m.options.reversal_window;
+    c.margins.after_reversal = f.read_vector("after_reversal_margins");
+    for (const std::int64_t t : f.read_int64s("after_reversal_band_ticks")) {
+      c.after_reversal_band_ticks.push_back(static_cast<std::size_t>(t));
+    }
+  }
   if (c.margins.margin.size() != c.margins.edges.size() + 1 ||
-      c.band_ticks.size() != c.margins.margin.size()) {
+      c.band_ticks.size() != c.margins.margin.size() ||
+      c.after_reversal_band_ticks.size() != c.margins.after_reversal.size()) {
     throw Error(file.string() + ": " + std::to_string(c.margins.margin.size()) + " margins and " +
-                std::to_string(c.band_ticks.size()) + " tick counts for " +
+                std::to_string(c.band_ticks.size()) + " tick counts (" +
+                std::to_string(c.margins.after_reversal.size()) + " and " +
+                std::to_string(c.after_reversal_band_ticks.size()) + " after a reversal) for " +
                 std::to_string(c.margins.edges.size() + 1) + " feed bands");
   }
   try {
     m.options.validate();
+    c.margins.validate();
   } catch (const OptionError& e) {
     throw Error(file.string() + ": " + e.what());
   }

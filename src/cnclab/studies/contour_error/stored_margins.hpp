@@ -15,6 +15,9 @@
 //   feed_bands          float64[] band edges [mm/s]
 //   margins             float64[] per band [mm]
 //   band_ticks          int64[]   validation ticks per band
+//   reversal_window     double    [s]; 0 (or absent: files before it) one class
+//   after_reversal_margins, after_reversal_band_ticks   as margins and
+//                       band_ticks, within the window (only when it is > 0)
 //   validation/, slowed/   ticks, rms, underprediction_p99,
 //                          underprediction_max [mm], correlation
 //   provenance/         who calibrated, when (io/provenance.hpp)
