@@ -132,20 +132,30 @@ TEST(FeedrateOptimisation, SimulatedMachineAsModelMeetsTheTolerance) {
   EXPECT_LE(both.profile.total_time(), lower.profile.total_time() + kTimeTol);
 }
 
+// The S-bend with the simulated machine as the loop's model and a tolerance
+// of 0.6 times the unconstrained plan's largest simulated contour error.
+struct OnTheMachine {
+  VerificationOptions v;
+  FeedrateOptimisationOptions o;
+  ContourErrorModel machine = [this](const ReferenceTrajectory& r) {
+    return check_on_machine(test_path(), r, v).simulated;
+  };
+  OnTheMachine() {
+    const FeedrateProfile free = plan_feedrate(test_path());
+    o.tolerance = 0.6 * check_on_machine(test_path(), interpolate(test_path(), free), v).max;
+  }
+  OnTheMachine(const OnTheMachine&) = delete;  // `machine` refers to this one's `v`
+};
+
 // Margins per feed band: the converged plan keeps every tick's modelled
 // error within eps_max - m(|v|) of its own band (checked tick by tick here),
 // and a band whose margin reaches eps_max at the speeds every plan passes
 // through (standstill at the ends) leaves nothing to plan: infeasible.
 TEST(FeedrateOptimisation, MarginsPerFeedBandHoldTickByTick) {
-  VerificationOptions v;
-  const FeedrateProfile free = plan_feedrate(test_path());
-  const ContourCheck free_check = check_on_machine(test_path(), interpolate(test_path(), free), v);
-  FeedrateOptimisationOptions o;
-  o.tolerance = 0.6 * free_check.max;
+  OnTheMachine m;
+  FeedrateOptimisationOptions& o = m.o;
+  const ContourErrorModel& machine = m.machine;
   o.margin_bands = {{30.0}, {0.05 * o.tolerance, 0.25 * o.tolerance}};
-  const ContourErrorModel machine = [&](const ReferenceTrajectory& r) {
-    return check_on_machine(test_path(), r, v).simulated;
-  };
   const FeedrateOptimisationResult res = optimise_feedrate(test_path(), machine, o);
   ASSERT_EQ(res.status, OptimisationStatus::converged) << res.reason;
   std::size_t slow = 0, fast = 0;
@@ -201,17 +211,11 @@ TEST(FeedrateOptimisation, MarginsAfterAChangeOfDirectionHoldForTheWindow) {
 // reversal; the ticks since a start are counted here by hand), where the
 // margin leaves 0.3 eps_max.
 TEST(FeedrateOptimisation, MarginsAfterAStartHoldTickByTick) {
-  VerificationOptions v;
-  const FeedrateProfile free = plan_feedrate(test_path());
-  const ContourCheck free_check = check_on_machine(test_path(), interpolate(test_path(), free), v);
-  FeedrateOptimisationOptions o;
-  o.tolerance = 0.6 * free_check.max;
+  OnTheMachine m;
+  FeedrateOptimisationOptions& o = m.o;
   o.margin_bands = {
       {30.0}, {0.05 * o.tolerance, 0.1 * o.tolerance}, 0.1, {0.7 * o.tolerance, 0.7 * o.tolerance}};
-  const ContourErrorModel machine = [&](const ReferenceTrajectory& r) {
-    return check_on_machine(test_path(), r, v).simulated;
-  };
-  const FeedrateOptimisationResult res = optimise_feedrate(test_path(), machine, o);
+  const FeedrateOptimisationResult res = optimise_feedrate(test_path(), m.machine, o);
   ASSERT_EQ(res.status, OptimisationStatus::converged) << res.reason;
   Eigen::Index started[2] = {-1, -1};
   std::size_t after = 0;
@@ -235,13 +239,10 @@ TEST(FeedrateOptimisation, MarginsAfterAStartHoldTickByTick) {
 // the bound at every tick; with standstill_speed 1 mm/s those ticks are not
 // held to it and every other tick is.
 TEST(FeedrateOptimisation, TicksAtStandstillAreNotHeldToTheBoundWhenAsked) {
-  VerificationOptions v;
-  const FeedrateProfile free = plan_feedrate(test_path());
-  const ContourCheck free_check = check_on_machine(test_path(), interpolate(test_path(), free), v);
-  FeedrateOptimisationOptions o;
-  o.tolerance = 0.6 * free_check.max;
+  OnTheMachine m;
+  FeedrateOptimisationOptions& o = m.o;
   const ContourErrorModel transient = [&](const ReferenceTrajectory& r) {
-    std::vector<double> e = check_on_machine(test_path(), r, v).simulated;
+    std::vector<double> e = m.machine(r);
     for (Eigen::Index k = 0; k < r.samples(); ++k) {
       if (r.velocity.row(k).norm() < 1.0) e[static_cast<std::size_t>(k)] = 2 * o.tolerance;
     }

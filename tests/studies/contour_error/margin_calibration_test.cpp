@@ -37,13 +37,19 @@ TEST(MarginCalibration, EmpiricalQuantileIsTypeOne) {
   EXPECT_TRUE(std::isnan(empirical_quantile(none, 0.5)));
 }
 
-TEST(MarginCalibration, ZeroPredictorGivesTheQuantilesOfTheSimulatedError) {
-  const Dataset& d = plans();
-  ContourPredictor zero(zero_model(), zero_model());
+// Two bands (150 mm/s), the 0.95 quantile, no pooling.
+MarginCalibrationOptions two_band_options() {
   MarginCalibrationOptions o;
   o.quantile = 0.95;
   o.feed_bands = {150};
   o.min_ticks = 1;
+  return o;
+}
+
+TEST(MarginCalibration, ZeroPredictorGivesTheQuantilesOfTheSimulatedError) {
+  const Dataset& d = plans();
+  ContourPredictor zero(zero_model(), zero_model());
+  MarginCalibrationOptions o = two_band_options();
   const MarginCalibration c = calibrate_margins(zero, d, o);
   std::vector<std::vector<double>> band(2);
   std::vector<double> all, slowed;
@@ -86,10 +92,7 @@ TEST(MarginCalibration, ZeroPredictorGivesTheQuantilesOfTheSimulatedError) {
 TEST(MarginCalibration, ReversalWindowGivesTheTicksAfterAChangeOfDirectionTheirOwnMargins) {
   const Dataset& d = plans();
   ContourPredictor zero(zero_model(), zero_model());
-  MarginCalibrationOptions o;
-  o.quantile = 0.95;
-  o.feed_bands = {150};
-  o.min_ticks = 1;
+  MarginCalibrationOptions o = two_band_options();
   const MarginCalibration one = calibrate_margins(zero, d, o);
   o.reversal_window = 0.03;
   const MarginCalibration c = calibrate_margins(zero, d, o);
