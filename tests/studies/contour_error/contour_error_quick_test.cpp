@@ -12,11 +12,11 @@
 
 #include "cnclab/report/targets.hpp"
 #include "cnclab/studies/contour_error/contour_error_tables.hpp"
-#include "cnclab/studies/contour_error/narx_metrics.hpp"
 #include "cnclab/studies/contour_error/narx_study_runs.hpp"
 #include "cnclab/sweep/sweep_job.hpp"
 #include "cnclab/sweep/sweep_plan.hpp"
 #include "common/temp_dir.hpp"
+#include "studies/contour_error/metrics_once.hpp"
 
 namespace cnclab {
 namespace {
@@ -27,7 +27,7 @@ TEST(ContourErrorQuick, ReproduceAndTables) {
   testing::TempDir dir;
   const fs::path experiments = CNCLAB_SOURCE_DIR "/experiments";
   const fs::path results = dir.path() / "results" / "quick";
-  register_contour_error_metrics();
+  testing::register_contour_error_metrics_once();
   CommandOptions options;
   options.results_dir = results;
   options.datasets_dir = dir.path() / "datasets";

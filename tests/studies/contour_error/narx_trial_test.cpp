@@ -14,9 +14,9 @@
 #include "cnclab/experiment/result_file.hpp"
 #include "cnclab/experiment/runner.hpp"
 #include "cnclab/experiment/sequence_metrics.hpp"
-#include "cnclab/studies/contour_error/narx_metrics.hpp"
 #include "common/expect_error.hpp"
 #include "common/temp_dir.hpp"
+#include "studies/contour_error/metrics_once.hpp"
 
 namespace cnclab {
 namespace {
@@ -24,14 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::error_message;
 using testing::TempDir;
-
-void register_metrics_once() {
-  static const bool done = [] {
-    register_contour_error_metrics();
-    return true;
-  }();
-  (void)done;
-}
 
 const char* kDataset =
     "dataset:\n  generator: following_error\n  seed: 11\n  options:\n"
@@ -59,7 +51,7 @@ const char* kTwoStage =
 const char* kOpenOnly = "[{mode: open_loop, type: trainbr, epochs: 30, min_gradient: 1.0e-8}]";
 
 TEST(NarxTrial, ConfigErrorsNameTheKey) {
-  register_metrics_once();
+  testing::register_contour_error_metrics_once();
   const auto message = [](const std::string& yaml) {
     return error_message<ConfigError>([&] { parse_experiment(yaml, "t.yaml"); });
   };
@@ -97,7 +89,7 @@ TEST(NarxTrial, ConfigErrorsNameTheKey) {
 }
 
 TEST(NarxTrial, ResolvedConfigIsAFixedPointAndStagesChangeIt) {
-  register_metrics_once();
+  testing::register_contour_error_metrics_once();
   const LoadedExperiment a = parse_experiment(tiny_trial(kTwoStage), "t.yaml");
   const LoadedExperiment b = parse_experiment(a.resolved_yaml, "resolved.yaml");
   EXPECT_EQ(a.resolved_yaml, b.resolved_yaml);
@@ -119,7 +111,7 @@ double rms(const Eigen::VectorXd& v) {
 // zero. (Before the `kind: narx` job was removed, these trials matched it
 // bit for bit.)
 TEST(NarxTrial, MetricsAgreeWithTheStoredPrediction) {
-  register_metrics_once();
+  testing::register_contour_error_metrics_once();
   TempDir dir;
   const RunOptions options = run_options_in(dir);
   const char* stages[] = {kTwoStage, kOpenOnly};
@@ -175,7 +167,7 @@ TEST(NarxTrial, MetricsAgreeWithTheStoredPrediction) {
 // parameters, simulated here on the training half of the dataset.
 // mu_max = mu makes the first rejected step stop the stage.
 TEST(NarxTrial, SecondTryKeepsTheLowerWholeSeriesSse) {
-  register_metrics_once();
+  testing::register_contour_error_metrics_once();
   TempDir dir;
   const RunOptions options = run_options_in(dir);
   const std::string stages =
@@ -235,7 +227,7 @@ std::size_t cached_stages(const RunOptions& options) {
 // folder of its own); other starting weights or options are other stages;
 // a damaged cache file is trained again.
 TEST(NarxTrial, SharedStagesEndBitForBitWhereTrainingEnds) {
-  register_metrics_once();
+  testing::register_contour_error_metrics_once();
   TempDir dir;  // one per test: two folders in it
   RunOptions fresh, shared;
   fresh.results_dir = dir / "fresh_results";
