@@ -99,6 +99,12 @@ TEST(StoredMargins, AFileThatIsNotCompleteIsNamed) {
             std::string::npos);
   EXPECT_FALSE(fs::exists(dir.path() / "bad-margins.h5"));
   bad = crafted_margins();
+  bad.options.reversal_window = 0.05;  // the options' window, but no margins for it
+  EXPECT_NE(testing::error_message<Error>([&] {
+              write_stored_margins(dir.path() / "bad-margins.h5", bad);
+            }).find("do not fit together"),
+            std::string::npos);
+  bad = crafted_margins();
   bad.calibration.margins.after_reversal = {0.01, 0.02};  // without their tick counts
   EXPECT_NE(testing::error_message<Error>([&] {
               write_stored_margins(dir.path() / "bad-margins.h5", bad);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cnclab/core/error.hpp"
+#include "cnclab/core/format.hpp"
 #include "cnclab/io/atomic_file.hpp"
 #include "cnclab/io/file_format.hpp"
 #include "cnclab/io/h5.hpp"
@@ -47,15 +48,19 @@ fs::path stored_margins_path(const fs::path& predictor_result) {
 
 void write_stored_margins(const fs::path& file, const StoredMargins& m) {
   const MarginCalibration& c = m.calibration;
+  const bool window = m.options.reversal_window > 0.0;
   if (c.margins.margin.size() != c.margins.edges.size() + 1 ||
       c.band_ticks.size() != c.margins.margin.size() ||
+      c.margins.reversal_window != m.options.reversal_window ||
+      c.margins.after_reversal.size() != (window ? c.margins.margin.size() : 0) ||
       c.after_reversal_band_ticks.size() != c.margins.after_reversal.size()) {
     throw Error("margins for " + file.string() + ": " + std::to_string(c.margins.margin.size()) +
                 " margins, " + std::to_string(c.band_ticks.size()) + " tick counts and " +
                 std::to_string(c.margins.edges.size()) + " band edges (" +
                 std::to_string(c.margins.after_reversal.size()) + " and " +
-                std::to_string(c.after_reversal_band_ticks.size()) +
-                " after a reversal) do not fit together");
+                std::to_string(c.after_reversal_band_ticks.size()) + " after a reversal, window " +
+                shortest_double(c.margins.reversal_window) + " s, options' " +
+                shortest_double(m.options.reversal_window) + " s) do not fit together");
   }
   AtomicOutput out(file);
   {
@@ -72,7 +77,7 @@ void write_stored_margins(const fs::path& file, const StoredMargins& m) {
     std::vector<std::int64_t> ticks(c.band_ticks.begin(), c.band_ticks.end());
     f.write_int64s("band_ticks", ticks, "1");
     f.write_double("reversal_window", m.options.reversal_window, "s");
-    if (m.options.reversal_window > 0.0) {
+    if (window) {
       f.write_vector("after_reversal_margins", c.margins.after_reversal, "mm");
       std::vector<std::int64_t> after(c.after_reversal_band_ticks.begin(),
                                       c.after_reversal_band_ticks.end());
